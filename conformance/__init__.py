@@ -1,0 +1,1 @@
+"""Conformance cases, expectations, metrics, runner and the x3drbp command line."""

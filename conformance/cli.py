@@ -1,0 +1,62 @@
+"""The x3drbp command line."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from x3d_core.analysis import features, summarize
+from x3d_core.load import load
+from x3d_core.model import LoadError
+from x3d_core.paths import scene_files
+
+
+def _check(args: argparse.Namespace) -> int:
+    files = scene_files(args.paths)
+    if not files:
+        print("x3drbp check: no X3D files (.x3d, .x3dv, .x3dj) under the given paths", file=sys.stderr)
+        return 2
+    failed = 0
+    for path in files:
+        try:
+            scene = load(path)
+        except LoadError as e:
+            print(e.diagnostic)
+            failed += 1
+            continue
+        except RecursionError:
+            print(f"{path}:1:1: error: nesting too deep to read")
+            failed += 1
+            continue
+        for d in scene.diagnostics:
+            if d.severity == "error" or not args.quiet:
+                print(d)
+        if scene.errors:
+            failed += 1
+            continue
+        if not args.quiet:
+            print(f"{path}: ok ({scene.encoding}, X3D {scene.version}, {len(scene.warnings)} warnings)")
+            for line in summarize(scene).lines():
+                print(f"  {line}")
+            print(f"  features: {' '.join(features(scene)) or 'none'}")
+    if len(files) > 1:
+        print(f"{len(files) - failed} of {len(files)} files ok")
+    return 1 if failed else 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="x3drbp", description=__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+    check = sub.add_parser("check", help="load and validate X3D files; summarize what each scene uses")
+    check.add_argument("paths", nargs="+", help="files, or folders searched for .x3d/.x3dv/.x3dj files")
+    check.add_argument("-q", "--quiet", action="store_true", help="print errors only")
+    check.set_defaults(func=_check)
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,424 @@
+"""What every loader shares: typing field values, DEF/USE, containment, PROTO expansion.
+
+A loader only tokenizes its encoding and calls a Builder, so each rule of the model
+(which field a child goes to, what a USE cycle is, which values are in range, how
+UNITs apply) is written once for the three encodings.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import numpy as np
+
+from . import fields as F
+from . import schema
+from .model import Diagnostic, FieldDecl, LoadError, Location, Node, Route, Scene
+from .units import BASE_CATEGORIES, factor
+
+Parser = Callable[[F.FieldType, Any], Any]
+
+
+@dataclass(frozen=True)
+class RawValue:
+    """A field of a node type x3drbp does not model, kept as the file wrote it."""
+    encoding: str  # "xml" | "vrml" | "json"
+    data: Any  # attribute text, ClassicVRML text, or the JSON value
+
+
+@dataclass
+class ProtoDecl:
+    name: str
+    interface: dict[str, FieldDecl]
+    body: list[Node] = field(default_factory=list)
+    links: list[tuple[Node, str, str]] = field(default_factory=list)  # (body node, its field, interface field)
+    routes: list[Route] = field(default_factory=list)
+
+
+# Field names of Xj3D's pre-standard component (COMPONENT xj3d_RigidBodyPhysics) that
+# the standard renamed
+PRESTANDARD_NAMES = {("*", "mustOutput"): "forceOutput", ("CollisionSensor", "collidables"): "collider"}
+
+# Node types that only present a scene: a value out of range there cannot change the
+# physics, so it is a warning, not an error.
+PRESENTATION = frozenset({"Appearance", "Material", "Background", "Viewpoint", "NavigationInfo",
+                          "DirectionalLight", "WorldInfo", "TimeSensor", "PositionInterpolator",
+                          "OrientationInterpolator", "Color", "Normal", "TextureCoordinate"})
+
+
+# Spellings X3D allows for the events of an inputOutput field
+def _base_field(spec: schema.NodeType, name: str) -> schema.FieldDef | None:
+    fd = spec.fields.get(name)
+    if fd is not None:
+        return fd
+    for prefix, suffix in (("set_", ""), ("", "_changed")):
+        if name.startswith(prefix) and name.endswith(suffix):
+            base = name[len(prefix):len(name) - len(suffix)]
+            fd = spec.fields.get(base)
+            if fd is not None and fd.access == "inputOutput":
+                return fd
+    return None
+
+
+class Builder:
+    def __init__(self, scene: Scene):
+        self.scene = scene
+        self.scopes: list[dict[str, Node]] = [{}]
+        self.protos: dict[str, ProtoDecl] = {}
+        self.open: set[int] = set()  # nodes whose definition is still being read
+        self.proto_stack: list[ProtoDecl] = []
+        self.externs: set[str] = set()
+        self.prestandard = False  # the file declares an xj3d_ component
+
+    # -- diagnostics --------------------------------------------------------
+    def error(self, loc: Location, subject: str, message: str) -> None:
+        self.scene.diagnostics.append(Diagnostic("error", self.resolve(loc, subject), subject, message))
+
+    def warning(self, loc: Location, subject: str, message: str) -> None:
+        self.scene.diagnostics.append(Diagnostic("warning", self.resolve(loc, subject), subject, message))
+
+    def resolve(self, loc: Location, subject: str) -> Location:
+        """The exact place of a diagnostic; encodings whose parser gives less override it."""
+        return loc
+
+    def fatal(self, loc: Location, message: str) -> LoadError:
+        return LoadError(Diagnostic("error", loc, "", message))
+
+    # -- nodes --------------------------------------------------------------
+    @property
+    def defs(self) -> dict[str, Node]:
+        return self.scopes[-1]
+
+    def node(self, type_name: str, loc: Location, def_name: str | None = None) -> Node:
+        """A new node, entered as being read until done() is called."""
+        spec = schema.node_type(type_name)
+        if spec is None and type_name == "Script":
+            self.warning(loc, type_name, f"{type_name} is kept in the model but does not run")
+        n = Node(type_name, spec, loc, def_name)
+        if def_name:
+            if def_name in self.defs:
+                self.warning(loc, n.label, f"DEF name {def_name!r} redefined (first at {self.defs[def_name].loc}); "
+                                           "later USEs get this node")
+            self.defs[def_name] = n
+        self.open.add(id(n))
+        return n
+
+    def done(self, node: Node) -> None:
+        self.open.discard(id(node))
+
+    def use(self, name: str, loc: Location) -> Node | None:
+        n = self.defs.get(name)
+        if n is None:
+            self.error(loc, f"USE {name}", f"USE of undefined name {name!r}; a USE must follow its DEF")
+            return None
+        if id(n) in self.open:
+            self.error(loc, f"USE {name}", f"USE cycle: {n.label} is used inside its own definition")
+            return None
+        return n
+
+    # -- field values -------------------------------------------------------
+    def field_def(self, node: Node, name: str, loc: Location) -> schema.FieldDef | None:
+        """The definition of a field a file names on a typed node, with an error if unknown."""
+        assert node.spec is not None
+        fd = _base_field(node.spec, name)
+        if fd is None and self.prestandard:
+            alias = PRESTANDARD_NAMES.get((node.type_name, name)) or PRESTANDARD_NAMES.get(("*", name))
+            if alias is not None:
+                self.warning(loc, f"{node.label}.{name}", f"pre-standard (Xj3D) name read as {alias}")
+                fd = node.spec.fields[alias]
+        if fd is None:
+            for decl in node.interface:
+                if decl.name == name:
+                    return None
+            self.error(loc, f"{node.label}.{name}",
+                       f"{node.type_name} has no field {name!r}")
+        return fd
+
+    def set_value(self, node: Node, name: str, raw: Any, loc: Location, parse: Parser, encoding: str) -> None:
+        """Give a field its value from the file's text (or JSON value)."""
+        if node.spec is None:
+            node.values[name] = RawValue(encoding, raw)
+            node.field_locs[name] = loc
+            return
+        fd = self.field_def(node, name, loc)
+        if fd is None:
+            return
+        subject = f"{node.label}.{fd.name}"
+        if fd.type.kind == "node":
+            self.error(loc, subject, f"{fd.type.name} field takes nodes, not a value")
+            return
+        if not fd.readable:
+            self.error(loc, subject, f"{fd.access} field cannot be given a value in a file")
+            return
+        try:
+            value = parse(fd.type, raw)
+        except F.FieldError as e:
+            self.error(loc, subject, str(e))
+            return
+        self.store(node, fd, value, loc)
+
+    def store(self, node: Node, fd: schema.FieldDef, value: Any, loc: Location, convert: bool = True) -> None:
+        """Keep a typed value: UNITs applied, then checked against the field's range."""
+        if convert:
+            value = self.to_si(fd, value)
+        if fd.range is not None and not fd.type.rotation:
+            numbers = np.asarray(value, dtype=np.float64).ravel()
+            if numbers.size and not fd.range.contains(numbers):
+                bad = numbers[~_in(fd.range, numbers)][0]
+                message = f"{F._num(bad)} is out of range; allowed {fd.range}"
+                if node.type_name not in PRESENTATION:
+                    self.error(loc, f"{node.label}.{fd.name}", message)
+                    return
+                self.warning(loc, f"{node.label}.{fd.name}", message + " (kept: it does not affect physics)")
+        if fd.name in node.values and fd.name in node.field_locs:
+            self.error(loc, f"{node.label}.{fd.name}", f"field given twice (first at {node.field_locs[fd.name]})")
+            return
+        node.values[fd.name] = value
+        node.field_locs[fd.name] = loc
+
+    def to_si(self, fd: schema.FieldDef, value: Any) -> Any:
+        units = {k: v[1] for k, v in self.scene.units.items()}
+        if not units:
+            return value
+        if fd.type.rotation and "angle" in units:
+            value = np.array(value, dtype=np.float64)
+            value[..., 3] *= units["angle"]
+        k = factor(fd.unit, units)
+        if k != 1.0:
+            value = value * k if not isinstance(value, np.ndarray) else value * k
+        return value
+
+    # -- containment --------------------------------------------------------
+    def add_child(self, parent: Node, name: str | None, child: Node, loc: Location) -> None:
+        """Put a child node into a field of its parent. name None: the child's default
+        containerField, or else the one field of the parent that accepts it."""
+        if parent.spec is None:
+            key = name or (child.spec.container_field if child.spec else "children")
+            slot = parent.values.setdefault(key, [])
+            if isinstance(slot, list):
+                slot.append(child)
+            return
+        fd = None
+        if name is not None:
+            fd = self.field_def(parent, name, loc)
+            if fd is None:
+                return
+        else:
+            default = child.spec.container_field if child.spec else "children"
+            fd = parent.spec.fields.get(default)
+            if fd is None or fd.type.kind != "node" or not schema.accepts(fd, child.type_name):
+                fits = [f for f in parent.spec.fields.values()
+                        if f.type.kind == "node" and f.readable and f.accepts and schema.accepts(f, child.type_name)
+                        and not (f.name == "metadata" and child.spec and not child.spec.is_a("X3DMetadataObject"))]
+                if len(fits) == 1:
+                    fd = fits[0]
+                elif fd is None:
+                    self.error(loc, f"{parent.label}.{default}",
+                               f"{parent.type_name} has no field {default!r} for a {child.type_name} "
+                               f"(give containerField)")
+                    return
+        subject = f"{parent.label}.{fd.name}"
+        if fd.type.kind != "node":
+            self.error(loc, subject, f"{fd.type.name} field cannot hold a node ({child.type_name})")
+            return
+        if not fd.readable:
+            self.error(loc, subject, f"{fd.access} field cannot be given a value in a file")
+            return
+        if not schema.accepts(fd, child.type_name):
+            message = f"a {child.type_name} is not allowed here; allowed: {' or '.join(fd.accepts)}"
+            if not parent.spec.is_a("X3DMetadataObject"):
+                self.error(loc, subject, message)
+                return
+            # metadata carries no meaning for a browser; editors (Titania) store any node there
+            self.warning(loc, subject, message + " (kept: metadata has no effect)")
+        if fd.type.multi:
+            parent.values.setdefault(fd.name, []).append(child)
+            parent.field_locs.setdefault(fd.name, loc)
+        elif fd.name in parent.values and parent.values[fd.name] is not None:
+            self.error(loc, subject, f"{fd.type.name} field already holds {parent.values[fd.name].label}")
+        else:
+            parent.values[fd.name] = child
+            parent.field_locs[fd.name] = loc
+
+    def set_null(self, node: Node, name: str, loc: Location) -> None:
+        """An explicit NULL (or empty MFNode) for a node field."""
+        if node.spec is None:
+            node.values.setdefault(name, [])
+            return
+        fd = self.field_def(node, name, loc)
+        if fd is None:
+            return
+        if fd.type.kind != "node":
+            self.error(loc, f"{node.label}.{name}", f"NULL is not a value of {fd.type.name}")
+            return
+        node.values[fd.name] = [] if fd.type.multi else None
+
+    # -- header ---------------------------------------------------------------
+    def component(self, name: str, level: int) -> None:
+        """Pre-standard files (Xj3D) declare xj3d_RigidBodyPhysics: read as RigidBodyPhysics."""
+        if name.startswith("xj3d_"):
+            self.prestandard = True
+            name = name[5:]
+        self.scene.components.append((name, level))
+
+    def unit(self, category: str, name: str, factor_text: str, loc: Location) -> None:
+        if category not in BASE_CATEGORIES:
+            self.error(loc, "UNIT", f"unknown unit category {category!r}; allowed: {', '.join(BASE_CATEGORIES)}")
+            return
+        try:
+            k = float(factor_text)
+        except ValueError:
+            k = -1.0
+        if not 0 < k < float("inf"):
+            self.error(loc, f"UNIT {category}", f"conversion factor {factor_text!r} must be a positive number")
+            return
+        self.scene.units[category] = (name, k)
+
+    # -- routes -------------------------------------------------------------
+    def route(self, from_name: str, from_field: str, to_name: str, to_field: str, loc: Location) -> None:
+        ends = []
+        for name, fname, direction in ((from_name, from_field, "out"), (to_name, to_field, "in")):
+            n = self.defs.get(name)
+            if n is None:
+                self.error(loc, f"ROUTE {from_name}.{from_field} TO {to_name}.{to_field}",
+                           f"no node named {name!r}")
+                return
+            if n.spec is not None:
+                fd = _base_field(n.spec, fname)
+                ok = fd is not None and (fd.access in ("inputOutput", "outputOnly") if direction == "out"
+                                         else fd.access in ("inputOutput", "inputOnly"))
+                if not ok:
+                    what = "an output" if direction == "out" else "an input"
+                    self.error(loc, f"ROUTE {from_name}.{from_field} TO {to_name}.{to_field}",
+                               f"{n.type_name} has no {what} field {fname!r}")
+                    return
+            ends.append(n)
+        r = Route(ends[0], from_field, ends[1], to_field, loc)
+        (self.proto_stack[-1].routes if self.proto_stack else self.scene.routes).append(r)
+
+    # -- interfaces and PROTOs ----------------------------------------------
+    def declare(self, owner: Node | None, name: str, type_name: str, access: str, loc: Location) -> FieldDecl | None:
+        ftype = F.FIELD_TYPES.get(type_name)
+        if ftype is None:
+            self.error(loc, name, f"unknown field type {type_name!r}")
+            return None
+        if access in ("eventIn", "eventOut", "field", "exposedField"):  # VRML97 spellings
+            access = {"eventIn": "inputOnly", "eventOut": "outputOnly", "field": "initializeOnly",
+                      "exposedField": "inputOutput"}[access]
+        if access not in schema.ACCESS_TYPES:
+            self.error(loc, name, f"unknown access type {access!r}; allowed: {', '.join(schema.ACCESS_TYPES)}")
+            return None
+        decl = FieldDecl(name, ftype, access, F.empty(ftype), loc)
+        if owner is not None:
+            owner.interface.append(decl)
+        return decl
+
+    def decl_value(self, decl: FieldDecl, raw: Any, parse: Parser) -> None:
+        try:
+            decl.value = parse(decl.type, raw)
+        except F.FieldError as e:
+            self.error(decl.loc, decl.name, str(e))
+
+    def begin_proto(self, name: str, interface: dict[str, FieldDecl]) -> ProtoDecl:
+        p = ProtoDecl(name, interface)
+        self.proto_stack.append(p)
+        self.scopes.append({})
+        return p
+
+    def end_proto(self, p: ProtoDecl, loc: Location) -> None:
+        self.scopes.pop()
+        self.proto_stack.pop()
+        if not p.body:
+            self.error(loc, f"PROTO {p.name}", "PROTO body holds no node")
+            return
+        self.protos[p.name] = p
+        self.scene.protos.append(p.name)
+
+    def connect(self, node: Node, node_field: str, proto_field: str, loc: Location) -> None:
+        """An IS: the body node's field takes the instance's value of an interface field."""
+        if not self.proto_stack:
+            self.error(loc, f"{node.label}.{node_field}", "IS outside a PROTO body")
+            return
+        p = self.proto_stack[-1]
+        decl = p.interface.get(proto_field)
+        if decl is None:
+            self.error(loc, f"{node.label}.{node_field}", f"PROTO {p.name} has no field {proto_field!r}")
+            return
+        if node.spec is not None:
+            fd = self.field_def(node, node_field, loc)
+            if fd is None:
+                return
+            if fd.type is not decl.type:
+                self.error(loc, f"{node.label}.{node_field}",
+                           f"IS {proto_field} joins {fd.type.name} to {decl.type.name}")
+                return
+            node_field = fd.name
+        p.links.append((node, node_field, proto_field))
+
+    def declare_extern(self, name: str, loc: Location) -> None:
+        self.warning(loc, f"EXTERNPROTO {name}", "external PROTOs are never fetched; "
+                                                 "their instances are kept as nodes that do not run")
+        self.externs.add(name)
+
+    def instantiate(self, name: str, values: dict[str, Any], loc: Location, def_name: str | None) -> Node | None:
+        """Expand a PROTO in place: a copy of its body with the instance's field values."""
+        p = self.protos.get(name)
+        if p is None and name in self.externs:
+            n = self.node(name, loc, def_name)
+            self.done(n)
+            return n
+        if p is None:
+            self.error(loc, name, f"unknown node type {name!r} (no PROTO of that name is declared before it)")
+            return None
+        memo: dict[int, Node] = {}
+        prefix = def_name or name
+        body = [_copy(n, memo, prefix) for n in p.body]
+        for node, fname, pname in p.links:
+            target = memo[id(node)]
+            decl = p.interface[pname]
+            value = values[pname] if pname in values else decl.value
+            if target.spec is None:
+                target.values[fname] = value if decl.type.kind == "node" else \
+                    RawValue("vrml", F.format_vrml(decl.type, value))
+            elif decl.type.kind == "node":
+                target.values[fname] = value
+            else:
+                target.values.pop(fname, None)
+                target.field_locs.pop(fname, None)
+                self.store(target, target.spec.fields[fname], value, loc)
+        for r in p.routes:
+            self.scene.routes.append(Route(memo[id(r.from_node)], r.from_field, memo[id(r.to_node)], r.to_field, loc))
+        first = body[0]
+        first.def_name = def_name
+        if def_name:
+            self.defs[def_name] = first
+        return first
+
+
+def _in(rng: schema.Range, numbers: np.ndarray) -> np.ndarray:
+    lo = numbers > rng.lo if rng.lo_open else numbers >= rng.lo
+    hi = numbers < rng.hi if rng.hi_open else numbers <= rng.hi
+    return lo & hi
+
+
+def _copy(node: Node, memo: dict[int, Node], prefix: str) -> Node:
+    """Deep copy of a PROTO body node; nodes shared by USE in the body stay shared."""
+    done = memo.get(id(node))
+    if done is not None:
+        return done
+    name = f"{prefix}_{node.def_name}" if node.def_name else None
+    c = Node(node.type_name, node.spec, node.loc, name)
+    memo[id(node)] = c
+    c.text = node.text
+    c.interface = node.interface
+    for k, v in node.values.items():
+        if isinstance(v, Node):
+            v = _copy(v, memo, prefix)
+        elif isinstance(v, list) and v and isinstance(v[0], Node):
+            v = [_copy(x, memo, prefix) for x in v]
+        elif isinstance(v, (np.ndarray, list)):
+            v = v.copy()
+        c.values[k] = v
+    c.field_locs = dict(node.field_locs)
+    return c

@@ -1,0 +1,333 @@
+"""X3D field types: parsing from the three encodings and writing back.
+
+Values are plain data: bool, int, float, str, numpy arrays for every numeric
+vector or array (float64 for the f and d types alike, so a value written back
+reads as the file said it; shape (n, width) for MF vectors, (width,) for SF
+vectors, flat (9,) and (16,) for matrices), list[str] for MFString, and Node
+references for SFNode and MFNode.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+class FieldError(ValueError):
+    """A value that does not read as its field's type; the message says what is allowed."""
+
+
+@dataclass(frozen=True)
+class FieldType:
+    name: str
+    multi: bool
+    kind: str  # bool | int | float | string | node
+    width: int = 1  # numbers per element for numeric kinds
+    rotation: bool = False  # last number of each element is an angle
+
+    @property
+    def numeric(self) -> bool:
+        return self.kind in ("int", "float")
+
+    @property
+    def vector(self) -> bool:
+        """An SF value held as an array (SFVec3f, SFRotation, SFMatrix3f, ...)."""
+        return self.numeric and not self.multi and self.width > 1
+
+    def describe(self) -> str:
+        what = {"bool": "a boolean", "int": "an integer", "float": "a number",
+                "string": "a string", "node": "a node"}[self.kind]
+        if self.numeric and self.width > 1:
+            what = f"{self.width} numbers"
+        return f"{'a list of ' if self.multi else ''}{what} ({self.name})"
+
+
+def _types() -> dict[str, FieldType]:
+    out: dict[str, FieldType] = {}
+
+    def add(suffix: str, kind: str, width: int = 1, rotation: bool = False) -> None:
+        for multi in (False, True):
+            name = ("MF" if multi else "SF") + suffix
+            out[name] = FieldType(name, multi, kind, width, rotation)
+
+    add("Bool", "bool")
+    add("Int32", "int")
+    for s in ("Float", "Double", "Time"):
+        add(s, "float")
+    add("String", "string")
+    add("Node", "node")
+    add("Image", "int")  # width height components pixels..., pixels often in hex
+    for s, w in (("Vec2f", 2), ("Vec2d", 2), ("Vec3f", 3), ("Vec3d", 3), ("Vec4f", 4), ("Vec4d", 4),
+                 ("Color", 3), ("ColorRGBA", 4), ("Matrix3f", 9), ("Matrix3d", 9),
+                 ("Matrix4f", 16), ("Matrix4d", 16)):
+        add(s, "float", w)
+    add("Rotation", "float", 4, rotation=True)
+    # SFImage is one flat int array, not pairs; MFImage is a list of them, kept flat too
+    out["SFImage"] = FieldType("SFImage", True, "int")
+    out["MFImage"] = FieldType("MFImage", True, "int")
+    return out
+
+
+FIELD_TYPES: dict[str, FieldType] = _types()
+
+_SPLIT = re.compile(r"[\s,]+")
+_INT32 = (-(2**31), 2**31 - 1)
+
+
+def _numbers(ftype: FieldType, text: str) -> Any:
+    tokens = _SPLIT.split(text.strip())
+    if tokens and tokens[0] == "":
+        tokens = tokens[1:]
+    if tokens and tokens[-1] == "":
+        tokens = tokens[:-1]
+    return _from_tokens(ftype, tokens)
+
+
+def _from_tokens(ftype: FieldType, tokens: list) -> Any:
+    n = len(tokens)
+    w = ftype.width
+    if ftype.multi:
+        if n % w:
+            raise FieldError(f"{n} numbers is not a whole number of {w}-tuples for {ftype.name}")
+    elif n != w:
+        raise FieldError(f"expected {ftype.describe()}, got {n} values")
+    if ftype.kind == "float":
+        try:
+            arr = np.array(tokens, dtype=np.float64)
+        except (ValueError, TypeError):
+            bad = next(t for t in tokens if not _is_float(t))
+            raise FieldError(f"{bad!r} is not a number; expected {ftype.describe()}") from None
+        if not np.isfinite(arr).all():
+            raise FieldError(f"non-finite number; expected {ftype.describe()}")
+    else:
+        arr = np.array([_int(t, ftype) for t in tokens], dtype=np.int64)
+        if arr.size and (arr.min() < _INT32[0] or arr.max() > _INT32[1]) and ftype.name != "SFImage" \
+                and ftype.name != "MFImage":
+            raise FieldError(f"integer outside the 32-bit range; expected {ftype.describe()}")
+        arr = arr.astype(np.int32) if ftype.name not in ("SFImage", "MFImage") else arr
+    if ftype.multi:
+        return arr.reshape(-1, w) if w > 1 else arr
+    return arr if w > 1 else arr[0].item()
+
+
+def _is_float(t: Any) -> bool:
+    try:
+        float(t)
+        return True
+    except (ValueError, TypeError):
+        return False
+
+
+def _int(t: Any, ftype: FieldType) -> int:
+    if isinstance(t, bool):
+        raise FieldError(f"{t!r} is not an integer; expected {ftype.describe()}")
+    if isinstance(t, int):
+        return t
+    if isinstance(t, float):
+        if t.is_integer():
+            return int(t)
+        raise FieldError(f"{t!r} is not an integer; expected {ftype.describe()}")
+    s = str(t)
+    try:
+        return int(s, 16) if s.lower().startswith(("0x", "-0x", "+0x")) else int(s)
+    except ValueError:
+        raise FieldError(f"{s!r} is not an integer; expected {ftype.describe()}") from None
+
+
+_BOOLS = {"true": True, "false": False, "TRUE": True, "FALSE": False}
+
+
+def _bool(t: str, ftype: FieldType) -> bool:
+    try:
+        return _BOOLS[t]
+    except KeyError:
+        raise FieldError(f"{t!r} is not a boolean; expected true or false ({ftype.name})") from None
+
+
+_STRING = re.compile(r'"((?:[^"\\]|\\.)*)"', re.S)
+_UNESCAPE = re.compile(r"\\(.)", re.S)
+
+
+def split_quoted(text: str, ftype: FieldType) -> list[str]:
+    """MFString in XML and VRML encodings: a sequence of "quoted" strings with \\ escapes."""
+    out = []
+    pos = 0
+    text = text.strip()
+    while pos < len(text):
+        m = _STRING.match(text, pos)
+        if not m:
+            raise FieldError(f"expected a quoted string at {text[pos:pos + 20]!r} ({ftype.name})")
+        out.append(_UNESCAPE.sub(r"\1", m.group(1)))
+        pos = m.end()
+        while pos < len(text) and (text[pos].isspace() or text[pos] == ","):
+            pos += 1
+    return out
+
+
+def parse_xml(ftype: FieldType, text: str) -> Any:
+    """A value from its X3D XML attribute text."""
+    k = ftype.kind
+    if k == "string":
+        if not ftype.multi:
+            return text
+        stripped = text.strip()
+        if stripped and not stripped.startswith('"'):
+            return [stripped]  # an unquoted single string, as browsers accept
+        return split_quoted(text, ftype)
+    if k == "bool":
+        toks = [t for t in _SPLIT.split(text.strip()) if t]
+        if ftype.multi:
+            return np.array([_bool(t, ftype) for t in toks], dtype=bool)
+        if len(toks) != 1:
+            raise FieldError(f"expected one boolean (true or false), got {text!r}")
+        return _bool(toks[0], ftype)
+    if k == "node":
+        raise FieldError(f"{ftype.name} fields hold nodes, not text")
+    return _numbers(ftype, text)
+
+
+def parse_vrml(ftype: FieldType, tokens: list[str]) -> Any:
+    """A value from ClassicVRML tokens (brackets already removed; strings keep their quotes)."""
+    k = ftype.kind
+    if k == "string":
+        vals = []
+        for t in tokens:
+            if not t.startswith('"'):
+                raise FieldError(f"{t!r} is not a quoted string; expected {ftype.describe()}")
+            vals.append(_UNESCAPE.sub(r"\1", t[1:-1]))
+        if ftype.multi:
+            return vals
+        if len(vals) != 1:
+            raise FieldError(f"expected one quoted string, got {len(vals)} ({ftype.name})")
+        return vals[0]
+    if k == "bool":
+        vals = [_bool_vrml(t, ftype) for t in tokens]
+        if ftype.multi:
+            return np.array(vals, dtype=bool)
+        if len(vals) != 1:
+            raise FieldError(f"expected one boolean (TRUE or FALSE), got {len(vals)} values")
+        return vals[0]
+    for t in tokens:
+        if t[0] == '"':
+            raise FieldError(f"{t} is a string; expected {ftype.describe()}")
+    return _from_tokens(ftype, tokens)
+
+
+def _bool_vrml(t: str, ftype: FieldType) -> bool:
+    if t == "TRUE":
+        return True
+    if t == "FALSE":
+        return False
+    raise FieldError(f"{t!r} is not a boolean; expected TRUE or FALSE ({ftype.name})")
+
+
+def parse_json(ftype: FieldType, value: Any) -> Any:
+    """A value from the X3D JSON encoding (numbers as arrays, MF vectors flattened)."""
+    k = ftype.kind
+    many = isinstance(value, list)
+    if k == "string":
+        if ftype.multi:
+            if not many or not all(isinstance(v, str) for v in value):
+                raise FieldError(f"expected a JSON array of strings ({ftype.name})")
+            return list(value)
+        if not isinstance(value, str):
+            raise FieldError(f"expected a JSON string ({ftype.name})")
+        return value
+    if k == "bool":
+        vals = value if many else [value]
+        if not all(isinstance(v, bool) for v in vals):
+            raise FieldError(f"expected JSON true or false ({ftype.name})")
+        if ftype.multi:
+            return np.array(vals, dtype=bool)
+        if len(vals) != 1:
+            raise FieldError(f"expected one boolean ({ftype.name})")
+        return vals[0]
+    vals = value if many else [value]
+    if ftype.multi and vals and isinstance(vals[0], list):
+        vals = [x for v in vals for x in (v if isinstance(v, list) else [v])]
+    for v in vals:
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            if not (k == "int" and isinstance(v, str)):
+                raise FieldError(f"{v!r} is not a number; expected {ftype.describe()}")
+    return _from_tokens(ftype, vals)
+
+
+def _num(x: float) -> str:
+    s = repr(float(x))
+    return s[:-2] if s.endswith(".0") else s
+
+
+def _numbers_text(value: Any, ftype: FieldType, sep: str) -> str:
+    if ftype.kind == "int":
+        flat = np.asarray(value).ravel().tolist() if not isinstance(value, int) else [value]
+        return " ".join(str(v) for v in flat)
+    if isinstance(value, float):
+        return _num(value)
+    arr = np.asarray(value, dtype=np.float64)
+    if arr.ndim == 2:
+        return sep.join(" ".join(map(_num, row)) for row in arr.tolist())
+    return " ".join(map(_num, arr.tolist()))
+
+
+def _quote(s: str) -> str:
+    return '"' + s.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def format_xml(ftype: FieldType, value: Any) -> str:
+    """The XML attribute text of a value (full precision: a trace needs every digit)."""
+    k = ftype.kind
+    if k == "string":
+        return " ".join(_quote(s) for s in value) if ftype.multi else value
+    if k == "bool":
+        if ftype.multi:
+            return " ".join("true" if v else "false" for v in value)
+        return "true" if value else "false"
+    return _numbers_text(value, ftype, ", ")
+
+
+def format_vrml(ftype: FieldType, value: Any) -> str:
+    """The ClassicVRML text of a value (MF values in brackets)."""
+    k = ftype.kind
+    if k == "string":
+        text = " ".join(_quote(s) for s in value) if ftype.multi else _quote(value)
+    elif k == "bool":
+        vals = value if ftype.multi else [value]
+        text = " ".join("TRUE" if v else "FALSE" for v in vals)
+    else:
+        text = _numbers_text(value, ftype, ", ")
+    return f"[ {text} ]" if ftype.multi else text
+
+
+def empty(ftype: FieldType) -> Any:
+    """The value of a field whose definition gives no default."""
+    if ftype.multi:
+        if ftype.kind == "string":
+            return []
+        if ftype.kind == "node":
+            return []
+        if ftype.kind == "bool":
+            return np.zeros(0, dtype=bool)
+        shape = (0, ftype.width) if ftype.width > 1 else (0,)
+        return np.zeros(shape, dtype=np.float64 if ftype.kind == "float" else np.int32)
+    return {"bool": False, "int": 0, "float": 0.0, "string": "", "node": None}[ftype.kind] \
+        if not ftype.vector else np.zeros(ftype.width)
+
+
+def values_equal(ftype: FieldType, a: Any, b: Any) -> bool:
+    """Equality of two non-node values of one type (exact: a round trip must not move a bit)."""
+    if ftype.numeric or ftype.kind == "bool":
+        return np.array_equal(np.asarray(a), np.asarray(b))
+    return a == b
+
+
+def numbers_of(ftype: FieldType, value: Any) -> np.ndarray:
+    """The value's numbers as a flat float array, for range checks."""
+    return np.asarray(value, dtype=np.float64).ravel()
+
+
+def is_finite_number(x: float) -> bool:
+    return math.isfinite(x)

@@ -1,0 +1,56 @@
+"""Load a scene file in any of the three encodings into the model, validated."""
+
+from __future__ import annotations
+
+import os
+
+from .model import Diagnostic, LoadError, Location, Scene
+from .validate import apply_version_defaults, validate
+
+ENCODINGS = {".x3d": "xml", ".xml": "xml", ".x3dv": "vrml", ".wrl": "vrml", ".x3dj": "json", ".json": "json"}
+MAX_BYTES = 512 * 1024 * 1024
+
+
+def sniff(path: str, head: bytes) -> str | None:
+    """The encoding, from the file's first bytes, else from its extension."""
+    text = head.lstrip(b"\xef\xbb\xbf \t\r\n")
+    if text.startswith(b"#X3D") or text.startswith(b"#VRML"):
+        return "vrml"
+    if text.startswith(b"<"):
+        return "xml"
+    if text.startswith(b"{"):
+        return "json"
+    return ENCODINGS.get(os.path.splitext(path)[1].lower())
+
+
+def load(path: str, check: bool = True) -> Scene:
+    """The scene of a file. Raises LoadError when the file cannot be read at all; every
+    other problem is a diagnostic in scene.diagnostics."""
+    try:
+        size = os.path.getsize(path)
+        if size > MAX_BYTES:
+            raise LoadError(Diagnostic("error", Location(path, 1, 1), "",
+                                       f"file is {size} bytes; x3drbp reads at most {MAX_BYTES}"))
+        with open(path, "rb") as f:
+            source = f.read()
+    except OSError as e:
+        raise LoadError(Diagnostic("error", Location(path, 1, 0), "", f"cannot read file: {e.strerror}")) from None
+    if not source.strip():
+        raise LoadError(Diagnostic("error", Location(path, 1, 1), "", "empty file"))
+    encoding = sniff(path, source[:64])
+    if encoding is None:
+        raise LoadError(Diagnostic("error", Location(path, 1, 1), "",
+                                   "not an X3D file: expected '<' (XML), '#X3D' (ClassicVRML) or '{' (JSON) "
+                                   "at the start"))
+    scene = Scene(path=path, encoding=encoding)
+    if encoding == "xml":
+        from .xml_loader import load_xml as read
+    elif encoding == "vrml":
+        from .vrml_loader import load_vrml as read
+    else:
+        from .json_loader import load_json as read
+    read(path, source, scene)
+    apply_version_defaults(scene)
+    if check:
+        validate(scene)
+    return scene

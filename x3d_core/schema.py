@@ -1,0 +1,162 @@
+"""Node types and field definitions, read once from node_defs.DEFINITIONS."""
+
+from __future__ import annotations
+
+import copy
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from . import fields as F
+from .node_defs import DEFINITIONS
+
+ACCESS_TYPES = ("initializeOnly", "inputOnly", "outputOnly", "inputOutput")
+
+
+@dataclass(frozen=True)
+class Range:
+    lo: float
+    hi: float
+    lo_open: bool
+    hi_open: bool
+
+    def contains(self, numbers: np.ndarray) -> bool:
+        lo_ok = numbers > self.lo if self.lo_open else numbers >= self.lo
+        hi_ok = numbers < self.hi if self.hi_open else numbers <= self.hi
+        return bool(np.all(lo_ok & hi_ok))
+
+    def __str__(self) -> str:
+        def num(x: float) -> str:
+            if math.isinf(x):
+                return "inf" if x > 0 else "-inf"
+            if abs(abs(x) - math.pi) < 1e-12:
+                return "-pi" if x < 0 else "pi"
+            return F._num(x)
+        return f"{'(' if self.lo_open else '['}{num(self.lo)},{num(self.hi)}{')' if self.hi_open else ']'}"
+
+
+@dataclass(frozen=True)
+class FieldDef:
+    name: str
+    type: F.FieldType
+    access: str
+    default: Any
+    range: Range | None = None
+    unit: str | None = None
+    accepts: tuple[str, ...] = ()
+
+    def default_value(self) -> Any:
+        return copy.copy(self.default)
+
+    @property
+    def readable(self) -> bool:
+        """Whether a file may give the field a value (not inputOnly or outputOnly)."""
+        return self.access in ("initializeOnly", "inputOutput")
+
+
+@dataclass
+class NodeType:
+    name: str
+    abstract: bool
+    parents: tuple[str, ...]
+    container_field: str = "children"
+    component: str = ""
+    fields: dict[str, FieldDef] = field(default_factory=dict)
+    ancestors: frozenset[str] = frozenset()
+
+    def is_a(self, type_name: str) -> bool:
+        return type_name == self.name or type_name in self.ancestors
+
+
+# Abstract types whose every concrete X3D 4.0 node type is typed here: a node of
+# an unknown type can never be one of them.
+CLOSED_ABSTRACT = frozenset({"X3DNBodyCollidableNode", "X3DNBodyCollisionSpaceNode",
+                             "X3DRigidJointNode", "X3DMetadataObject"})
+
+_TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[^\s,\[\]]+')
+_RANGE = re.compile(r"^([\[(])([^,]+),([^\])]+)([\])])$")
+
+
+def _bound(text: str) -> float:
+    return float(text.replace("pi", repr(math.pi)))
+
+
+def _field(node: str, line: str) -> FieldDef:
+    head, _, default_text = line.partition(" = ")
+    parts = head.split()
+    name, tname, access = parts[0], parts[1], parts[2]
+    ftype = F.FIELD_TYPES[tname]
+    if access not in ACCESS_TYPES:
+        raise ValueError(f"{node}.{name}: bad access type {access}")
+    rng = unit = None
+    accepts: tuple[str, ...] = ()
+    for p in parts[3:]:
+        if m := _RANGE.match(p):
+            rng = Range(_bound(m.group(2)), _bound(m.group(3)), m.group(1) == "(", m.group(4) == ")")
+        elif p.startswith("u:"):
+            unit = p[2:]
+        elif p.startswith("<"):
+            accepts = tuple(p[1:-1].split("|"))
+        else:
+            raise ValueError(f"{node}.{name}: cannot read {p!r}")
+    if ftype.kind == "node" or not default_text:
+        default = F.empty(ftype)
+    else:
+        default = F.parse_vrml(ftype, _TOKEN.findall(default_text))
+    return FieldDef(name, ftype, access, default, rng, unit, accepts)
+
+
+def _read(text: str) -> dict[str, NodeType]:
+    types: dict[str, NodeType] = {}
+    current: NodeType | None = None
+    for raw in text.splitlines():
+        line = raw.split("#", 1)[0].rstrip()
+        if not line.strip():
+            continue
+        if line.startswith(("node ", "abstract ")):
+            kind, rest = line.split(" ", 1)
+            comp = raw.split("#", 1)[1].strip() if "#" in raw else ""
+            rest, _, cf = rest.partition("@")
+            name, _, parents = rest.partition(":")
+            current = NodeType(name.strip(), kind == "abstract", tuple(parents.split()),
+                               cf.strip() or "children", comp)
+            types[current.name] = current
+        else:
+            assert current is not None
+            fd = _field(current.name, line.strip())
+            current.fields[fd.name] = fd
+    for t in types.values():
+        seen: set[str] = set()
+        stack = list(t.parents)
+        while stack:
+            p = stack.pop()
+            if p not in seen:
+                seen.add(p)
+                stack.extend(types[p].parents)
+        t.ancestors = frozenset(seen)
+    return types
+
+
+NODE_TYPES: dict[str, NodeType] = _read(DEFINITIONS)
+
+
+def node_type(name: str) -> NodeType | None:
+    t = NODE_TYPES.get(name)
+    return t if t is not None and not t.abstract else None
+
+
+def accepts(fd: FieldDef, child_type: str) -> bool:
+    """Whether an SFNode/MFNode field may hold a node of the given type name."""
+    if not fd.accepts:
+        return True
+    t = node_type(child_type)
+    if t is None:  # an unknown (generic) node: refuse only where every accepted type is known
+        return not all(a in CLOSED_ABSTRACT or node_type(a) is not None for a in fd.accepts)
+    return any(t.is_a(a) for a in fd.accepts)
+
+
+def concrete_types_in(component: str) -> list[NodeType]:
+    return [t for t in NODE_TYPES.values() if not t.abstract and t.component.startswith(component + " ")]

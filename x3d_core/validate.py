@@ -1,0 +1,92 @@
+"""Checks that need the whole scene: what clause 37 leaves undefined, and names that must exist."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .applied import CANONICAL, canonical
+from .model import Diagnostic, Node, Scene
+
+# A pair of axes counts as perpendicular when |cos| is below this: well under the
+# float32 rounding of an axis written with 6-7 digits, far above any intended angle.
+PERPENDICULAR_COS = 1e-5
+JOINT_NODE = "X3DRigidJointNode"
+# Joint axes whose X3D 3.x default was 0 0 0 (4.0 gives them a direction)
+AXIS_FIELDS = {"SingleAxisHingeJoint": ("axis",), "DoubleAxisHingeJoint": ("axis1", "axis2"),
+               "UniversalJoint": ("axis1", "axis2"), "MotorJoint": ("motor1Axis", "motor2Axis", "motor3Axis")}
+
+
+def apply_version_defaults(scene: Scene) -> None:
+    """An X3D 3.x file that leaves a joint axis out means 0 0 0, its version's default."""
+    if not scene.version[:1].isdigit() or int(scene.version[:1]) >= 4:
+        return
+    for joint in scene.of_type(JOINT_NODE):
+        for f in AXIS_FIELDS.get(joint.type_name, ()):
+            joint.values.setdefault(f, np.zeros(3))
+
+
+def validate(scene: Scene) -> None:
+    out: list[Diagnostic] = []
+
+    def warn(node: Node, field: str, message: str) -> None:
+        subject = f"{node.label}.{field}" if field else node.label
+        out.append(Diagnostic("warning", node.field_locs.get(field, node.loc), subject, message))
+
+    def err(node: Node, field: str, message: str) -> None:
+        out.append(Diagnostic("error", node.field_locs.get(field, node.loc), f"{node.label}.{field}", message))
+
+    owners: dict[int, list[Node]] = {}
+    body_owners: dict[int, list[Node]] = {}
+    for coll in scene.of_type("RigidBodyCollection"):
+        bodies = {id(b) for b in coll.get("bodies")}
+        for b in coll.get("bodies"):
+            body_owners.setdefault(id(b), []).append(coll)
+        for j in coll.get("joints"):
+            owners.setdefault(id(j), []).append(coll)
+            for f in ("body1", "body2"):
+                b = j.get(f)
+                if b is not None and id(b) not in bodies:
+                    warn(j, f, f"{b.label} is not in the joint's collection {coll.label}; "
+                               "the spec leaves such a joint undefined")
+    for joint in scene.of_type(JOINT_NODE):
+        colls = owners.get(id(joint), [])
+        if len(colls) > 1:
+            warn(joint, "", f"joint is in {len(colls)} collections ({', '.join(c.label for c in colls)}); "
+                            "the spec leaves this undefined")
+        b1, b2 = joint.get("body1"), joint.get("body2")
+        if b1 is None and b2 is None:
+            warn(joint, "body1", "joint has neither body1 nor body2 and joins nothing")
+        elif b1 is b2:
+            warn(joint, "body2", "joint joins a body to itself")
+        _force_output(joint, err)
+        if joint.type_name == "UniversalJoint":
+            a1, a2 = joint.get("axis1"), joint.get("axis2")
+            n1, n2 = np.linalg.norm(a1), np.linalg.norm(a2)
+            if n1 and n2 and abs(float(np.dot(a1, a2)) / (n1 * n2)) > PERPENDICULAR_COS:
+                angle = np.degrees(np.arccos(np.clip(np.dot(a1, a2) / (n1 * n2), -1, 1)))
+                warn(joint, "axis2", f"axis1 and axis2 are {angle:.6g} degrees apart, not perpendicular; "
+                                     "the spec leaves the joint undefined")
+        for f in AXIS_FIELDS.get(joint.type_name, ()):
+            if not np.any(joint.get(f)):
+                warn(joint, f, "axis is 0 0 0 and defines no direction")
+    for body_id, colls in body_owners.items():
+        if len(colls) > 1:
+            body = next(b for b in colls[0].get("bodies") if id(b) == body_id)
+            warn(body, "", f"body is in {len(colls)} collections; the spec leaves this undefined")
+    for node in scene.of_type("CollisionCollection") + scene.of_type("Contact"):
+        for v in node.get("appliedParameters"):
+            if canonical(v) is None:
+                err(node, "appliedParameters", f"{v!r} is not an applied parameter; allowed: "
+                                               f"{', '.join(CANONICAL)} (or with '_' for '-')")
+    scene.diagnostics.extend(out)
+
+
+def _force_output(joint: Node, err) -> None:
+    outputs = [f for f, fd in joint.spec.fields.items() if fd.access == "outputOnly"]
+    names = joint.get("forceOutput")
+    for v in names:
+        if v not in ("ALL", "NONE") and v not in outputs:
+            err(joint, "forceOutput", f"{v!r} is not an output of {joint.type_name}; allowed: "
+                                      f"ALL, NONE{', ' if outputs else ''}{', '.join(outputs)}")
+    if len(names) > 1 and ("ALL" in names or "NONE" in names):
+        err(joint, "forceOutput", "ALL and NONE stand alone, not in a list of names")

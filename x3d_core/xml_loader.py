@@ -1,0 +1,228 @@
+"""X3D XML encoding (.x3d), read with lxml: no DTD, no entity expansion, no network."""
+
+from __future__ import annotations
+
+import bisect
+import re
+
+from lxml import etree
+
+from . import fields as F
+from .build import Builder
+from .model import Location, Node, Scene
+
+_PARSER_OPTIONS = dict(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
+                       huge_tree=True, remove_comments=True, remove_pis=True)
+_IGNORED_ATTRIBUTES = frozenset({"DEF", "USE", "containerField", "class", "id", "style"})
+_ENTITY_DECL = re.compile(rb"<!ENTITY", re.I)
+_ELEMENT_START = re.compile(rb"<[A-Za-z]")
+
+
+class XmlBuilder(Builder):
+    """Locates an attribute in the source for its diagnostic (lxml gives element lines only)."""
+
+    def __init__(self, scene: Scene, source: bytes):
+        super().__init__(scene)
+        self.source = source
+        self._line_starts: list[int] | None = None
+
+    def _lines(self) -> list[int]:
+        if self._line_starts is None:
+            starts = [0]
+            starts.extend(m.end() for m in re.finditer(rb"\n", self.source))
+            self._line_starts = starts
+        return self._line_starts
+
+    def resolve(self, loc: Location, subject: str) -> Location:
+        """lxml knows an element's line only: find the element, or its attribute, in the source."""
+        starts = self._lines()
+        if loc.col or loc.line < 1 or loc.line > len(starts):
+            return loc
+        m = _ELEMENT_START.search(self.source, starts[loc.line - 1])
+        pos = m.start() if m else starts[loc.line - 1]
+        attribute = subject.rpartition(".")[2] if "." in subject else ""
+        if attribute and m:
+            tag_end = self.source.find(b">", pos)
+            a = re.compile(rb"\s" + re.escape(attribute.encode()) + rb"\s*=").search(self.source, pos, tag_end)
+            if a:
+                pos = a.start() + 1
+        line = bisect.bisect_right(starts, pos)
+        return Location(loc.file, line, pos - starts[line - 1] + 1)
+
+
+def load_xml(path: str, source: bytes, scene: Scene) -> None:
+    b = XmlBuilder(scene, source)
+    if _ENTITY_DECL.search(source):
+        line = source[:_ENTITY_DECL.search(source).start()].count(b"\n") + 1
+        raise b.fatal(Location(path, line, 1), "entity declarations are not allowed in X3D files "
+                                               "(x3drbp never expands entities)")
+    parser = etree.XMLParser(**_PARSER_OPTIONS)
+    try:
+        root = etree.fromstring(source, parser, base_url=None)
+    except etree.XMLSyntaxError as e:
+        line, col = (e.position if e.position else (1, 0))
+        msg = re.sub(r",? line \d+, column \d+$", "", e.msg or "malformed XML")
+        raise b.fatal(Location(path, line or 1, col or 0), f"malformed XML: {msg}") from None
+    if root.tag != "X3D":
+        raise b.fatal(Location(path, root.sourceline or 1, 1),
+                      f"not an X3D document: the root element is <{root.tag}>, expected <X3D>")
+    scene.version = root.get("version", scene.version)
+    scene.profile = root.get("profile", scene.profile)
+    reader = _Reader(b, path)
+    for child in root:
+        if child.tag == "head":
+            reader.head(child)
+        elif child.tag == "Scene":
+            for el in child:
+                reader.statement(el, None)
+    scene.roots = reader.roots
+
+
+class _Reader:
+    def __init__(self, b: XmlBuilder, path: str):
+        self.b = b
+        self.path = path
+        self.roots: list[Node] = []
+
+    def loc(self, el: etree._Element, attribute: str | None = None) -> Location:
+        """The element's line; the column is found only if a diagnostic needs it."""
+        loc = Location(self.path, el.sourceline or 0, 0)
+        return self.b.resolve(loc, f".{attribute}") if attribute else loc
+
+    def head(self, head: etree._Element) -> None:
+        scene = self.b.scene
+        for el in head:
+            if el.tag == "component":
+                try:
+                    level = int(el.get("level", "1"))
+                except ValueError:
+                    self.b.error(self.loc(el, "level"), "component", f"level {el.get('level')!r} is not an integer")
+                    level = 1
+                self.b.component(el.get("name", ""), level)
+            elif el.tag == "unit":
+                self.unit(el)
+            elif el.tag == "meta":
+                scene.meta.append((el.get("name", ""), el.get("content", "")))
+
+    def unit(self, el: etree._Element) -> None:
+        self.b.unit(el.get("category", ""), el.get("name", ""), el.get("conversionFactor", ""), self.loc(el))
+
+    # -- statements and nodes ---------------------------------------------------
+    def statement(self, el: etree._Element, parent: Node | None) -> None:
+        tag = el.tag
+        if not isinstance(tag, str):
+            return
+        if tag == "ROUTE":
+            self.b.route(el.get("fromNode", ""), el.get("fromField", ""), el.get("toNode", ""),
+                         el.get("toField", ""), self.loc(el))
+        elif tag == "ProtoDeclare":
+            self.proto_declare(el)
+        elif tag == "ExternProtoDeclare":
+            self.b.declare_extern(el.get("name", ""), self.loc(el))
+        elif tag in ("IMPORT", "EXPORT"):
+            self.b.warning(self.loc(el), tag, f"{tag} is kept out of the model (no Inline is loaded)")
+        elif tag == "IS":
+            if parent is not None:
+                for c in el:
+                    if c.tag == "connect":
+                        self.b.connect(parent, c.get("nodeField", ""), c.get("protoField", ""), self.loc(c))
+        elif tag in ("field", "fieldValue"):
+            self.b.error(self.loc(el), tag, f"<{tag}> is only allowed in a Script, ProtoDeclare or ProtoInstance")
+        else:
+            node = self.node(el)
+            if node is None:
+                return
+            if parent is None:
+                self.roots.append(node)
+            else:
+                self.b.add_child(parent, el.get("containerField"), node, self.loc(el))
+
+    def node(self, el: etree._Element) -> Node | None:
+        tag = el.tag
+        use = el.get("USE")
+        if use is not None:
+            n = self.b.use(use, self.loc(el, "USE"))
+            if n is not None and tag != "ProtoInstance" and n.type_name != tag:
+                self.b.error(self.loc(el, "USE"), f"USE {use}", f"names a {n.type_name}, not a {tag}")
+                return None
+            return n
+        if tag == "ProtoInstance":
+            return self.proto_instance(el)
+        loc = self.loc(el)
+        node = self.b.node(tag, loc, el.get("DEF"))
+        for name, text in el.attrib.items():
+            if name in _IGNORED_ATTRIBUTES or name.startswith("{"):
+                continue
+            self.b.set_value(node, name, text, loc, F.parse_xml, "xml")
+        for child in el:
+            if child.tag == "field" and node.spec is None:
+                self.interface_field(node, child)
+            elif child.tag in ("fieldValue",):
+                self.b.error(self.loc(child), child.tag, "<fieldValue> belongs in a ProtoInstance")
+            else:
+                self.statement(child, node)
+        if node.spec is None and el.text and el.text.strip():
+            node.text = el.text.strip()
+        self.b.done(node)
+        return node
+
+    def interface_field(self, owner: Node | None, el: etree._Element):
+        decl = self.b.declare(owner, el.get("name", ""), el.get("type", ""), el.get("accessType", ""), self.loc(el))
+        if decl is None:
+            return None
+        if el.get("value") is not None:
+            if decl.type.kind == "node":
+                self.b.error(self.loc(el, "value"), decl.name, "a node field's value is given as child nodes")
+            else:
+                self.b.decl_value(decl, el.get("value"), F.parse_xml)
+        kids = [self.node(c) for c in el if isinstance(c.tag, str)]
+        kids = [k for k in kids if k is not None]
+        if kids:
+            decl.value = kids if decl.type.multi else kids[0]
+        return decl
+
+    def proto_declare(self, el: etree._Element) -> None:
+        name = el.get("name", "")
+        interface = {}
+        iface = el.find("ProtoInterface")
+        if iface is not None:
+            for f in iface:
+                if f.tag == "field":
+                    d = self.interface_field(None, f)
+                    if d is not None:
+                        interface[d.name] = d
+        p = self.b.begin_proto(name, interface)
+        body = el.find("ProtoBody")
+        if body is not None:
+            for c in body:
+                if c.tag in ("ROUTE", "ProtoDeclare"):
+                    self.statement(c, None)
+                    continue
+                n = self.node(c) if isinstance(c.tag, str) else None
+                if n is not None:
+                    p.body.append(n)
+        self.b.end_proto(p, self.loc(el))
+
+    def proto_instance(self, el: etree._Element) -> Node | None:
+        name = el.get("name", "")
+        proto = self.b.protos.get(name)
+        values = {}
+        for fv in el:
+            if fv.tag != "fieldValue":
+                continue
+            fname = fv.get("name", "")
+            decl = proto.interface.get(fname) if proto else None
+            if proto is not None and decl is None:
+                self.b.error(self.loc(fv), f"ProtoInstance {name}.{fname}", f"PROTO {name} has no field {fname!r}")
+                continue
+            if decl is None:
+                continue
+            if decl.type.kind == "node":
+                kids = [k for k in (self.node(c) for c in fv if isinstance(c.tag, str)) if k is not None]
+                values[fname] = kids if decl.type.multi else (kids[0] if kids else None)
+            else:
+                try:
+                    values[fname] = F.parse_xml(decl.type, fv.get("value", ""))
+                except F.FieldError as e:
+                    self.b.error(self.loc(fv, "value"), f"ProtoInstance {name}.{fname}", str(e))
+        return self.b.instantiate(name, values, self.loc(el), el.get("DEF"))
