@@ -93,7 +93,7 @@ class Builder:
     def node(self, type_name: str, loc: Location, def_name: str | None = None) -> Node:
         """A new node, entered as being read until done() is called."""
         spec = schema.node_type(type_name)
-        if spec is None and type_name == "Script":
+        if type_name == "Script":
             self.warning(loc, type_name, f"{type_name} is kept in the model but does not run")
         n = Node(type_name, spec, loc, def_name)
         if def_name:
@@ -286,12 +286,13 @@ class Builder:
                 return
             if n.spec is not None:
                 fd = _base_field(n.spec, fname)
-                ok = fd is not None and (fd.access in ("inputOutput", "outputOnly") if direction == "out"
-                                         else fd.access in ("inputOutput", "inputOnly"))
-                if not ok:
-                    what = "an output" if direction == "out" else "an input"
+                access = fd.access if fd is not None else next(
+                    (d.access for d in n.interface if d.name == fname), None)
+                if access not in (("inputOutput", "outputOnly") if direction == "out" else
+                                  ("inputOutput", "inputOnly")):
+                    what = "output" if direction == "out" else "input"
                     self.error(loc, f"ROUTE {from_name}.{from_field} TO {to_name}.{to_field}",
-                               f"{n.type_name} has no {what} field {fname!r}")
+                               f"{n.label} has no {what} field {fname!r}")
                     return
             ends.append(n)
         r = Route(ends[0], from_field, ends[1], to_field, loc)
@@ -410,7 +411,6 @@ def _copy(node: Node, memo: dict[int, Node], prefix: str) -> Node:
     name = f"{prefix}_{node.def_name}" if node.def_name else None
     c = Node(node.type_name, node.spec, node.loc, name)
     memo[id(node)] = c
-    c.text = node.text
     c.interface = node.interface
     for k, v in node.values.items():
         if isinstance(v, Node):

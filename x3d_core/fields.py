@@ -9,7 +9,6 @@ references for SFNode and MFNode.
 
 from __future__ import annotations
 
-import math
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -105,10 +104,10 @@ def _from_tokens(ftype: FieldType, tokens: list) -> Any:
             raise FieldError(f"non-finite number; expected {ftype.describe()}")
     else:
         arr = np.array([_int(t, ftype) for t in tokens], dtype=np.int64)
-        if arr.size and (arr.min() < _INT32[0] or arr.max() > _INT32[1]) and ftype.name != "SFImage" \
-                and ftype.name != "MFImage":
-            raise FieldError(f"integer outside the 32-bit range; expected {ftype.describe()}")
-        arr = arr.astype(np.int32) if ftype.name not in ("SFImage", "MFImage") else arr
+        if ftype.name not in ("SFImage", "MFImage"):
+            if arr.size and (arr.min() < _INT32[0] or arr.max() > _INT32[1]):
+                raise FieldError(f"integer outside the 32-bit range; expected {ftype.describe()}")
+            arr = arr.astype(np.int32)
     if ftype.multi:
         return arr.reshape(-1, w) if w > 1 else arr
     return arr if w > 1 else arr[0].item()
@@ -122,7 +121,7 @@ def _is_float(t: Any) -> bool:
         return False
 
 
-def _int(t: Any, ftype: FieldType) -> int:
+def _any_int(t: Any, ftype: FieldType) -> int:
     if isinstance(t, bool):
         raise FieldError(f"{t!r} is not an integer; expected {ftype.describe()}")
     if isinstance(t, int):
@@ -136,6 +135,13 @@ def _int(t: Any, ftype: FieldType) -> int:
         return int(s, 16) if s.lower().startswith(("0x", "-0x", "+0x")) else int(s)
     except ValueError:
         raise FieldError(f"{s!r} is not an integer; expected {ftype.describe()}") from None
+
+
+def _int(t: Any, ftype: FieldType) -> int:
+    v = _any_int(t, ftype)
+    if not _INT32[0] <= v <= 2 * _INT32[1] + 1:  # SFImage pixels reach 0xFFFFFFFF
+        raise FieldError(f"integer outside the 32-bit range; expected {ftype.describe()}")
+    return v
 
 
 _BOOLS = {"true": True, "false": False, "TRUE": True, "FALSE": False}
@@ -313,8 +319,9 @@ def empty(ftype: FieldType) -> Any:
             return np.zeros(0, dtype=bool)
         shape = (0, ftype.width) if ftype.width > 1 else (0,)
         return np.zeros(shape, dtype=np.float64 if ftype.kind == "float" else np.int32)
-    return {"bool": False, "int": 0, "float": 0.0, "string": "", "node": None}[ftype.kind] \
-        if not ftype.vector else np.zeros(ftype.width)
+    if ftype.vector:
+        return np.zeros(ftype.width)
+    return {"bool": False, "int": 0, "float": 0.0, "string": "", "node": None}[ftype.kind]
 
 
 def values_equal(ftype: FieldType, a: Any, b: Any) -> bool:
@@ -322,12 +329,3 @@ def values_equal(ftype: FieldType, a: Any, b: Any) -> bool:
     if ftype.numeric or ftype.kind == "bool":
         return np.array_equal(np.asarray(a), np.asarray(b))
     return a == b
-
-
-def numbers_of(ftype: FieldType, value: Any) -> np.ndarray:
-    """The value's numbers as a flat float array, for range checks."""
-    return np.asarray(value, dtype=np.float64).ravel()
-
-
-def is_finite_number(x: float) -> bool:
-    return math.isfinite(x)

@@ -54,7 +54,7 @@ class Node:
     of a type x3drbp does not model (spec None) holds its fields as text and its child
     nodes under their field names, so that real scenes load and write back."""
 
-    __slots__ = ("type_name", "spec", "values", "def_name", "loc", "field_locs", "interface", "text")
+    __slots__ = ("type_name", "spec", "values", "def_name", "loc", "field_locs", "interface")
 
     def __init__(self, type_name: str, spec: NodeType | None, loc: Location, def_name: str | None = None):
         self.type_name = type_name
@@ -63,8 +63,7 @@ class Node:
         self.def_name = def_name
         self.loc = loc
         self.field_locs: dict[str, Location] = {}
-        self.interface: list[FieldDecl] = []
-        self.text: str | None = None  # inline source of a Script (XML CDATA)
+        self.interface: list[FieldDecl] = []  # fields a Script (or unknown node) declares
 
     def get(self, name: str) -> Any:
         """The field's value: as given in the file, else its X3D 4.0 default."""
@@ -76,6 +75,11 @@ class Node:
         return None
 
     __getitem__ = get
+
+    @property
+    def declares_fields(self) -> bool:
+        """Whether the file may declare fields on this node (a Script, or a node x3drbp does not model)."""
+        return self.spec is None or self.spec.is_a("X3DScriptNode")
 
     @property
     def label(self) -> str:

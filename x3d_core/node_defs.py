@@ -524,6 +524,16 @@ node OrientationInterpolator : X3DInterpolatorNode @children  # Interpolation 1
   metadata SFNode inputOutput <X3DMetadataObject>
   set_fraction SFFloat inputOnly
   value_changed SFRotation outputOnly
+node Script : X3DScriptNode @children  # Scripting 1
+  autoRefresh SFTime inputOutput [0,inf) = 0
+  autoRefreshTimeLimit SFTime inputOutput [0,inf) = 3600
+  description SFString inputOutput
+  directOutput SFBool initializeOnly = FALSE
+  load SFBool inputOutput = TRUE
+  metadata SFNode inputOutput <X3DMetadataObject>
+  mustEvaluate SFBool initializeOnly = FALSE
+  sourceCode SFString inputOutput
+  url MFString inputOutput
 node MetadataSet : X3DNode X3DMetadataObject @value  # Core 1
   metadata SFNode inputOutput <X3DMetadataObject>
   name SFString inputOutput
@@ -575,6 +585,8 @@ abstract X3DNode
 abstract X3DNormalNode : X3DGeometricPropertyNode
 abstract X3DOneSidedMaterialNode : X3DMaterialNode
 abstract X3DSensorNode : X3DChildNode
+abstract X3DScriptNode : X3DChildNode X3DUrlObject
+abstract X3DUrlObject
 abstract X3DShapeNode : X3DChildNode X3DBoundedObject
 abstract X3DSingleTextureCoordinateNode : X3DTextureCoordinateNode
 abstract X3DTextureCoordinateNode : X3DGeometricPropertyNode

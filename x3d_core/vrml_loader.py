@@ -192,7 +192,7 @@ class _Parser:
         if t in ("ROUTE", "PROTO", "EXTERNPROTO"):
             self.statement()
             return
-        if t in _ACCESS and node.spec is None:
+        if t in _ACCESS and node.declares_fields:
             self.interface_decl(node)
             return
         at = self.loc()

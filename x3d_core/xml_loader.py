@@ -16,6 +16,7 @@ _PARSER_OPTIONS = dict(resolve_entities=False, no_network=True, load_dtd=False, 
 _IGNORED_ATTRIBUTES = frozenset({"DEF", "USE", "containerField", "class", "id", "style"})
 _ENTITY_DECL = re.compile(rb"<!ENTITY", re.I)
 _ELEMENT_START = re.compile(rb"<[A-Za-z]")
+_TAG_LINES = 50  # how far back a start tag may begin before the line lxml reports
 
 
 class XmlBuilder(Builder):
@@ -34,18 +35,27 @@ class XmlBuilder(Builder):
         return self._line_starts
 
     def resolve(self, loc: Location, subject: str) -> Location:
-        """lxml knows an element's line only: find the element, or its attribute, in the source."""
+        """lxml gives the line where an element's start tag ends, nothing more: find the
+        tag (named by the subject where it can) and the attribute the diagnostic is about."""
         starts = self._lines()
         if loc.col or loc.line < 1 or loc.line > len(starts):
             return loc
-        m = _ELEMENT_START.search(self.source, starts[loc.line - 1])
-        pos = m.start() if m else starts[loc.line - 1]
-        attribute = subject.rpartition(".")[2] if "." in subject else ""
-        if attribute and m:
-            tag_end = self.source.find(b">", pos)
-            a = re.compile(rb"\s" + re.escape(attribute.encode()) + rb"\s*=").search(self.source, pos, tag_end)
-            if a:
-                pos = a.start() + 1
+        line_start = starts[loc.line - 1]
+        line_end = starts[loc.line] if loc.line < len(starts) else len(self.source)
+        window = starts[max(0, loc.line - 1 - _TAG_LINES)]
+        tag = subject.split(" ", 1)[0].split(".", 1)[0].encode()
+        attribute = subject.rpartition(".")[2].encode() if "." in subject else b""
+        pos = line_start
+        for m in reversed(list(_ELEMENT_START.finditer(self.source, window, line_end))):
+            tag_end = self.source.find(b">", m.start())
+            if tag_end < line_start and m.start() < line_start:
+                break
+            if subject.startswith(("USE", "ROUTE")) or self.source.startswith(tag, m.start() + 1):
+                pos = m.start()
+                if attribute:
+                    a = re.compile(rb"\s" + re.escape(attribute) + rb"\s*=").search(self.source, pos, tag_end)
+                    pos = a.start() + 1 if a else pos
+                break
         line = bisect.bisect_right(starts, pos)
         return Location(loc.file, line, pos - starts[line - 1] + 1)
 
@@ -155,14 +165,16 @@ class _Reader:
                 continue
             self.b.set_value(node, name, text, loc, F.parse_xml, "xml")
         for child in el:
-            if child.tag == "field" and node.spec is None:
+            if child.tag == "field" and node.declares_fields:
                 self.interface_field(node, child)
             elif child.tag in ("fieldValue",):
                 self.b.error(self.loc(child), child.tag, "<fieldValue> belongs in a ProtoInstance")
             else:
                 self.statement(child, node)
-        if node.spec is None and el.text and el.text.strip():
-            node.text = el.text.strip()
+        if node.declares_fields:  # a Script's source: CDATA anywhere among its <field>s
+            text = ((el.text or "") + "".join(c.tail or "" for c in el)).strip()
+            if text:
+                self.b.set_value(node, "sourceCode", text, loc, F.parse_xml, "xml")
         self.b.done(node)
         return node
 
