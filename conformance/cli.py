@@ -24,8 +24,8 @@ def _check(args: argparse.Namespace) -> int:
             print(e.diagnostic)
             failed += 1
             continue
-        except RecursionError:
-            print(f"{path}:1:1: error: nesting too deep to read")
+        except Exception as e:  # a bug of ours, never the file's fault: still one line, no traceback
+            print(f"{path}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it")
             failed += 1
             continue
         for d in scene.diagnostics:

@@ -277,7 +277,7 @@ def test_wrong_typed_value_names_node_field_and_line(tmp_path: Path) -> None:
     scene = _load(tmp_path, "heavy.x3dj", text)
     (err,) = scene.errors
     assert err.subject == "RigidBody B.mass"
-    assert "'heavy' is not a number" in err.message
+    assert '"heavy" is not a number' in err.message
     assert (err.loc.line, err.loc.col) == (4, 9)
     assert "mass" not in scene.of_type("RigidBody")[0].values
 

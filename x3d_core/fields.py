@@ -9,6 +9,7 @@ references for SFNode and MFNode.
 
 from __future__ import annotations
 
+import json
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -258,7 +259,7 @@ def parse_json(ftype: FieldType, value: Any) -> Any:
     for v in vals:
         if isinstance(v, bool) or not isinstance(v, (int, float)):
             if not (k == "int" and isinstance(v, str)):
-                raise FieldError(f"{v!r} is not a number; expected {ftype.describe()}")
+                raise FieldError(f"{json.dumps(v)} is not a number; expected {ftype.describe()}")
     return _from_tokens(ftype, vals)
 
 

@@ -78,13 +78,12 @@ class _Positions:
 
 def load_json(path: str, source: bytes, scene: Scene) -> None:
     b = Builder(scene)
-    encoding = json.detect_encoding(source)
     try:
-        text = source.decode(encoding)
+        text = source.decode("utf-8-sig")  # X3D JSON is UTF-8 (RFC 8259)
     except UnicodeDecodeError as e:
         line = source.count(b"\n", 0, e.start) + 1
         col = e.start - (source.rfind(b"\n", 0, e.start) + 1) + 1
-        raise b.fatal(Location(path, line, col), f"not valid {encoding} text: {e.reason}") from None
+        raise b.fatal(Location(path, line, col), f"not UTF-8 text, so not X3D JSON ({e.reason})") from None
     positions = _Positions(text)
     reader = _Reader(b, path, text)
     try:

@@ -37,6 +37,8 @@ def load(path: str, check: bool = True) -> Scene:
         raise LoadError(Diagnostic("error", Location(path, 1, 0), "", f"cannot read file: {e.strerror}")) from None
     if not source.strip():
         raise LoadError(Diagnostic("error", Location(path, 1, 1), "", "empty file"))
+    if b"\x00" in source[:1024] and not source.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise LoadError(Diagnostic("error", Location(path, 1, 1), "", "binary data, not an X3D file"))
     encoding = sniff(path, source[:64])
     if encoding is None:
         raise LoadError(Diagnostic("error", Location(path, 1, 1), "",
@@ -49,7 +51,11 @@ def load(path: str, check: bool = True) -> Scene:
         from .vrml_loader import load_vrml as read
     else:
         from .json_loader import load_json as read
-    read(path, source, scene)
+    try:
+        read(path, source, scene)
+    except RecursionError:
+        raise LoadError(Diagnostic("error", Location(path, 1, 1), "",
+                                   "nesting too deep to read (more levels than any scene needs)")) from None
     apply_version_defaults(scene)
     if check:
         validate(scene)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator
 
 from .fields import FieldType
 from .schema import NodeType
@@ -131,6 +131,10 @@ class Scene:
     routes: list[Route] = field(default_factory=list)
     protos: list[str] = field(default_factory=list)  # names of the PROTOs expanded in place
     diagnostics: list[Diagnostic] = field(default_factory=list)
+    # where the encoding's parser knows less than a line and column (lxml), the loader
+    # leaves a way to find the exact place of a later diagnostic
+    locate: Callable[[Location, str], Location] = field(default=lambda loc, subject: loc, repr=False,
+                                                       compare=False)
 
     def nodes(self) -> Iterator[Node]:
         """Every distinct node once, depth first in file order (a USEd node at its DEF)."""

@@ -30,10 +30,12 @@ def validate(scene: Scene) -> None:
 
     def warn(node: Node, field: str, message: str) -> None:
         subject = f"{node.label}.{field}" if field else node.label
-        out.append(Diagnostic("warning", node.field_locs.get(field, node.loc), subject, message))
+        out.append(Diagnostic("warning", scene.locate(node.field_locs.get(field, node.loc), subject), subject,
+                              message))
 
     def err(node: Node, field: str, message: str) -> None:
-        out.append(Diagnostic("error", node.field_locs.get(field, node.loc), f"{node.label}.{field}", message))
+        subject = f"{node.label}.{field}"
+        out.append(Diagnostic("error", scene.locate(node.field_locs.get(field, node.loc), subject), subject, message))
 
     owners: dict[int, list[Node]] = {}
     body_owners: dict[int, list[Node]] = {}

@@ -70,6 +70,11 @@ class _Parser:
             return self.loc_at(len(self.text))
         return self.loc_at(self.pos[i])
 
+    def shown(self, k: int = 0) -> str:
+        """The next token as a message shows it."""
+        t = self.peek(k)
+        return "the end of the file" if t is _END else repr(t)
+
     def peek(self, k: int = 0) -> Any:
         j = self.i + k
         return self.toks[j] if j < len(self.toks) else _END
@@ -108,7 +113,7 @@ class _Parser:
                     self.next()
                     level = self.next()
                 try:
-                    self.b.component(name, int(level or "1"))
+                    self.b.component(name, int(level))
                 except ValueError:
                     self.b.error(at, "COMPONENT", f"level {level!r} is not an integer")
             elif kw == "UNIT":
@@ -212,6 +217,8 @@ class _Parser:
                 self.skip_value()
                 return
         if fd is not None and fd.type.kind == "node":
+            if fd.name in node.field_locs:
+                self.b.error(at, f"{node.label}.{fd.name}", f"field given twice (first at {node.field_locs[fd.name]})")
             self.node_value(node, fd.name, fd.type.multi)
         elif fd is not None:
             self.b.set_value(node, fd.name, self.value_tokens(fd.type), at, F.parse_vrml, "vrml")
@@ -245,7 +252,7 @@ class _Parser:
     def one_node(self, parent: Node, name: str) -> None:
         at = self.loc()
         if not self.is_node_start():
-            raise self.b.fatal(at, f"expected a node for {parent.label}.{name}, found {self.peek()!r}")
+            raise self.b.fatal(at, f"expected a node for {parent.label}.{name}, found {self.shown()}")
         child = self.node()
         if child is not None:
             self.b.add_child(parent, name, child, at)
@@ -258,7 +265,7 @@ class _Parser:
             while self.peek() != "]":
                 t = self.peek()
                 if t is _END or t in ("[", "{", "}"):
-                    raise self.b.fatal(self.loc(), f"expected ']' to close a {ftype.name} value, found {t!r}")
+                    raise self.b.fatal(self.loc(), f"expected ']' to close a {ftype.name} value, found {self.shown()}")
                 out.append(self.next())
             self.next()
             return out
@@ -308,7 +315,7 @@ class _Parser:
         else:
             start = self.pos[self.i] if self.i < len(self.toks) else len(self.text)
             if not self.scalars(1 << 30):
-                raise self.b.fatal(at, f"expected a value for {node.label}.{name}, found {self.peek()!r}")
+                raise self.b.fatal(at, f"expected a value for {node.label}.{name}, found {self.shown()}")
         end = self.pos[self.i - 1] + len(self.toks[self.i - 1])
         self.b.set_value(node, name, self.text[start:end], at, F.parse_vrml, "vrml")
 
@@ -343,7 +350,7 @@ class _Parser:
         out = {}
         while self.peek() != "]":
             if self.peek() not in _ACCESS:
-                raise self.b.fatal(self.loc(), f"expected a field declaration, found {self.peek()!r}")
+                raise self.b.fatal(self.loc(), f"expected a field declaration, found {self.shown()}")
             d = self.interface_decl(None, with_values)
             out[d.name] = d
         self.next()
@@ -369,7 +376,8 @@ class _Parser:
         self.next()
         name = self.ident("an EXTERNPROTO name")
         self.interface(False)
-        self.value_tokens(F.FIELD_TYPES["MFString"])
+        if not self.value_tokens(F.FIELD_TYPES["MFString"]):
+            raise self.b.fatal(self.loc(), f"expected the URL list of EXTERNPROTO {name}, found {self.shown()}")
         self.b.declare_extern(name, at)
 
     def proto_instance(self, name: str, def_name: str | None, at: Location) -> Node | None:

@@ -24,6 +24,7 @@ class XmlBuilder(Builder):
 
     def __init__(self, scene: Scene, source: bytes):
         super().__init__(scene)
+        scene.locate = self.resolve
         self.source = source
         self._line_starts: list[int] | None = None
 
@@ -45,27 +46,25 @@ class XmlBuilder(Builder):
         window = starts[max(0, loc.line - 1 - _TAG_LINES)]
         tag = subject.split(" ", 1)[0].split(".", 1)[0].encode()
         attribute = subject.rpartition(".")[2].encode() if "." in subject else b""
-        pos = line_start
+        candidates = []  # elements whose start tag ends on the reported line, last first
         for m in reversed(list(_ELEMENT_START.finditer(self.source, window, line_end))):
             tag_end = self.source.find(b">", m.start())
             if tag_end < line_start and m.start() < line_start:
                 break
-            if subject.startswith(("USE", "ROUTE")) or self.source.startswith(tag, m.start() + 1):
-                pos = m.start()
-                if attribute:
-                    a = re.compile(rb"\s" + re.escape(attribute) + rb"\s*=").search(self.source, pos, tag_end)
-                    pos = a.start() + 1 if a else pos
-                break
+            candidates.append((m.start(), tag_end))
+        if not candidates:
+            return Location(loc.file, loc.line, 1)
+        named = [c for c in candidates if self.source.startswith(tag, c[0] + 1)]
+        pos, tag_end = (named or candidates)[0]
+        if attribute:
+            a = re.compile(rb"\s" + re.escape(attribute) + rb"\s*=").search(self.source, pos, tag_end)
+            pos = a.start() + 1 if a else pos
         line = bisect.bisect_right(starts, pos)
         return Location(loc.file, line, pos - starts[line - 1] + 1)
 
 
 def load_xml(path: str, source: bytes, scene: Scene) -> None:
     b = XmlBuilder(scene, source)
-    if _ENTITY_DECL.search(source):
-        line = source[:_ENTITY_DECL.search(source).start()].count(b"\n") + 1
-        raise b.fatal(Location(path, line, 1), "entity declarations are not allowed in X3D files "
-                                               "(x3drbp never expands entities)")
     parser = etree.XMLParser(**_PARSER_OPTIONS)
     try:
         root = etree.fromstring(source, parser, base_url=None)
@@ -73,6 +72,12 @@ def load_xml(path: str, source: bytes, scene: Scene) -> None:
         line, col = (e.position if e.position else (1, 0))
         msg = re.sub(r",? line \d+, column \d+$", "", e.msg or "malformed XML")
         raise b.fatal(Location(path, line or 1, col or 0), f"malformed XML: {msg}") from None
+    dtd = root.getroottree().docinfo.internalDTD
+    if dtd is not None and any(True for _ in dtd.iterentities()):
+        m = _ENTITY_DECL.search(source)
+        line = source.count(b"\n", 0, m.start()) + 1 if m else 1
+        raise b.fatal(Location(path, line, 1), "entity declarations are not allowed in X3D files "
+                                               "(x3drbp never expands entities)")
     if root.tag != "X3D":
         raise b.fatal(Location(path, root.sourceline or 1, 1),
                       f"not an X3D document: the root element is <{root.tag}>, expected <X3D>")
