@@ -144,17 +144,16 @@ class Builder:
         fd = self.field_def(node, name, loc)
         if fd is None:
             return
-        subject = f"{node.label}.{fd.name}"
         if fd.type.kind == "node":
-            self.error(loc, subject, f"{fd.type.name} field takes nodes, not a value")
+            self.error(loc, f"{node.label}.{fd.name}", f"{fd.type.name} field takes nodes, not a value")
             return
         if not fd.readable:
-            self.error(loc, subject, f"{fd.access} field cannot be given a value in a file")
+            self.error(loc, f"{node.label}.{fd.name}", f"{fd.access} field cannot be given a value in a file")
             return
         try:
             value = parse(fd.type, raw)
         except F.FieldError as e:
-            self.error(loc, subject, str(e))
+            self.error(loc, f"{node.label}.{fd.name}", str(e))
             return
         self.store(node, fd, value, loc)
 
@@ -162,9 +161,9 @@ class Builder:
         """Keep a typed value: UNITs applied, then checked against the field's range."""
         if convert:
             value = self.to_si(fd, value)
-        if fd.range is not None and not fd.type.rotation:
+        if fd.range is not None and not fd.type.rotation and not fd.range.contains(value):
             numbers = np.asarray(value, dtype=np.float64).ravel()
-            if numbers.size and not fd.range.contains(numbers):
+            if numbers.size:
                 bad = numbers[~_in(fd.range, numbers)][0]
                 message = f"{F._num(bad)} is out of range; allowed {fd.range}"
                 if node.type_name not in PRESENTATION:
@@ -178,9 +177,9 @@ class Builder:
         node.field_locs[fd.name] = loc
 
     def to_si(self, fd: schema.FieldDef, value: Any) -> Any:
-        units = {k: v[1] for k, v in self.scene.units.items()}
-        if not units:
+        if not self.scene.units:
             return value
+        units = {k: v[1] for k, v in self.scene.units.items()}
         if fd.type.rotation and "angle" in units:
             value = np.array(value, dtype=np.float64)
             value[..., 3] *= units["angle"]
@@ -312,6 +311,8 @@ class Builder:
             return None
         decl = FieldDecl(name, ftype, access, F.empty(ftype), loc)
         if owner is not None:
+            if not owner.interface:
+                owner.interface = []
             owner.interface.append(decl)
         return decl
 

@@ -10,6 +10,7 @@ references for SFNode and MFNode.
 from __future__ import annotations
 
 import json
+import math
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -79,12 +80,30 @@ _INT32 = (-(2**31), 2**31 - 1)
 
 
 def _numbers(ftype: FieldType, text: str) -> Any:
+    if ftype.kind == "float" and not ftype.multi:
+        fast = _sf_floats(ftype, text.replace(",", " ").split())
+        if fast is not None:
+            return fast
     tokens = _SPLIT.split(text.strip())
     if tokens and tokens[0] == "":
         tokens = tokens[1:]
     if tokens and tokens[-1] == "":
         tokens = tokens[:-1]
     return _from_tokens(ftype, tokens)
+
+
+def _sf_floats(ftype: FieldType, tokens: list[str]) -> Any:
+    """The common case, a well-formed SF number or vector, without numpy's string parsing;
+    None sends anything unusual to the general path and its messages."""
+    if len(tokens) != ftype.width:
+        return None
+    try:
+        vals = [float(t) for t in tokens]
+    except ValueError:
+        return None
+    if not all(map(math.isfinite, vals)):
+        return None
+    return vals[0] if ftype.width == 1 else np.array(vals)
 
 
 def _from_tokens(ftype: FieldType, tokens: list) -> Any:
@@ -218,6 +237,10 @@ def parse_vrml(ftype: FieldType, tokens: list[str]) -> Any:
         if len(vals) != 1:
             raise FieldError(f"expected one boolean (TRUE or FALSE), got {len(vals)} values")
         return vals[0]
+    if ftype.kind == "float" and not ftype.multi:
+        fast = _sf_floats(ftype, tokens)
+        if fast is not None:
+            return fast
     for t in tokens:
         if t[0] == '"':
             raise FieldError(f"{t} is a string; expected {ftype.describe()}")

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import gc
 import os
 
 from .model import Diagnostic, LoadError, Location, Scene
-from .validate import apply_version_defaults, validate
+from .validate import apply_version_defaults, by_type, validate
 
 ENCODINGS = {".x3d": "xml", ".xml": "xml", ".x3dv": "vrml", ".wrl": "vrml", ".x3dj": "json", ".json": "json"}
 MAX_BYTES = 512 * 1024 * 1024
@@ -51,12 +52,18 @@ def load(path: str, check: bool = True) -> Scene:
         from .vrml_loader import load_vrml as read
     else:
         from .json_loader import load_json as read
+    gc_was_on = gc.isenabled()
+    gc.disable()  # a load allocates many objects and frees none: collection passes only cost time
     try:
         read(path, source, scene)
     except RecursionError:
         raise LoadError(Diagnostic("error", Location(path, 1, 1), "",
                                    "nesting too deep to read (more levels than any scene needs)")) from None
-    apply_version_defaults(scene)
+    finally:
+        if gc_was_on:
+            gc.enable()
+    groups = by_type(scene)
+    apply_version_defaults(scene, groups)
     if check:
-        validate(scene)
+        validate(scene, groups)
     return scene

@@ -3,17 +3,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterator
+from typing import Any, Callable, Iterator, NamedTuple
 
 from .fields import FieldType
 from .schema import NodeType
 
 
-@dataclass(frozen=True, slots=True)
-class Location:
+class Location(NamedTuple):
     file: str
     line: int
-    col: int = 0
+    col: int = 0  # 0: not yet known (XML), found when a diagnostic needs it
 
     def __str__(self) -> str:
         return f"{self.file}:{self.line}:{self.col}"
@@ -63,7 +62,7 @@ class Node:
         self.def_name = def_name
         self.loc = loc
         self.field_locs: dict[str, Location] = {}
-        self.interface: list[FieldDecl] = []  # fields a Script (or unknown node) declares
+        self.interface: list[FieldDecl] = _NO_FIELDS  # fields a Script (or unknown node) declares
 
     def get(self, name: str) -> Any:
         """The field's value: as given in the file, else its X3D 4.0 default."""
@@ -107,6 +106,7 @@ class Node:
 
 
 _MISSING = object()
+_NO_FIELDS: list[FieldDecl] = []  # shared and never appended to: declare() gives a node its own list
 
 
 @dataclass

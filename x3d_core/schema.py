@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import functools
 import math
 import re
 from dataclasses import dataclass, field
@@ -23,7 +24,12 @@ class Range:
     lo_open: bool
     hi_open: bool
 
-    def contains(self, numbers: np.ndarray) -> bool:
+    def contains(self, numbers: Any) -> bool:
+        """Whether every number of a value (a number, or an array) lies in the range."""
+        if isinstance(numbers, (int, float)):
+            return (numbers > self.lo if self.lo_open else numbers >= self.lo) and \
+                (numbers < self.hi if self.hi_open else numbers <= self.hi)
+        numbers = np.asarray(numbers, dtype=np.float64)
         lo_ok = numbers > self.lo if self.lo_open else numbers >= self.lo
         hi_ok = numbers < self.hi if self.hi_open else numbers <= self.hi
         return bool(np.all(lo_ok & hi_ok))
@@ -150,12 +156,15 @@ def node_type(name: str) -> NodeType | None:
 
 def accepts(fd: FieldDef, child_type: str) -> bool:
     """Whether an SFNode/MFNode field may hold a node of the given type name."""
-    if not fd.accepts:
-        return True
+    return not fd.accepts or _accepts(fd.accepts, child_type)
+
+
+@functools.cache
+def _accepts(accepted: tuple[str, ...], child_type: str) -> bool:
     t = node_type(child_type)
     if t is None:  # an unknown (generic) node: refuse only where every accepted type is known
-        return not all(a in CLOSED_ABSTRACT or node_type(a) is not None for a in fd.accepts)
-    return any(t.is_a(a) for a in fd.accepts)
+        return not all(a in CLOSED_ABSTRACT or node_type(a) is not None for a in accepted)
+    return any(t.is_a(a) for a in accepted)
 
 
 def concrete_types_in(component: str) -> list[NodeType]:

@@ -10,22 +10,34 @@ from .model import Diagnostic, Node, Scene
 # A pair of axes counts as perpendicular when |cos| is below this: well under the
 # float32 rounding of an axis written with 6-7 digits, far above any intended angle.
 PERPENDICULAR_COS = 1e-5
-JOINT_NODE = "X3DRigidJointNode"
 # Joint axes whose X3D 3.x default was 0 0 0 (4.0 gives them a direction)
 AXIS_FIELDS = {"SingleAxisHingeJoint": ("axis",), "DoubleAxisHingeJoint": ("axis1", "axis2"),
                "UniversalJoint": ("axis1", "axis2"), "MotorJoint": ("motor1Axis", "motor2Axis", "motor3Axis")}
 
 
-def apply_version_defaults(scene: Scene) -> None:
+def by_type(scene: Scene) -> dict[str, list[Node]]:
+    """The scene's typed nodes grouped by type name, in one walk."""
+    groups: dict[str, list[Node]] = {}
+    for n in scene.nodes():
+        if n.spec is not None:
+            groups.setdefault(n.type_name, []).append(n)
+    return groups
+
+
+def _joints(groups: dict[str, list[Node]]) -> list[Node]:
+    return [j for t in AXIS_FIELDS.keys() | {"BallJoint", "SliderJoint"} for j in groups.get(t, [])]
+
+
+def apply_version_defaults(scene: Scene, groups: dict[str, list[Node]]) -> None:
     """An X3D 3.x file that leaves a joint axis out means 0 0 0, its version's default."""
     if not scene.version[:1].isdigit() or int(scene.version[:1]) >= 4:
         return
-    for joint in scene.of_type(JOINT_NODE):
+    for joint in _joints(groups):
         for f in AXIS_FIELDS.get(joint.type_name, ()):
             joint.values.setdefault(f, np.zeros(3))
 
 
-def validate(scene: Scene) -> None:
+def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
     out: list[Diagnostic] = []
 
     def warn(node: Node, field: str, message: str) -> None:
@@ -39,7 +51,7 @@ def validate(scene: Scene) -> None:
 
     owners: dict[int, list[Node]] = {}
     body_owners: dict[int, list[Node]] = {}
-    for coll in scene.of_type("RigidBodyCollection"):
+    for coll in groups.get("RigidBodyCollection", []):
         bodies = {id(b) for b in coll.get("bodies")}
         for b in coll.get("bodies"):
             body_owners.setdefault(id(b), []).append(coll)
@@ -50,7 +62,7 @@ def validate(scene: Scene) -> None:
                 if b is not None and id(b) not in bodies:
                     warn(j, f, f"{b.label} is not in the joint's collection {coll.label}; "
                                "the spec leaves such a joint undefined")
-    for joint in scene.of_type(JOINT_NODE):
+    for joint in _joints(groups):
         colls = owners.get(id(joint), [])
         if len(colls) > 1:
             warn(joint, "", f"joint is in {len(colls)} collections ({', '.join(c.label for c in colls)}); "
@@ -75,7 +87,7 @@ def validate(scene: Scene) -> None:
         if len(colls) > 1:
             body = next(b for b in colls[0].get("bodies") if id(b) == body_id)
             warn(body, "", f"body is in {len(colls)} collections; the spec leaves this undefined")
-    for node in scene.of_type("CollisionCollection") + scene.of_type("Contact"):
+    for node in groups.get("CollisionCollection", []) + groups.get("Contact", []):
         for v in node.get("appliedParameters"):
             if canonical(v) is None:
                 err(node, "appliedParameters", f"{v!r} is not an applied parameter; allowed: "

@@ -150,15 +150,16 @@ class _Reader:
             if parent is None:
                 self.roots.append(node)
             else:
-                self.b.add_child(parent, el.get("containerField"), node, self.loc(el))
+                self.b.add_child(parent, el.get("containerField"), node, Location(self.path, el.sourceline or 0))
 
     def node(self, el: etree._Element) -> Node | None:
         tag = el.tag
         use = el.get("USE")
         if use is not None:
-            n = self.b.use(use, self.loc(el, "USE"))
+            loc = Location(self.path, el.sourceline or 0)
+            n = self.b.use(use, loc)
             if n is not None and tag != "ProtoInstance" and n.type_name != tag:
-                self.b.error(self.loc(el, "USE"), f"USE {use}", f"names a {n.type_name}, not a {tag}")
+                self.b.error(loc, f"USE {use}", f"names a {n.type_name}, not a {tag}")
                 return None
             return n
         if tag == "ProtoInstance":
