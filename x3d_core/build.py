@@ -164,7 +164,7 @@ class Builder:
         if fd.range is not None and not fd.type.rotation and not fd.range.contains(value):
             numbers = np.asarray(value, dtype=np.float64).ravel()
             if numbers.size:
-                bad = numbers[~_in(fd.range, numbers)][0]
+                bad = numbers[~fd.range.inside(numbers)][0]
                 message = f"{F._num(bad)} is out of range; allowed {fd.range}"
                 if node.type_name not in PRESENTATION:
                     self.error(loc, f"{node.label}.{fd.name}", message)
@@ -396,12 +396,6 @@ class Builder:
         if def_name:
             self.defs[def_name] = first
         return first
-
-
-def _in(rng: schema.Range, numbers: np.ndarray) -> np.ndarray:
-    lo = numbers > rng.lo if rng.lo_open else numbers >= rng.lo
-    hi = numbers < rng.hi if rng.hi_open else numbers <= rng.hi
-    return lo & hi
 
 
 def _copy(node: Node, memo: dict[int, Node], prefix: str) -> Node:

@@ -29,10 +29,13 @@ class Range:
         if isinstance(numbers, (int, float)):
             return (numbers > self.lo if self.lo_open else numbers >= self.lo) and \
                 (numbers < self.hi if self.hi_open else numbers <= self.hi)
-        numbers = np.asarray(numbers, dtype=np.float64)
+        return bool(np.all(self.inside(np.asarray(numbers, dtype=np.float64))))
+
+    def inside(self, numbers: np.ndarray) -> np.ndarray:
+        """Which of an array's numbers lie in the range."""
         lo_ok = numbers > self.lo if self.lo_open else numbers >= self.lo
         hi_ok = numbers < self.hi if self.hi_open else numbers <= self.hi
-        return bool(np.all(lo_ok & hi_ok))
+        return lo_ok & hi_ok
 
     def __str__(self) -> str:
         def num(x: float) -> str:
@@ -166,6 +169,3 @@ def _accepts(accepted: tuple[str, ...], child_type: str) -> bool:
         return not all(a in CLOSED_ABSTRACT or node_type(a) is not None for a in accepted)
     return any(t.is_a(a) for a in accepted)
 
-
-def concrete_types_in(component: str) -> list[NodeType]:
-    return [t for t in NODE_TYPES.values() if not t.abstract and t.component.startswith(component + " ")]
