@@ -256,3 +256,17 @@ def test_vrml_comments_commas_and_mf_without_brackets(tmp_path):
     b = s.roots[0]
     assert b["position"].tolist() == [1, 2, 3] and b["forces"].tolist() == [[0, 0, 1]]
     assert np.shape(b["torques"]) == (0, 3)
+
+
+def test_prestandard_name_on_a_node_without_that_field_is_unknown(tmp_path):
+    s = vrml(tmp_path, "COMPONENT xj3d_RigidBodyPhysics:2\nRigidBody { mustOutput [ \"x\" ] }",
+             header="#X3D V3.0 utf8")
+    assert [e.message for e in s.errors] == ["RigidBody has no field 'mustOutput'"]
+
+
+@pytest.mark.parametrize("text", ["4phere { }", "Group { children [ Bo' { } ] }"])
+def test_node_type_names_must_be_names(tmp_path, text):
+    p = tmp_path / "n.x3dv"
+    p.write_text("#X3D V4.0 utf8\n" + text)
+    with pytest.raises(LoadError, match="is not a node type name"):
+        load(str(p))

@@ -7,6 +7,7 @@ UNITs apply) is written once for the three encodings.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
@@ -35,6 +36,9 @@ class ProtoDecl:
     links: list[tuple[Node, str, str]] = field(default_factory=list)  # (body node, its field, interface field)
     routes: list[Route] = field(default_factory=list)
 
+
+# Node type and field names (X3D's are XML names: they must also be writable as such)
+NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
 
 # Field names of Xj3D's pre-standard component (COMPONENT xj3d_RigidBodyPhysics) that
 # the standard renamed
@@ -93,6 +97,8 @@ class Builder:
     def node(self, type_name: str, loc: Location, def_name: str | None = None) -> Node:
         """A new node, entered as being read until done() is called."""
         spec = schema.node_type(type_name)
+        if spec is None and not NAME.fullmatch(type_name):
+            raise self.fatal(loc, f"{type_name!r} is not a node type name")
         if type_name == "Script":
             self.warning(loc, type_name, f"{type_name} is kept in the model but does not run")
         n = Node(type_name, spec, loc, def_name)
@@ -124,9 +130,9 @@ class Builder:
         fd = _base_field(node.spec, name)
         if fd is None and self.prestandard:
             alias = PRESTANDARD_NAMES.get((node.type_name, name)) or PRESTANDARD_NAMES.get(("*", name))
-            if alias is not None:
+            fd = node.spec.fields.get(alias) if alias else None
+            if fd is not None:
                 self.warning(loc, f"{node.label}.{name}", f"pre-standard (Xj3D) name read as {alias}")
-                fd = node.spec.fields[alias]
         if fd is None:
             for decl in node.interface:
                 if decl.name == name:
@@ -138,6 +144,9 @@ class Builder:
     def set_value(self, node: Node, name: str, raw: Any, loc: Location, parse: Parser, encoding: str) -> None:
         """Give a field its value from the file's text (or JSON value)."""
         if node.spec is None:
+            if not NAME.fullmatch(name):
+                self.error(loc, f"{node.label}.{name}", f"{name!r} is not a field name")
+                return
             node.values[name] = RawValue(encoding, raw)
             node.field_locs[name] = loc
             return
@@ -300,6 +309,9 @@ class Builder:
     # -- interfaces and PROTOs ----------------------------------------------
     def declare(self, owner: Node | None, name: str, type_name: str, access: str, loc: Location) -> FieldDecl | None:
         ftype = F.FIELD_TYPES.get(type_name)
+        if not NAME.fullmatch(name):
+            self.error(loc, name, f"{name!r} is not a field name")
+            return None
         if ftype is None:
             self.error(loc, name, f"unknown field type {type_name!r}")
             return None
