@@ -270,3 +270,9 @@ def test_node_type_names_must_be_names(tmp_path, text):
     p.write_text("#X3D V4.0 utf8\n" + text)
     with pytest.raises(LoadError, match="is not a node type name"):
         load(str(p))
+
+
+def test_route_between_fields_of_different_types_is_an_error(tmp_path):
+    s = vrml(tmp_path, "DEF A RigidBody { }\nDEF B RigidBody { }\nROUTE A.position_changed TO B.set_orientation")
+    assert [e.message for e in s.errors] == ["a ROUTE joins fields of one type; this one joins SFVec3f to SFRotation"]
+    assert s.errors[0].loc.line == 5 and not s.routes

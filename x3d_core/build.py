@@ -285,24 +285,28 @@ class Builder:
 
     # -- routes -------------------------------------------------------------
     def route(self, from_name: str, from_field: str, to_name: str, to_field: str, loc: Location) -> None:
-        ends = []
+        subject = f"ROUTE {from_name}.{from_field} TO {to_name}.{to_field}"
+        ends, types = [], []
         for name, fname, direction in ((from_name, from_field, "out"), (to_name, to_field, "in")):
             n = self.defs.get(name)
             if n is None:
-                self.error(loc, f"ROUTE {from_name}.{from_field} TO {to_name}.{to_field}",
-                           f"no node named {name!r}")
+                self.error(loc, subject, f"no node named {name!r}")
                 return
             if n.spec is not None:
                 fd = _base_field(n.spec, fname)
-                access = fd.access if fd is not None else next(
-                    (d.access for d in n.interface if d.name == fname), None)
-                if access not in (("inputOutput", "outputOnly") if direction == "out" else
-                                  ("inputOutput", "inputOnly")):
+                decl = None if fd is not None else next((d for d in n.interface if d.name == fname), None)
+                end = fd or decl
+                if end is None or end.access not in (("inputOutput", "outputOnly") if direction == "out" else
+                                                     ("inputOutput", "inputOnly")):
                     what = "output" if direction == "out" else "input"
-                    self.error(loc, f"ROUTE {from_name}.{from_field} TO {to_name}.{to_field}",
-                               f"{n.label} has no {what} field {fname!r}")
+                    self.error(loc, subject, f"{n.label} has no {what} field {fname!r}")
                     return
+                types.append(end.type)
             ends.append(n)
+        if len(types) == 2 and types[0] is not types[1]:
+            self.error(loc, subject, f"a ROUTE joins fields of one type; this one joins {types[0].name} "
+                                     f"to {types[1].name}")
+            return
         r = Route(ends[0], from_field, ends[1], to_field, loc)
         (self.proto_stack[-1].routes if self.proto_stack else self.scene.routes).append(r)
 
