@@ -21,7 +21,9 @@ def _check(args: argparse.Namespace) -> int:
         try:
             scene = load(path)
         except LoadError as e:
-            print(e.diagnostic)
+            for d in e.diagnostics:
+                if d.severity == "error" or not args.quiet:
+                    print(d)
             failed += 1
             continue
         except Exception as e:  # a bug of ours, never the file's fault: still one line, no traceback

@@ -276,3 +276,12 @@ def test_route_between_fields_of_different_types_is_an_error(tmp_path):
     s = vrml(tmp_path, "DEF A RigidBody { }\nDEF B RigidBody { }\nROUTE A.position_changed TO B.set_orientation")
     assert [e.message for e in s.errors] == ["a ROUTE joins fields of one type; this one joins SFVec3f to SFRotation"]
     assert s.errors[0].loc.line == 5 and not s.routes
+
+
+def test_errors_found_before_a_fatal_one_are_kept(tmp_path):
+    p = tmp_path / "two.x3dv"
+    p.write_text("#X3D V4.0 utf8\nRigidBody { mass 0 }\nGroup { children [ ")
+    with pytest.raises(LoadError) as e:
+        load(str(p))
+    assert [(d.loc.line, d.severity) for d in e.value.diagnostics] == [(2, "error"), (3, "error")]
+    assert "mass" in e.value.diagnostics[0].subject

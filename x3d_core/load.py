@@ -56,6 +56,9 @@ def load(path: str, check: bool = True) -> Scene:
     gc.disable()  # a load allocates many objects and frees none: collection passes only cost time
     try:
         read(path, source, scene)
+    except LoadError as e:
+        e.earlier = scene.diagnostics
+        raise
     except RecursionError:
         raise LoadError(Diagnostic("error", Location(path, 1, 1), "",
                                    "nesting too deep to read (more levels than any scene needs)")) from None

@@ -33,9 +33,14 @@ class Diagnostic:
 class LoadError(Exception):
     """A file that cannot be read at all; carries the one diagnostic that says why."""
 
-    def __init__(self, diagnostic: Diagnostic):
+    def __init__(self, diagnostic: Diagnostic, earlier: list[Diagnostic] | None = None):
         super().__init__(str(diagnostic))
         self.diagnostic = diagnostic
+        self.earlier = earlier or []  # what was found before reading had to stop
+
+    @property
+    def diagnostics(self) -> list[Diagnostic]:
+        return [*self.earlier, self.diagnostic]
 
 
 @dataclass

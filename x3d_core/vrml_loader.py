@@ -2,23 +2,26 @@
 
 from __future__ import annotations
 
-import bisect
 import re
 from typing import Any
+
+import numpy as np
 
 from . import fields as F
 from .build import Builder
 from .model import Location, Node, Scene
 
 _HEADER = re.compile(rb"^\s*#(X3D V[34]\.\d+|VRML V2\.0) [A-Za-z0-9_-]+")
-_TOKEN = re.compile(r'(?:[\s,]+|#[^\n\r]*)*("(?:[^"\\]|\\.)*"|[\[\]{}]|[^\s,"#\[\]{}]+)', re.S)
-_SPACE = re.compile(r"(?:[\s,]+|#[^\n\r]*)*")
+# A string may lack its closing quote only at the end of the file: the loader reports it
+_TOKEN = re.compile(r'(?:[\s,]+|#[^\n\r]*)*("(?:[^"\\]|\\.)*"?|[\[\]{}]|[^\s,"#\[\]{}]+)', re.S)
+_CLOSED_STRING = re.compile(r'"(?:[^"\\]|\\.)*"', re.S)
 _NUMBER = re.compile(r"^[+-]?(?:0[xX][0-9a-fA-F]+|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)$")
 _ACCESS = frozenset({"inputOnly", "outputOnly", "initializeOnly", "inputOutput",
                      "eventIn", "eventOut", "field", "exposedField"})
 _KEYWORDS = frozenset({"DEF", "USE", "ROUTE", "TO", "PROTO", "EXTERNPROTO", "IS", "NULL", "IMPORT", "EXPORT",
                        "AS", "TRUE", "FALSE"})
-_END = object()
+_END = " end of file"  # after the last token; no real token starts with a space
+_NUMBER_START = frozenset("0123456789+-.")
 
 
 def load_vrml(path: str, source: bytes, scene: Scene) -> None:
@@ -43,44 +46,36 @@ class _Parser:
         self.b = b
         self.path = path
         self.text = text
-        self.toks: list[str] = []
-        self.pos: list[int] = []
-        end = start
-        for m in _TOKEN.finditer(text, start):
-            if m.start() != end:
-                break
-            self.toks.append(m.group(1))
-            self.pos.append(m.start(1))
-            end = m.end()
-        self.lines = [0] + [m.end() for m in re.finditer("\n", text)]
-        tail = _SPACE.match(text, end).end()
-        if tail < len(text):
-            raise b.fatal(self.loc_at(tail), "unterminated string")
+        matches = list(_TOKEN.finditer(text, start))
+        self.ntok = len(matches)
+        self.toks: list[str] = [m.group(1) for m in matches] + [_END, _END]
+        self.pos: list[int] = [m.start(1) for m in matches] + [len(text)]
+        # every token's line and column at once; most are never printed, but fields keep theirs
+        line_starts = np.array([0] + [m.end() for m in re.finditer("\n", text)], dtype=np.int64)
+        pos = np.array(self.pos, dtype=np.int64)
+        lines = np.searchsorted(line_starts, pos, side="right")
+        self.tok_line: list[int] = lines.tolist()
+        self.tok_col: list[int] = (pos - line_starts[lines - 1] + 1).tolist()
+        if matches and self.toks[self.ntok - 1][0] == '"' and not _CLOSED_STRING.fullmatch(self.toks[self.ntok - 1]):
+            raise b.fatal(self.loc(self.ntok - 1), "unterminated string")
         self.i = 0
         self.roots: list[Node] = []
 
     # -- tokens ---------------------------------------------------------------
-    def loc_at(self, offset: int) -> Location:
-        line = bisect.bisect_right(self.lines, offset)
-        return Location(self.path, line, offset - self.lines[line - 1] + 1)
-
     def loc(self, i: int | None = None) -> Location:
-        i = self.i if i is None else i
-        if i >= len(self.toks):
-            return self.loc_at(len(self.text))
-        return self.loc_at(self.pos[i])
+        i = min(self.i if i is None else i, self.ntok)
+        return Location(self.path, self.tok_line[i], self.tok_col[i])
 
     def shown(self, k: int = 0) -> str:
         """The next token as a message shows it."""
         t = self.peek(k)
-        return "the end of the file" if t is _END else repr(t)
+        return "the end of the file" if t == _END else repr(t)
 
     def peek(self, k: int = 0) -> Any:
-        j = self.i + k
-        return self.toks[j] if j < len(self.toks) else _END
+        return self.toks[self.i + k]
 
     def next(self) -> str:
-        if self.i >= len(self.toks):
+        if self.i >= self.ntok:
             raise self.b.fatal(self.loc(), "unexpected end of file")
         t = self.toks[self.i]
         self.i += 1
@@ -121,7 +116,7 @@ class _Parser:
                 self.b.unit(category, name, factor, at)
             else:
                 scene.meta.append((self.string(), self.string()))
-        while self.peek() is not _END:
+        while self.peek() != _END:
             node = self.statement()
             if node is not None:
                 self.roots.append(node)
@@ -185,7 +180,7 @@ class _Parser:
         node = self.b.node(t, at, def_name)
         self.expect("{")
         while self.peek() != "}":
-            if self.peek() is _END:
+            if self.peek() == _END:
                 raise self.b.fatal(self.loc(), f"unexpected end of file inside {node.label} (missing '}}')")
             self.body_item(node)
         self.next()
@@ -228,8 +223,7 @@ class _Parser:
     # -- values -----------------------------------------------------------------
     def is_node_start(self) -> bool:
         t = self.peek()
-        return t in ("DEF", "USE", "NULL") or (isinstance(t, str) and self.peek(1) == "{"
-                                                 and t not in "[]{}" and not t.startswith('"'))
+        return t in ("DEF", "USE", "NULL") or (self.peek(1) == "{" and t not in "[]{}" and t[0] != '"')
 
     def node_value(self, parent: Node, name: str, multi: bool) -> None:
         at = self.loc()
@@ -238,7 +232,7 @@ class _Parser:
             if self.peek() == "]":
                 self.b.set_null(parent, name, at)
             while self.peek() != "]":
-                if self.peek() is _END:
+                if self.peek() == _END:
                     raise self.b.fatal(self.loc(), f"unexpected end of file in {parent.label}.{name} (missing ']')")
                 self.one_node(parent, name)
             self.next()
@@ -264,7 +258,7 @@ class _Parser:
             out = []
             while self.peek() != "]":
                 t = self.peek()
-                if t is _END or t in ("[", "{", "}"):
+                if t == _END or t in ("[", "{", "}"):
                     raise self.b.fatal(self.loc(), f"expected ']' to close a {ftype.name} value, found {self.shown()}")
                 out.append(self.next())
             self.next()
@@ -280,7 +274,7 @@ class _Parser:
         out = []
         while len(out) < count:
             t = self.peek()
-            if t is _END or not (t.startswith('"') or _NUMBER.match(t) or t in ("TRUE", "FALSE")):
+            if not (t[0] in _NUMBER_START or t[0] == '"' or t == "TRUE" or t == "FALSE"):
                 break
             out.append(self.next())
         return out
@@ -306,14 +300,13 @@ class _Parser:
             return
         if self.peek() == "[":
             j = self.i + 1
-            if j < len(self.toks) and (self.toks[j] in ("DEF", "USE") or
-                                       (j + 1 < len(self.toks) and self.toks[j + 1] == "{")):
+            if self.toks[j] in ("DEF", "USE") or (j < self.ntok and self.toks[j + 1] == "{"):
                 self.node_value(node, name, True)
                 return
             start = self.pos[self.i]
             self.value_tokens(F.FIELD_TYPES["MFString"])
         else:
-            start = self.pos[self.i] if self.i < len(self.toks) else len(self.text)
+            start = self.pos[self.i]
             if not self.scalars(1 << 30):
                 raise self.b.fatal(at, f"expected a value for {node.label}.{name}, found {self.shown()}")
         end = self.pos[self.i - 1] + len(self.toks[self.i - 1])
@@ -363,7 +356,7 @@ class _Parser:
         p = self.b.begin_proto(name, self.interface(True))
         self.expect("{")
         while self.peek() != "}":
-            if self.peek() is _END:
+            if self.peek() == _END:
                 raise self.b.fatal(self.loc(), f"unexpected end of file in PROTO {name} (missing '}}')")
             n = self.statement()
             if n is not None:
@@ -385,7 +378,7 @@ class _Parser:
         values: dict[str, Any] = {}
         self.expect("{")
         while self.peek() != "}":
-            if self.peek() is _END:
+            if self.peek() == _END:
                 raise self.b.fatal(self.loc(), f"unexpected end of file in {name} (missing '}}')")
             fat = self.loc()
             fname = self.ident(f"a field name of {name}")
