@@ -10,6 +10,8 @@ from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.paths import scene_files
 
+from .run_command import add_commands
+
 
 def _check(args: argparse.Namespace) -> int:
     files = scene_files(args.paths)
@@ -53,6 +55,7 @@ def main(argv: list[str] | None = None) -> int:
     check.add_argument("paths", nargs="+", help="files, or folders searched for .x3d/.x3dv/.x3dj files")
     check.add_argument("-q", "--quiet", action="store_true", help="print errors only")
     check.set_defaults(func=_check)
+    add_commands(sub)
     args = parser.parse_args(argv)
     try:
         return args.func(args)

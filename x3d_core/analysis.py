@@ -121,3 +121,13 @@ def features(scene: Scene) -> list[str]:
             out.add(f"{r.to_node.type_name}.{r.to_field}.routed")
     return sorted(out)
 
+
+COLLISION_TYPES = ("CollisionCollection", "CollisionSpace", "CollisionSensor", "CollidableShape", "CollidableOffset",
+                   "Contact")
+
+
+def run_features(scene: Scene) -> list[str]:
+    """The features a run of the scene needs: collision geometry counts only where some
+    enabled RigidBodyCollection has a collider (a body's shapes collide with nothing else)."""
+    colliding = any(c.get("collider") is not None for c in scene.of_type("RigidBodyCollection") if c.get("enabled"))
+    return [f for f in features(scene) if colliding or not f.startswith(COLLISION_TYPES)]

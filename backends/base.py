@@ -1,0 +1,96 @@
+"""The backend protocol: a declared feature table, and a build step.
+
+A backend is one module in this package exposing `BACKEND`, an instance of a Backend
+subclass. It declares, per feature name (the names of x3d_core.analysis), whether the
+engine honours it natively, approximately (and how) or not at all (and why); anything
+it does not declare is unsupported. `build(world, dt)` returns an
+x3d_core.engine.Simulation: step, read state in bulk, set velocities.
+
+To add an engine: write backends/NAME.py against this module and add NAME to
+ENGINES below. Nothing else changes.
+"""
+
+from __future__ import annotations
+
+import importlib
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from enum import Enum
+
+from x3d_core.engine import Simulation
+from x3d_core.world import World
+
+ENGINES = ("bullet", "mujoco", "dart")
+
+
+class Support(Enum):
+    NATIVE = "native"
+    APPROXIMATE = "approximate"
+    UNSUPPORTED = "unsupported"
+
+
+@dataclass(frozen=True)
+class Declared:
+    support: Support
+    note: str = ""  # how it is approximated, or why it is unsupported
+
+
+def native(*features: str) -> dict[str, Declared]:
+    return {f: Declared(Support.NATIVE) for f in features}
+
+
+def approximate(note: str, *features: str) -> dict[str, Declared]:
+    return {f: Declared(Support.APPROXIMATE, note) for f in features}
+
+
+def unsupported(note: str, *features: str) -> dict[str, Declared]:
+    return {f: Declared(Support.UNSUPPORTED, note) for f in features}
+
+
+# What x3d_core does itself for every backend: the frame loop, outputs, damping,
+# and fields that only name or group things.
+EVALUATOR: dict[str, Declared] = native(
+    "RigidBodyCollection", "RigidBody", "RigidBody.enabled", "RigidBody.autoDamp", "RigidBody.linearDampingFactor",
+    "RigidBody.angularDampingFactor", "RigidBodyCollection.enabled",
+    *(f"{j}.forceOutput" for j in ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint",
+                                   "UniversalJoint", "MotorJoint")))
+
+NOT_YET = "not implemented by this backend yet"
+
+
+class Backend(ABC):
+    name: str
+    declared: dict[str, Declared]
+
+    @abstractmethod
+    def version(self) -> str:
+        """The engine's version."""
+
+    @abstractmethod
+    def build(self, world: World, dt: float) -> Simulation:
+        """An engine model of the world, stepping at dt."""
+
+    def support(self, feature: str) -> Declared:
+        d = EVALUATOR.get(feature) or self.declared.get(feature)
+        return d if d is not None else Declared(Support.UNSUPPORTED, NOT_YET)
+
+    def table(self) -> dict[str, Declared]:
+        return {**self.declared, **EVALUATOR}
+
+
+def load(name: str) -> Backend:
+    """The backend of that name; ImportError (with the reason) if its engine is missing."""
+    if name not in ENGINES:
+        raise KeyError(f"no backend {name!r}; known: {', '.join(ENGINES)}")
+    return importlib.import_module(f"backends.{name}").BACKEND
+
+
+def available() -> dict[str, Backend | str]:
+    """Each known backend, or the reason it cannot be used here."""
+    out: dict[str, Backend | str] = {}
+    for name in ENGINES:
+        try:
+            out[name] = load(name)
+        except ImportError as e:
+            out[name] = f"unavailable: {e}"
+    return out

@@ -1,0 +1,194 @@
+"""MuJoCo backend (MjSpec): joints become a kinematic tree; loops become equalities.
+
+Bodies are built in the world's tree order: a body on the static environment hangs
+from the world body, a free body gets a free joint, a body whose parent joint is in
+the tree gets that joint's degrees of freedom (a ball, a hinge, a slide, two hinges
+for a universal joint). MuJoCo measures a child's joint coordinate relative to its
+parent; x3d_core's outputs measure body1 relative to body2, so limits are mirrored
+where the child is body2. State is read for every body at once from d.xpos, d.xquat
+and d.cvel after the position and velocity stages of mj_forward.
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from x3d_core import rotation as R
+from x3d_core.engine import Unsupported
+from x3d_core.world import STATIC, World, State
+
+from .base import Backend, approximate, native, unsupported
+
+_FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
+
+
+class MujocoSimulation:
+    def __init__(self, world: World, dt: float):
+        self.world = world
+        b = world.bodies
+        spec = mujoco.MjSpec()
+        spec.compiler.degree = False
+        spec.option.timestep = dt
+        spec.option.gravity = world.gravity
+        spec.option.iterations = max(1, world.iterations)
+        if world.prefer_accuracy:
+            spec.option.integrator = mujoco.mjtIntegrator.mjINT_RK4
+        spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT  # collisions: the collision issue
+        self.free = np.zeros(len(b), dtype=bool)
+        handles = {}
+        for i in world.order:
+            p = world.parent[i]
+            parent_body = spec.worldbody if p < 0 else handles[p]
+            ppos, pq = (np.zeros(3), R.IDENTITY) if p < 0 else (b.position[p], b.orientation[p])
+            cq = R.conjugate(pq)
+            body = parent_body.add_body(name=f"b{i}", pos=R.rotate(cq, b.position[i] - ppos),
+                                        quat=R.multiply(cq, b.orientation[i]))
+            handles[i] = body
+            body.explicitinertial = True
+            body.mass = b.mass[i]
+            body.ipos = b.com[i]
+            m = b.inertia[i]
+            body.fullinertia = [m[0, 0], m[1, 1], m[2, 2], m[0, 1], m[0, 2], m[1, 2]]
+            if not b.use_gravity[i]:
+                body.gravcomp = 1.0
+            if b.fixed[i]:
+                continue
+            if p == World.FREE:
+                body.add_freejoint()
+                self.free[i] = True
+            elif world.parent_joint[i] >= 0:
+                self._tree_joint(body, i, world.joints[world.parent_joint[i]])
+        for k in world.loop_joints:
+            self._loop(spec, world.joints[k], dt)
+        self.model = spec.compile()
+        self.data = mujoco.MjData(self.model)
+        self.ids = np.array([self.model.body(f"b{i}").id for i in range(len(b))], dtype=int)
+        self.roots = self.model.body_rootid[self.ids]
+        mujoco.mj_forward(self.model, self.data)
+        self._set_body_velocities(b.linear_velocity, b.angular_velocity)
+        self.data.xfrc_applied[self.ids, :3] = b.forces  # MuJoCo keeps these until changed
+        self.data.xfrc_applied[self.ids, 3:] = b.torques
+
+    # -- building -----------------------------------------------------------
+    def _tree_joint(self, body, child: int, j) -> None:
+        b = self.world.bodies
+        cq = R.conjugate(b.orientation[child])
+        pos = R.rotate(cq, j.anchor - b.position[child])
+        axes = R.rotate(cq, j.axes)
+        sign = -1.0 if child == j.body2 else 1.0  # MuJoCo: child relative to parent
+        if j.type == "BallJoint":
+            body.add_joint(type=mujoco.mjtJoint.mjJNT_BALL, pos=pos)
+        elif j.type == "SingleAxisHingeJoint":
+            jt = body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=axes[0])
+            self._limit(jt, j.params["minAngle"], j.params["maxAngle"], sign, angular=True)
+        elif j.type == "SliderJoint":
+            jt = body.add_joint(type=mujoco.mjtJoint.mjJNT_SLIDE, pos=pos, axis=axes[0])
+            self._limit(jt, j.params["minSeparation"], j.params["maxSeparation"], sign, angular=False)
+        elif j.type == "UniversalJoint":
+            first, second = (axes[0], axes[1]) if child == j.body2 else (axes[1], axes[0])
+            body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=first)
+            body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=second)
+        else:
+            raise Unsupported(f"{j.type} {j.name}: not built by the mujoco backend yet")
+
+    def _limit(self, jt, lo: float, hi: float, sign: float, angular: bool) -> None:
+        if angular and lo <= -_FULL_TURN and hi >= _FULL_TURN:
+            return
+        a, b = sorted((sign * lo, sign * hi))
+        jt.limited = mujoco.mjtLimited.mjLIMITED_TRUE
+        jt.range = [a, b]
+
+    def _loop(self, spec, j, dt: float) -> None:
+        """A joint closing a loop, as equality constraints between body frames."""
+        if j.type not in ("BallJoint", "SingleAxisHingeJoint"):
+            raise Unsupported(f"{j.type} {j.name} closes a loop of joints; the mujoco backend closes loops "
+                              "with BallJoint and SingleAxisHingeJoint only")
+        b = self.world.bodies
+        points = [j.anchor] if j.type == "BallJoint" else [j.anchor, j.anchor + j.axes[0]]
+        for point in points:  # a hinge is two points held together along its axis
+            names, local = [], None
+            for row in (j.body1, j.body2):
+                names.append("world" if row == STATIC else f"b{row}")
+            if j.body1 == STATIC:
+                local = point
+            else:
+                local = R.rotate(R.conjugate(b.orientation[j.body1]), point - b.position[j.body1])
+            spec.add_equality(type=mujoco.mjtEq.mjEQ_CONNECT, objtype=mujoco.mjtObj.mjOBJ_BODY,
+                              name1=names[0], name2=names[1], data=np.concatenate([local, np.zeros(8)]),
+                              solref=[2 * dt, 1.0])
+
+    # -- running ------------------------------------------------------------
+    def step(self) -> None:
+        mujoco.mj_step(self.model, self.data)
+
+    def _forward_kinematics(self) -> None:
+        m, d = self.model, self.data
+        mujoco.mj_kinematics(m, d)
+        mujoco.mj_comPos(m, d)
+        mujoco.mj_comVel(m, d)
+
+    def state(self) -> State:
+        self._forward_kinematics()
+        d = self.data
+        pos = d.xpos[self.ids].copy()
+        cvel = d.cvel[self.ids]  # [angular, linear at the subtree centre of the body's root]
+        ang = cvel[:, :3].copy()
+        lin = cvel[:, 3:] + np.cross(ang, pos - d.subtree_com[self.roots])
+        return State(pos, d.xquat[self.ids].copy(), lin, ang)
+
+    def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
+        self._set_body_velocities(linear, angular)
+
+    def _set_body_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
+        """The joint velocities whose body velocities come closest to those asked for
+        (exact for free bodies: a least-squares fit through the body Jacobians)."""
+        m, d = self.model, self.data
+        if m.nv == 0:
+            return
+        self._forward_kinematics()
+        moving = [i for i in range(len(self.ids)) if not self.world.bodies.fixed[i]]
+        jac = np.zeros((6 * len(moving), m.nv))
+        target = np.zeros(6 * len(moving))
+        for r, i in enumerate(moving):
+            jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
+            mujoco.mj_jacBody(m, d, jacp, jacr, self.ids[i])
+            jac[6 * r:6 * r + 3], jac[6 * r + 3:6 * r + 6] = jacp, jacr
+            target[6 * r:6 * r + 3], target[6 * r + 3:6 * r + 6] = linear[i], angular[i]
+        d.qvel[:] = np.linalg.lstsq(jac, target, rcond=None)[0]
+
+
+class MujocoBackend(Backend):
+    name = "mujoco"
+    declared = {
+        **native("RigidBody.mass", "RigidBody.inertia", "RigidBody.inertia.offDiagonal", "RigidBody.centerOfMass",
+                 "RigidBody.massDensityModel", "RigidBody.massDensityModel.Box", "RigidBody.massDensityModel.Sphere",
+                 "RigidBody.massDensityModel.Cone", "RigidBody.fixed", "RigidBody.position", "RigidBody.orientation",
+                 "RigidBody.linearVelocity", "RigidBody.angularVelocity", "RigidBody.forces", "RigidBody.torques",
+                 "RigidBody.useGlobalGravity", "RigidBodyCollection.gravity", "RigidBodyCollection.iterations",
+                 "BallJoint", "BallJoint.anchorPoint", "SingleAxisHingeJoint", "SingleAxisHingeJoint.anchorPoint",
+                 "SingleAxisHingeJoint.axis", "SingleAxisHingeJoint.limits", "SingleAxisHingeJoint.minAngle",
+                 "SingleAxisHingeJoint.maxAngle", "SliderJoint", "SliderJoint.axis", "SliderJoint.limits",
+                 "SliderJoint.minSeparation", "SliderJoint.maxSeparation", "UniversalJoint",
+                 "UniversalJoint.anchorPoint", "UniversalJoint.axis1", "UniversalJoint.axis2"),
+        **approximate("MuJoCo has no ERP/CFM: tree joints are exact (generalized coordinates) and loop "
+                      "constraints use solref=(2*dt, 1)",
+                      "RigidBodyCollection.errorCorrection", "RigidBodyCollection.constantForceMix"),
+        **approximate("selects MuJoCo's RK4 integrator (the iterative solver is used either way)",
+                      "RigidBodyCollection.preferAccuracy"),
+        **unsupported("MuJoCo limits are soft constraints without a restitution coefficient",
+                      "SingleAxisHingeJoint.stopBounce", "SliderJoint.stopBounce"),
+        **unsupported("limit stiffness is MuJoCo's solref_limit, not yet mapped from ERP",
+                      "SingleAxisHingeJoint.stopErrorCorrection", "SliderJoint.stopErrorCorrection",
+                      "UniversalJoint.stop1ErrorCorrection", "UniversalJoint.stop2ErrorCorrection",
+                      "UniversalJoint.stop1Bounce", "UniversalJoint.stop2Bounce"),
+    }
+
+    def version(self) -> str:
+        return mujoco.__version__
+
+    def build(self, world: World, dt: float) -> MujocoSimulation:
+        return MujocoSimulation(world, dt)
+
+
+BACKEND = MujocoBackend()

@@ -1,0 +1,85 @@
+"""`x3drbp run` and `x3drbp backends`: one scene on one engine, and the engines' tables."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from backends import base
+from x3d_core.analysis import run_features
+from x3d_core.engine import Unsupported
+from x3d_core.evaluator import BlewUp, RunSettings, run
+from x3d_core.load import load
+from x3d_core.model import LoadError
+from x3d_core.world import worlds
+
+EXIT_OK, EXIT_ERROR, EXIT_UNSUPPORTED = 0, 1, 3
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    try:
+        scene = load(args.scene)
+    except LoadError as e:
+        for d in e.diagnostics:
+            print(d, file=sys.stderr)
+        return EXIT_ERROR
+    if scene.errors:
+        for d in scene.errors:
+            print(d, file=sys.stderr)
+        return EXIT_ERROR
+    try:
+        backend = base.load(args.backend)
+    except (KeyError, ImportError) as e:
+        print(f"x3drbp run: backend {args.backend}: {e}", file=sys.stderr)
+        return EXIT_ERROR
+    refused = []
+    for f in run_features(scene):
+        d = backend.support(f)
+        if d.support is base.Support.UNSUPPORTED:
+            refused.append(f"{f}: {d.note}")
+        elif d.support is base.Support.APPROXIMATE:
+            print(f"{args.scene}: note: {args.backend} approximates {f}: {d.note}", file=sys.stderr)
+    if refused:
+        for line in refused:
+            print(f"{args.scene}: unsupported by {args.backend}: {line}", file=sys.stderr)
+        return EXIT_UNSUPPORTED
+    settings = RunSettings(duration=args.duration, dt=args.dt, frame_rate=args.frame_rate)
+    try:
+        trace = run(worlds(scene), backend, settings)
+    except Unsupported as e:
+        print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
+        return EXIT_UNSUPPORTED
+    except BlewUp as e:
+        print(f"{args.scene}: {args.backend}: {e}", file=sys.stderr)
+        return EXIT_ERROR
+    if args.trace:
+        trace.write(args.trace)
+    else:
+        sys.stdout.write(trace.text())
+    return EXIT_OK
+
+
+def cmd_backends(args: argparse.Namespace) -> int:
+    for name, b in base.available().items():
+        if isinstance(b, str):
+            print(f"{name}: {b}")
+            continue
+        print(f"{name} {b.version()}")
+        if args.features:
+            for feature, d in sorted(b.table().items()):
+                print(f"  {feature}: {d.support.value}{' (' + d.note + ')' if d.note else ''}")
+    return EXIT_OK
+
+
+def add_commands(sub) -> None:
+    r = sub.add_parser("run", help="run a scene on one backend and write its event trace")
+    r.add_argument("scene")
+    r.add_argument("--backend", required=True, help=f"one of {', '.join(base.ENGINES)}")
+    r.add_argument("--duration", type=float, default=1.0, help="simulated seconds (default 1)")
+    r.add_argument("--dt", type=float, default=1.0 / 240.0, help="physics step in seconds (default 1/240)")
+    r.add_argument("--frame-rate", type=float, default=60.0, help="frames per second (default 60)")
+    r.add_argument("--trace", help="write the trace CSV here (default: standard output)")
+    r.set_defaults(func=cmd_run)
+    b = sub.add_parser("backends", help="list the backends, their engine versions and declared features")
+    b.add_argument("--features", action="store_true", help="print each backend's feature table")
+    b.set_defaults(func=cmd_backends)

@@ -1,0 +1,38 @@
+"""What the evaluator needs of an engine: a small protocol, so that x3d_core imports none.
+
+backends/ implements it once per engine (see backends/base.py for the declared feature
+table and the registry).
+"""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+import numpy as np
+
+from .world import State, World
+
+
+class Unsupported(Exception):
+    """The engine cannot build something the world needs that no feature name covers
+    (a slider closing a loop of joints, say); the message says what."""
+
+
+class Simulation(Protocol):
+    """One World built in one engine."""
+
+    def step(self) -> None:
+        """Advance one fixed step, with the world's gravity, forces and torques applied."""
+
+    def state(self) -> State:
+        """Every body's state, rows as in world.bodies, read in bulk."""
+
+    def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
+        """Overwrite every body's velocities (world frame, body origin); fixed bodies ignore it."""
+
+
+class Engine(Protocol):
+    name: str
+
+    def build(self, world: World, dt: float) -> Simulation:
+        """An engine model of exactly what the world needs."""

@@ -1,0 +1,68 @@
+"""Rotations as unit quaternions (w, x, y, z), in bulk: arrays of shape (..., 4)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+IDENTITY = np.array([1.0, 0.0, 0.0, 0.0])
+
+
+def from_axis_angle(rot: np.ndarray) -> np.ndarray:
+    """X3D SFRotation(s) (x, y, z, angle) to quaternions; a zero axis means no rotation."""
+    rot = np.asarray(rot, dtype=np.float64)
+    axis = rot[..., :3]
+    norm = np.linalg.norm(axis, axis=-1, keepdims=True)
+    unit = np.divide(axis, norm, out=np.zeros_like(axis), where=norm > 0)
+    half = 0.5 * rot[..., 3:4] * (norm > 0)
+    return np.concatenate([np.cos(half), unit * np.sin(half)], axis=-1)
+
+
+def to_axis_angle(q: np.ndarray) -> np.ndarray:
+    """Quaternions to X3D rotations, angle in [0, pi], axis (0 0 1) for no rotation."""
+    q = np.asarray(q, dtype=np.float64)
+    q = np.where(q[..., :1] < 0, -q, q)  # the short way round
+    v = q[..., 1:]
+    s = np.linalg.norm(v, axis=-1, keepdims=True)
+    angle = 2.0 * np.arctan2(s[..., 0], q[..., 0])
+    axis = np.divide(v, s, out=np.broadcast_to([0.0, 0.0, 1.0], v.shape).copy(), where=s > 1e-300)
+    return np.concatenate([axis, angle[..., None]], axis=-1)
+
+
+def multiply(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Hamilton product a * b (apply b, then a)."""
+    aw, ax, ay, az = np.moveaxis(np.asarray(a, dtype=np.float64), -1, 0)
+    bw, bx, by, bz = np.moveaxis(np.asarray(b, dtype=np.float64), -1, 0)
+    return np.stack([aw * bw - ax * bx - ay * by - az * bz,
+                     aw * bx + ax * bw + ay * bz - az * by,
+                     aw * by - ax * bz + ay * bw + az * bx,
+                     aw * bz + ax * by - ay * bx + az * bw], axis=-1)
+
+
+def conjugate(q: np.ndarray) -> np.ndarray:
+    return np.asarray(q, dtype=np.float64) * np.array([1.0, -1.0, -1.0, -1.0])
+
+
+def rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Vectors v turned by quaternions q (broadcasting over leading axes)."""
+    q = np.asarray(q, dtype=np.float64)
+    v = np.asarray(v, dtype=np.float64)
+    w, u = q[..., :1], q[..., 1:]
+    t = 2.0 * np.cross(u, v)
+    return v + w * t + np.cross(u, t)
+
+
+def matrix(q: np.ndarray) -> np.ndarray:
+    """Rotation matrices (..., 3, 3) of quaternions."""
+    w, x, y, z = np.moveaxis(np.asarray(q, dtype=np.float64), -1, 0)
+    return np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], axis=-1),
+        np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], axis=-1),
+        np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], axis=-1)], axis=-2)
+
+
+def twist_angle(q: np.ndarray, axis: np.ndarray) -> np.ndarray:
+    """The angle of the rotation q about a unit axis (swing-twist decomposition), in (-pi, pi]."""
+    q = np.asarray(q, dtype=np.float64)
+    proj = np.sum(q[..., 1:] * axis, axis=-1)
+    angle = 2.0 * np.arctan2(proj, q[..., 0])
+    return (angle + np.pi) % (2 * np.pi) - np.pi

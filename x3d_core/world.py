@@ -1,0 +1,259 @@
+"""From a scene to what an engine must build: one World per enabled RigidBodyCollection.
+
+Plain data in bulk arrays (bodies are rows), so that a backend builds its model in a
+few loops and reads and writes state as arrays. Every quantity is in SI units and
+world coordinates unless its name says 'local'.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import rotation as R
+from .model import Node, Scene
+
+JOINT_TYPES = ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint", "UniversalJoint",
+               "MotorJoint")
+STATIC = -1  # body index of the static environment (a NULL body, or a fixed RigidBody)
+
+
+@dataclass
+class Bodies:
+    """Rows are the collection's RigidBody nodes, in the order of its bodies field."""
+    names: list[str]
+    nodes: list[Node]
+    mass: np.ndarray  # (n,)
+    inertia: np.ndarray  # (n, 3, 3), about the centre of mass, body axes
+    com: np.ndarray  # (n, 3) local
+    position: np.ndarray  # (n, 3) of the body frame's origin
+    orientation: np.ndarray  # (n, 4) quaternions w x y z
+    linear_velocity: np.ndarray  # (n, 3) of the body frame's origin
+    angular_velocity: np.ndarray  # (n, 3)
+    fixed: np.ndarray  # (n,) bool
+    enabled: np.ndarray  # (n,) bool
+    use_gravity: np.ndarray  # (n,) bool
+    auto_damp: np.ndarray  # (n,) bool
+    linear_damping: np.ndarray  # (n,)
+    angular_damping: np.ndarray  # (n,)
+    forces: np.ndarray  # (n, 3) the sum of the forces field, applied at the centre of mass
+    torques: np.ndarray  # (n, 3) the sum of the torques field
+    finite_rotation: np.ndarray  # (n,) bool
+    finite_rotation_axis: np.ndarray  # (n, 3)
+    auto_disable: np.ndarray  # (n,) bool
+    disable_thresholds: np.ndarray  # (n, 3): linear speed, angular speed, time
+
+    def __len__(self) -> int:
+        return len(self.names)
+
+
+@dataclass
+class State:
+    """Body states, rows as in Bodies: the body frame's origin and orientation, and the
+    velocity of that origin, all in world coordinates."""
+    position: np.ndarray  # (n, 3)
+    orientation: np.ndarray  # (n, 4) w x y z
+    linear_velocity: np.ndarray  # (n, 3)
+    angular_velocity: np.ndarray  # (n, 3)
+
+    @classmethod
+    def initial(cls, bodies: Bodies) -> State:
+        return cls(bodies.position.copy(), bodies.orientation.copy(), bodies.linear_velocity.copy(),
+                   bodies.angular_velocity.copy())
+
+
+@dataclass
+class Joint:
+    name: str
+    type: str
+    node: Node
+    body1: int  # row in Bodies, or STATIC
+    body2: int
+    anchor: np.ndarray  # (3,) world, at the start
+    axes: np.ndarray  # (3, 3) rows: axis, axis1/2, or motor axes 1..3 (unit, world, at the start)
+    params: dict[str, float]  # the joint's numeric input fields, SI
+    outputs: tuple[str, ...]  # the output fields forceOutput selects
+
+
+@dataclass
+class World:
+    name: str
+    node: Node
+    gravity: np.ndarray
+    iterations: int
+    error_correction: float
+    constant_force_mix: float
+    max_correction_speed: float
+    prefer_accuracy: bool
+    contact_surface_thickness: float
+    bodies: Bodies
+    joints: list[Joint]
+    # the joint graph as a forest over bodies: parent row (STATIC for a body on the
+    # static environment, -2 for a free root), the joint that makes the edge, and the
+    # joints left over (closing loops, or joining two static ends) as constraints
+    parent: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    parent_joint: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    order: list[int] = field(default_factory=list)  # bodies, every parent before its children
+    loop_joints: list[int] = field(default_factory=list)
+
+    FREE = -2
+
+
+def node_names(scene: Scene) -> dict[int, str]:
+    """The name each node goes by in traces: its DEF, else TYPE_k with k counting that
+    type's nodes without a DEF in file order (depth first, from 1)."""
+    names: dict[int, str] = {}
+    counts: dict[str, int] = {}
+    for n in scene.nodes():
+        if n.def_name:
+            names[id(n)] = n.def_name
+        else:
+            counts[n.type_name] = counts.get(n.type_name, 0) + 1
+            names[id(n)] = f"{n.type_name}_{counts[n.type_name]}"
+    return names
+
+
+def worlds(scene: Scene) -> list[World]:
+    names = node_names(scene)
+    return [_world(c, names) for c in scene.of_type("RigidBodyCollection") if c.get("enabled")]
+
+
+def _inertia(node: Node) -> np.ndarray:
+    m = node.get("mass")
+    model = node.get("massDensityModel")
+    if model is None:
+        i = np.asarray(node.get("inertia"), dtype=np.float64).reshape(3, 3)
+        return 0.5 * (i + i.T)  # the field is symmetric by definition; read it so
+    if model.type_name == "Sphere":
+        return np.eye(3) * 0.4 * m * model.get("radius") ** 2
+    if model.type_name == "Box":
+        x, y, z = model.get("size")
+        return np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * m / 12.0
+    r, h = model.get("bottomRadius"), model.get("height")  # Cone, about its centroid, axis y
+    side = 3.0 / 20.0 * m * r * r + 3.0 / 80.0 * m * h * h
+    return np.diag([side, 0.3 * m * r * r, side])
+
+
+def _bodies(nodes: list[Node], names: dict[int, str]) -> Bodies:
+    n = len(nodes)
+
+    def vec(f: str) -> np.ndarray:
+        return np.array([b.get(f) for b in nodes], dtype=np.float64).reshape(n, 3)
+
+    def flag(f: str) -> np.ndarray:
+        return np.array([bool(b.get(f)) for b in nodes], dtype=bool)
+
+    def num(f: str) -> np.ndarray:
+        return np.array([b.get(f) for b in nodes], dtype=np.float64)
+
+    def summed(f: str) -> np.ndarray:
+        return np.array([np.sum(b.get(f), axis=0) if len(b.get(f)) else np.zeros(3) for b in nodes]).reshape(n, 3)
+
+    axis = vec("finiteRotationAxis")
+    return Bodies(
+        names=[names[id(b)] for b in nodes], nodes=nodes, mass=num("mass"),
+        inertia=np.array([_inertia(b) for b in nodes]).reshape(n, 3, 3), com=vec("centerOfMass"),
+        position=vec("position"),
+        orientation=R.from_axis_angle(np.array([b.get("orientation") for b in nodes]).reshape(n, 4)),
+        linear_velocity=vec("linearVelocity"), angular_velocity=vec("angularVelocity"),
+        fixed=flag("fixed"), enabled=flag("enabled"), use_gravity=flag("useGlobalGravity"),
+        auto_damp=flag("autoDamp"), linear_damping=num("linearDampingFactor"),
+        angular_damping=num("angularDampingFactor"), forces=summed("forces"), torques=summed("torques"),
+        finite_rotation=flag("useFiniteRotation"), finite_rotation_axis=axis,
+        auto_disable=flag("autoDisable"),
+        disable_thresholds=np.stack([num("disableLinearSpeed"), num("disableAngularSpeed"),
+                                     num("disableTime")], axis=-1).reshape(n, 3))
+
+
+_AXES = {"SingleAxisHingeJoint": ("axis",), "SliderJoint": ("axis",),
+         "DoubleAxisHingeJoint": ("axis1", "axis2"), "UniversalJoint": ("axis1", "axis2"),
+         "MotorJoint": ("motor1Axis", "motor2Axis", "motor3Axis")}
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = np.linalg.norm(v)
+    return v / n if n > 0 else np.zeros(3)
+
+
+def _joint(node: Node, rows: dict[int, int], fixed: np.ndarray, names: dict[int, str]) -> Joint:
+    def row(f: str) -> int:
+        b = node.get(f)
+        if b is None or id(b) not in rows or fixed[rows[id(b)]]:
+            return STATIC
+        return rows[id(b)]
+
+    axes = np.zeros((3, 3))
+    for k, f in enumerate(_AXES.get(node.type_name, ())):
+        axes[k] = _unit(np.asarray(node.get(f), dtype=np.float64))
+    spec = node.spec
+    params = {f: float(node.get(f)) for f, fd in spec.fields.items()
+              if fd.access != "outputOnly" and fd.type.name in ("SFFloat", "SFInt32", "SFBool")}
+    outputs = tuple(f for f, fd in spec.fields.items() if fd.access == "outputOnly")
+    wanted = node.get("forceOutput")
+    selected = outputs if "ALL" in wanted else tuple(f for f in outputs if f in wanted)
+    anchor = np.asarray(node.get("anchorPoint"), dtype=np.float64) if "anchorPoint" in spec.fields else np.zeros(3)
+    return Joint(names[id(node)], node.type_name, node, row("body1"), row("body2"), anchor, axes, params, selected)
+
+
+def _world(coll: Node, names: dict[int, str]) -> World:
+    nodes = [b for b in coll.get("bodies")]
+    unique: list[Node] = []
+    for b in nodes:
+        if all(b is not u for u in unique):
+            unique.append(b)
+    bodies = _bodies(unique, names)
+    rows = {id(b): i for i, b in enumerate(unique)}
+    joints = [_joint(j, rows, bodies.fixed, names) for j in coll.get("joints")]
+    w = World(name=names[id(coll)], node=coll, gravity=np.asarray(coll.get("gravity"), dtype=np.float64),
+              iterations=int(coll.get("iterations")), error_correction=float(coll.get("errorCorrection")),
+              constant_force_mix=float(coll.get("constantForceMix")),
+              max_correction_speed=float(coll.get("maxCorrectionSpeed")),
+              prefer_accuracy=bool(coll.get("preferAccuracy")),
+              contact_surface_thickness=float(coll.get("contactSurfaceThickness")),
+              bodies=bodies, joints=joints)
+    _forest(w)
+    return w
+
+
+def _forest(w: World) -> None:
+    """Spanning forest of the joint graph: bodies joined to the static environment hang
+    from it, each other connected group from its first body; leftover joints close loops."""
+    n = len(w.bodies)
+    parent = np.full(n, World.FREE, dtype=int)
+    parent_joint = np.full(n, -1, dtype=int)
+    placed = np.zeros(n, dtype=bool)
+    adjacency: dict[int, list[tuple[int, int]]] = {i: [] for i in range(-1, n)}
+    for k, j in enumerate(w.joints):
+        if j.body1 == j.body2:
+            continue
+        adjacency[j.body1].append((j.body2, k))
+        adjacency[j.body2].append((j.body1, k))
+    used: set[int] = set()
+    order: list[int] = []
+
+    def grow(start: int) -> None:
+        queue = [start]
+        while queue:
+            a = queue.pop(0)
+            for b, k in adjacency[a]:
+                if b == STATIC or placed[b] or k in used:
+                    continue
+                placed[b] = True
+                parent[b], parent_joint[b] = a, k
+                used.add(k)
+                order.append(b)
+                queue.append(b)
+
+    for i in np.flatnonzero(w.bodies.fixed):  # a fixed body is part of the static environment
+        placed[i] = True
+        parent[i] = STATIC
+        order.append(int(i))
+    grow(STATIC)
+    for i in range(n):
+        if not placed[i]:
+            placed[i] = True
+            order.append(i)
+            grow(i)
+    w.parent, w.parent_joint, w.order = parent, parent_joint, order
+    w.loop_joints = [k for k, j in enumerate(w.joints) if k not in used]
