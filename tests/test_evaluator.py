@@ -1,0 +1,147 @@
+"""The evaluator's own semantics, independent of any engine: naming, the joint forest,
+frame times, joint outputs from given states, and the trace file."""
+
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+import pytest
+
+from x3d_core import rotation as R
+from x3d_core.evaluator import RunSettings
+from x3d_core.joint_outputs import JointOutputs
+from x3d_core.load import load
+from x3d_core.trace import Trace, read_trace
+from x3d_core.world import STATIC, State, World, node_names, worlds
+
+
+def scene(tmp_path, body: str, name: str = "s.x3d"):
+    p = tmp_path / name
+    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n"
+                 f"{body}\n</Scene></X3D>\n")
+    s = load(str(p))
+    assert not s.errors, [str(e) for e in s.errors]
+    return s
+
+
+CHAIN = """
+<RigidBodyCollection DEF='C'>
+  <RigidBody DEF='Base' fixed='true'/>
+  <RigidBody DEF='L1' position='1 0 0'/><RigidBody position='2 0 0'/><RigidBody DEF='L3' position='3 0 0'/>
+  <BallJoint anchorPoint='0 0 0'><RigidBody USE='Base' containerField='body1'/><RigidBody USE='L1' containerField='body2'/></BallJoint>
+  <BallJoint DEF='J2' anchorPoint='1.5 0 0'><RigidBody USE='L1' containerField='body1'/>
+    <RigidBody USE='L3' containerField='body2'/></BallJoint>
+  <BallJoint DEF='Close' anchorPoint='0 0 0'><RigidBody USE='Base' containerField='body1'/>
+    <RigidBody USE='L3' containerField='body2'/></BallJoint>
+</RigidBodyCollection>
+<RigidBodyCollection enabled='false'/>
+"""
+
+
+def test_nodes_without_def_get_stable_names(tmp_path):
+    s = scene(tmp_path, CHAIN)
+    names = node_names(s)
+    bodies = s.of_type("RigidBody")
+    assert [names[id(b)] for b in bodies] == ["Base", "L1", "RigidBody_1", "L3"]
+    assert [names[id(j)] for j in s.of_type("BallJoint")] == ["BallJoint_1", "J2", "Close"]
+    assert node_names(scene(tmp_path, CHAIN, "again.x3d")) is not names  # and the same on every load
+    assert list(node_names(scene(tmp_path, CHAIN, "again.x3d")).values()) == list(names.values())
+
+
+def test_joint_graph_becomes_a_forest_and_a_loop(tmp_path):
+    (w,) = worlds(scene(tmp_path, CHAIN))  # the disabled collection makes no world
+    # breadth first from the static environment: L1 and L3 both hang from it (Base is
+    # fixed, so part of it), and J2, between them, closes the loop
+    assert w.parent.tolist() == [STATIC, STATIC, World.FREE, STATIC]
+    assert [w.joints[k].name for k in w.loop_joints] == ["J2"]
+    tree = {int(k) for k in w.parent_joint if k >= 0}
+    assert tree | set(w.loop_joints) == set(range(len(w.joints))) and not tree & set(w.loop_joints)
+    assert sorted(w.order) == [0, 1, 2, 3]
+    assert all(w.parent[i] < 0 or w.order.index(w.parent[i]) < w.order.index(i) for i in w.order)
+    assert w.joints[0].body1 == STATIC  # a joint to a fixed body joins the static environment
+
+
+def test_mass_density_model_gives_the_shapes_inertia(tmp_path):
+    s = scene(tmp_path, "<RigidBodyCollection><RigidBody mass='2'><Box size='1 2 3' containerField='massDensityModel'/>"
+                        "</RigidBody><RigidBody mass='3'><Cone bottomRadius='1' height='2' "
+                        "containerField='massDensityModel'/></RigidBody></RigidBodyCollection>")
+    (w,) = worlds(s)
+    assert np.diag(w.bodies.inertia[0]) == pytest.approx([2 * 13 / 12, 2 * 10 / 12, 2 * 5 / 12])
+    assert np.diag(w.bodies.inertia[1]) == pytest.approx([3 * (3 / 20 + 3 / 80 * 4), 0.9, 3 * (3 / 20 + 3 / 80 * 4)])
+
+
+def test_frame_times_end_at_the_duration():
+    assert RunSettings(duration=1.0, frame_rate=4).frame_times().tolist() == [0.25, 0.5, 0.75, 1.0]
+    assert RunSettings(duration=0.6, frame_rate=4).frame_times().tolist() == [0.25, 0.5, 0.6]
+
+
+HINGE = """
+<RigidBodyCollection>
+  <RigidBody DEF='A' position='0 0 0'/><RigidBody DEF='B' position='1 0 0'/>
+  <SingleAxisHingeJoint DEF='H' anchorPoint='0.5 0 0' axis='0 0 1' forceOutput='"ALL"'>
+    <RigidBody USE='A' containerField='body1'/><RigidBody USE='B' containerField='body2'/></SingleAxisHingeJoint>
+  <SliderJoint DEF='S' axis='1 0 0' forceOutput='"separation" "separationRate"'>
+    <RigidBody USE='A' containerField='body1'/><RigidBody USE='B' containerField='body2'/></SliderJoint>
+</RigidBodyCollection>
+"""
+
+
+def test_hinge_angle_and_rate_measure_body1_relative_to_body2(tmp_path):
+    (w,) = worlds(scene(tmp_path, HINGE))
+    out = JointOutputs(w.joints, w.bodies)
+    s = State.initial(w.bodies)
+    theta = 0.3
+    s.orientation[0] = R.from_axis_angle([0, 0, 1, theta])  # body1 turns +theta about the axis
+    s.angular_velocity[0] = [0, 0, 2.0]
+    s.linear_velocity[0] = [0.5, 0, 0]
+    s.position[0] = [0.25, 0, 0]
+    values = {(j, f): v for j, f, v in out.values(s)}
+    assert values[("H", "angle")] == pytest.approx(theta)
+    assert values[("H", "angleRate")] == pytest.approx(2.0)
+    # body1's anchor turned with it about its origin; body2's stays put
+    assert values[("H", "body2AnchorPoint")] == pytest.approx([0.5, 0, 0])
+    assert values[("H", "body1AnchorPoint")] == pytest.approx(
+        [0.25 + 0.5 * math.cos(theta), 0.5 * math.sin(theta), 0])
+    # ODE's slider: axis(t) . (p1 - p2 - R1 * offset0), offset0 = body1 - body2 at the start, in body1's frame
+    assert values[("S", "separation")] == pytest.approx(1 - 0.75 * math.cos(theta))
+    assert values[("S", "separationRate")] == pytest.approx(0.5 * math.cos(theta))
+    assert ("S", "body1AnchorPoint") not in values  # only what forceOutput selects
+
+
+def test_outputs_are_zero_in_the_initial_configuration(tmp_path):
+    (w,) = worlds(scene(tmp_path, HINGE))
+    values = JointOutputs(w.joints, w.bodies).values(State.initial(w.bodies))
+    scalars = [v for _, f, v in values if not f.startswith("body")]
+    assert scalars == [0.0] * len(scalars)
+
+
+def test_trace_is_written_whole_with_every_digit(tmp_path):
+    t = Trace()
+    t.add(0.1, "B", "position", "SFVec3f", np.array([1 / 3, 0.0, -2.5e-17]))
+    t.add(0.1, "B", "orientation", "SFRotation", np.array([0, 0, 1, math.pi]))
+    path = tmp_path / "t.csv"
+    t.write(str(path))
+    rows = read_trace(str(path))
+    assert [float(x) for x in rows[0].value.split()] == [1 / 3, 0.0, -2.5e-17]
+    assert rows[1].value == "0 0 1 3.141592653589793" and rows[0].time == 0.1
+    assert os.listdir(tmp_path) == ["t.csv"]
+
+
+def test_a_failed_trace_write_leaves_nothing(tmp_path, monkeypatch):
+    t = Trace()
+    t.add(0, "B", "position", "SFVec3f", np.zeros(3))
+    monkeypatch.setattr(Trace, "text", lambda self: (_ for _ in ()).throw(OSError("disk full")))
+    with pytest.raises(OSError):
+        t.write(str(tmp_path / "t.csv"))
+    assert os.listdir(tmp_path) == []
+
+
+def test_quaternion_round_trips():
+    rot = np.array([[1, 2, 3, 0.7], [0, 0, 1, 0], [0, 1, 0, math.pi - 1e-9]])
+    back = R.to_axis_angle(R.from_axis_angle(rot))
+    unit = rot[:, :3] / np.linalg.norm(rot[:, :3], axis=1, keepdims=True)
+    assert back[0] == pytest.approx(np.append(unit[0], 0.7))
+    assert back[2] == pytest.approx(np.append(unit[2], math.pi - 1e-9))
+    assert R.matrix(R.from_axis_angle([0, 0, 1, math.pi / 2])) @ [1, 0, 0] == pytest.approx([0, 1, 0])
