@@ -6,7 +6,8 @@ the tree gets that joint's degrees of freedom (a ball, a hinge, a slide, two hin
 for a universal joint). MuJoCo measures a child's joint coordinate relative to its
 parent; x3d_core's outputs measure body1 relative to body2, so limits are mirrored
 where the child is body2. State is read for every body at once from d.xpos, d.xquat
-and d.cvel after the position and velocity stages of mj_forward.
+and d.cvel after the position and velocity stages of mj_forward (linear velocity at
+each body's centre of mass).
 """
 
 from __future__ import annotations
@@ -114,9 +115,11 @@ class MujocoSimulation:
                 local = point
             else:
                 local = R.rotate(R.conjugate(b.orientation[j.body1]), point - b.position[j.body1])
-            spec.add_equality(type=mujoco.mjtEq.mjEQ_CONNECT, objtype=mujoco.mjtObj.mjOBJ_BODY,
-                              name1=names[0], name2=names[1], data=np.concatenate([local, np.zeros(8)]),
-                              solref=[2 * dt, 1.0])
+            eq = spec.add_equality(type=mujoco.mjtEq.mjEQ_CONNECT, objtype=mujoco.mjtObj.mjOBJ_BODY,
+                                   name1=names[0], name2=names[1], solref=[2 * dt, 1.0])
+            data = np.array(eq.data)
+            data[:3] = local  # the anchor in body1's frame; the rest keeps MuJoCo's defaults
+            eq.data = data
 
     # -- running ------------------------------------------------------------
     def step(self) -> None:
@@ -131,11 +134,10 @@ class MujocoSimulation:
     def state(self) -> State:
         self._forward_kinematics()
         d = self.data
-        pos = d.xpos[self.ids].copy()
         cvel = d.cvel[self.ids]  # [angular, linear at the subtree centre of the body's root]
         ang = cvel[:, :3].copy()
-        lin = cvel[:, 3:] + np.cross(ang, pos - d.subtree_com[self.roots])
-        return State(pos, d.xquat[self.ids].copy(), lin, ang)
+        lin = cvel[:, 3:] + np.cross(ang, d.xipos[self.ids] - d.subtree_com[self.roots])
+        return State(d.xpos[self.ids].copy(), d.xquat[self.ids].copy(), lin, ang)
 
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
         self._set_body_velocities(linear, angular)
@@ -152,7 +154,7 @@ class MujocoSimulation:
         target = np.zeros(6 * len(moving))
         for r, i in enumerate(moving):
             jacp, jacr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
-            mujoco.mj_jacBody(m, d, jacp, jacr, self.ids[i])
+            mujoco.mj_jacBodyCom(m, d, jacp, jacr, self.ids[i])
             jac[6 * r:6 * r + 3], jac[6 * r + 3:6 * r + 6] = jacp, jacr
             target[6 * r:6 * r + 3], target[6 * r + 3:6 * r + 6] = linear[i], angular[i]
         d.qvel[:] = np.linalg.lstsq(jac, target, rcond=None)[0]

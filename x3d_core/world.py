@@ -29,7 +29,7 @@ class Bodies:
     com: np.ndarray  # (n, 3) local
     position: np.ndarray  # (n, 3) of the body frame's origin
     orientation: np.ndarray  # (n, 4) quaternions w x y z
-    linear_velocity: np.ndarray  # (n, 3) of the body frame's origin
+    linear_velocity: np.ndarray  # (n, 3) of the centre of mass (as in ODE and every engine)
     angular_velocity: np.ndarray  # (n, 3)
     fixed: np.ndarray  # (n,) bool
     enabled: np.ndarray  # (n,) bool
@@ -50,8 +50,9 @@ class Bodies:
 
 @dataclass
 class State:
-    """Body states, rows as in Bodies: the body frame's origin and orientation, and the
-    velocity of that origin, all in world coordinates."""
+    """Body states, rows as in Bodies, in world coordinates: the body frame's origin and
+    orientation (X3D's position and orientation), and the velocity of the centre of mass
+    (X3D's linearVelocity: the rigid body's velocity, whatever point its frame starts at)."""
     position: np.ndarray  # (n, 3)
     orientation: np.ndarray  # (n, 4) w x y z
     linear_velocity: np.ndarray  # (n, 3)
