@@ -53,7 +53,14 @@ EVALUATOR: dict[str, Declared] = native(
     "RigidBodyCollection", "RigidBody", "RigidBody.enabled", "RigidBody.autoDamp", "RigidBody.linearDampingFactor",
     "RigidBody.angularDampingFactor", "RigidBodyCollection.enabled",
     *(f"{j}.forceOutput" for j in ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint",
-                                   "UniversalJoint", "MotorJoint")))
+                                   "UniversalJoint", "MotorJoint")),
+    # MotorJoint is ODE's AMotor: torques the evaluator applies through set_loads
+    "MotorJoint", "MotorJoint.enabledAxes", "MotorJoint.autoCalc",
+    *(f"MotorJoint.{f}{k}" for k in (1, 2, 3) for f in ("axis", "motor")),
+    *(f"MotorJoint.axis{k}{f}" for k in (1, 2, 3) for f in ("Angle", "Torque")),
+    *(f"MotorJoint.motor{k}Axis" for k in (1, 2, 3))) | approximate(
+    "no effect: MotorJoint has no stop angles for these to act on",
+    *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")))
 
 NOT_YET = "not implemented by this backend yet"
 

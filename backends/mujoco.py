@@ -22,6 +22,12 @@ from x3d_core.world import STATIC, World, State
 from .base import Backend, approximate, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
+# ODE's motors reach their target velocity in one step if the torque limit allows. A
+# velocity servo with gain k = s * I / dt (I the child's inertia about the axis) closes
+# the fraction s of the gap each step; s = 0.5 stays clear of explicit Euler's
+# stability bound (s < 2) where the parent's inertia adds to I. Torque is clipped to
+# maxTorque like ODE's fMax.
+MOTOR_STEPS = 0.5
 
 
 class MujocoSimulation:
@@ -37,6 +43,9 @@ class MujocoSimulation:
             spec.option.integrator = mujoco.mjtIntegrator.mjINT_RK4
         spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT  # collisions: the collision issue
         self.free = np.zeros(len(b), dtype=bool)
+        self.dt = dt
+        # (joint name, target velocity, torque limit, servo gain)
+        self.motors: list[tuple[str, float, float, float]] = []
         handles = {}
         for i in world.order:
             p = world.parent[i]
@@ -62,14 +71,20 @@ class MujocoSimulation:
                 self._tree_joint(body, i, world.joints[world.parent_joint[i]])
         for k in world.loop_joints:
             self._loop(spec, world.joints[k], dt)
+        for name, _, limit, gain in self.motors:
+            a = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+            a.set_to_velocity(kv=gain)
+            a.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
+            a.forcerange = [-limit, limit]
+            a.ctrllimited = mujoco.mjtLimited.mjLIMITED_FALSE
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
         self.ids = np.array([self.model.body(f"b{i}").id for i in range(len(b))], dtype=int)
         self.roots = self.model.body_rootid[self.ids]
         mujoco.mj_forward(self.model, self.data)
         self._set_body_velocities(b.linear_velocity, b.angular_velocity)
-        self.data.xfrc_applied[self.ids, :3] = b.forces  # MuJoCo keeps these until changed
-        self.data.xfrc_applied[self.ids, 3:] = b.torques
+        self.set_loads(b.forces, b.torques)
+        self.data.ctrl[:] = [target for _, target, _, _ in self.motors]
 
     # -- building -----------------------------------------------------------
     def _tree_joint(self, body, child: int, j) -> None:
@@ -90,8 +105,35 @@ class MujocoSimulation:
             first, second = (axes[0], axes[1]) if child == j.body2 else (axes[1], axes[0])
             body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=first)
             body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=second)
+        elif j.type == "DoubleAxisHingeJoint":
+            self._hinge2(body, child, j, pos, axes, sign)
         else:
             raise Unsupported(f"{j.type} {j.name}: not built by the mujoco backend yet")
+
+    def _hinge2(self, body, child: int, j, pos: np.ndarray, axes: np.ndarray, sign: float) -> None:
+        """ODE's hinge2: a hinge about axis 1 (carried by body1, with its limits and motor),
+        a suspension spring along axis 1 (k = ERP/(h*CFM), c = (1-ERP)/CFM) and a hinge
+        about axis 2 (carried by body2, with its motor)."""
+        p = j.params
+        hinge1 = body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=axes[0], name=f"{j.name}:1")
+        self._limit(hinge1, p["minAngle1"], p["maxAngle1"], sign, angular=True)
+        if p["suspensionForce"] > 0:
+            dt, cfm, erp = self.dt, p["suspensionForce"], p["suspensionErrorCorrection"]
+            body.add_joint(type=mujoco.mjtJoint.mjJNT_SLIDE, pos=pos, axis=axes[0],
+                           stiffness=erp / (dt * cfm), damping=(1 - erp) / cfm)
+        hinge2 = body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=axes[1], name=f"{j.name}:2")
+        if child != j.body2:  # body1 is the child: its hinge (axis 1) must come last
+            hinge1.axis, hinge2.axis = axes[1], axes[0]
+            hinge1.name, hinge2.name = f"{j.name}:2", f"{j.name}:1"
+        b = self.world.bodies
+        com = b.com[child]
+        for k in (1, 2):
+            if p[f"maxTorque{k}"] > 0:
+                a = axes[k - 1]  # the child's inertia about the motor's axis line sets the servo gain
+                r = (com - pos) - a * (a @ (com - pos))
+                inertia = a @ b.inertia[child] @ a + b.mass[child] * (r @ r)
+                self.motors.append((f"{j.name}:{k}", sign * p[f"desiredAngularVelocity{k}"], p[f"maxTorque{k}"],
+                                    MOTOR_STEPS * inertia / self.dt))
 
     def _limit(self, jt, lo: float, hi: float, sign: float, angular: bool) -> None:
         if angular and lo <= -_FULL_TURN and hi >= _FULL_TURN:
@@ -142,6 +184,10 @@ class MujocoSimulation:
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
         self._set_body_velocities(linear, angular)
 
+    def set_loads(self, forces: np.ndarray, torques: np.ndarray) -> None:
+        self.data.xfrc_applied[self.ids, :3] = forces  # MuJoCo keeps these until changed
+        self.data.xfrc_applied[self.ids, 3:] = torques
+
     def _set_body_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
         """The joint velocities whose body velocities come closest to those asked for
         (exact for free bodies: a least-squares fit through the body Jacobians)."""
@@ -172,7 +218,19 @@ class MujocoBackend(Backend):
                  "SingleAxisHingeJoint.axis", "SingleAxisHingeJoint.limits", "SingleAxisHingeJoint.minAngle",
                  "SingleAxisHingeJoint.maxAngle", "SliderJoint", "SliderJoint.axis", "SliderJoint.limits",
                  "SliderJoint.minSeparation", "SliderJoint.maxSeparation", "UniversalJoint",
-                 "UniversalJoint.anchorPoint", "UniversalJoint.axis1", "UniversalJoint.axis2"),
+                 "UniversalJoint.anchorPoint", "UniversalJoint.axis1", "UniversalJoint.axis2",
+                 "DoubleAxisHingeJoint", "DoubleAxisHingeJoint.anchorPoint", "DoubleAxisHingeJoint.axis1",
+                 "DoubleAxisHingeJoint.axis2", "DoubleAxisHingeJoint.limits", "DoubleAxisHingeJoint.minAngle1",
+                 "DoubleAxisHingeJoint.maxAngle1", "DoubleAxisHingeJoint.suspensionForce",
+                 "DoubleAxisHingeJoint.suspensionErrorCorrection"),
+        **approximate(f"a velocity servo closing {MOTOR_STEPS:g} of the speed gap per step, torque clipped "
+                      "to maxTorque, for ODE's velocity constraint",
+                      "DoubleAxisHingeJoint.desiredAngularVelocity1", "DoubleAxisHingeJoint.desiredAngularVelocity2",
+                      "DoubleAxisHingeJoint.maxTorque1", "DoubleAxisHingeJoint.maxTorque2"),
+        **unsupported("MuJoCo limits are soft constraints without a restitution coefficient",
+                      "DoubleAxisHingeJoint.stop1Bounce"),
+        **unsupported("limit stiffness is MuJoCo's solref_limit, not yet mapped from ERP and CFM",
+                      "DoubleAxisHingeJoint.stop1ErrorCorrection", "DoubleAxisHingeJoint.stop1ConstantForceMix"),
         **approximate("MuJoCo has no ERP/CFM: tree joints are exact (generalized coordinates) and loop "
                       "constraints use solref=(2*dt, 1)",
                       "RigidBodyCollection.errorCorrection", "RigidBodyCollection.constantForceMix"),

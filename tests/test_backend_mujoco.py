@@ -151,3 +151,43 @@ def test_ball_joint_loop_stays_joined(tmp_path):
     gaps = [np.linalg.norm(a - b) for (_, a), (_, b) in zip(s[("J3", "body1AnchorPoint")],
                                                             s[("J3", "body2AnchorPoint")])]
     assert max(gaps) < 2e-3  # the loop-closing equality is soft (solref 2 dt): millimetres at most
+
+
+HINGE2 = """<RigidBodyCollection gravity='0 {g} 0'>
+  <RigidBody DEF='Car' fixed='true'/>
+  <RigidBody DEF='Wheel' position='1 0 0' mass='{m}' inertia='0.1 0 0 0 0.1 0 0 0 0.1'/>
+  <DoubleAxisHingeJoint DEF='H2' anchorPoint='1 0 0' axis1='0 1 0' axis2='1 0 0' desiredAngularVelocity2='3'
+     maxTorque2='5' suspensionForce='{cfm}' suspensionErrorCorrection='0.5' forceOutput='"ALL"'>
+    <RigidBody USE='Car' containerField='body1'/><RigidBody USE='Wheel' containerField='body2'/>
+  </DoubleAxisHingeJoint></RigidBodyCollection>"""
+
+
+def test_hinge2_motor_reaches_its_speed_within_its_torque(tmp_path):
+    s = simulate(tmp_path, HINGE2.format(g=0, m=1, cfm=0), duration=0.5, frame_rate=240)
+    rate = {round(t * 240): v[0] for t, v in s[("H2", "hinge2AngleRate")]}
+    # torque-limited: 5 N m on 0.1 kg m^2 is 50 rad/s^2, so 1.25 rad/s after 6 steps (25 ms)
+    assert rate[6] == pytest.approx(50 * 6 * DT, rel=1e-6)
+    assert rate[120] == pytest.approx(3.0, abs=1e-9)  # then held at the target
+    assert s[("H2", "hinge1AngleRate")][-1][1][0] == pytest.approx(0, abs=1e-12)
+
+
+def test_hinge2_suspension_is_odes_spring(tmp_path):
+    # k = ERP / (h CFM): a 2 kg wheel under 9.81 m/s^2 along axis 1 settles at m g / k
+    cfm, erp = 0.001, 0.5
+    s = simulate(tmp_path, HINGE2.format(g=-9.81, m=2, cfm=cfm), duration=2.0)
+    k = erp / (DT * cfm)
+    assert last(s, "Wheel", "position")[1] == pytest.approx(-2 * 9.81 / k, rel=1e-3)
+
+
+def test_motor_joint_applies_equal_and_opposite_torques(tmp_path):
+    s = simulate(tmp_path, """<RigidBodyCollection gravity='0 0 0'>
+      <RigidBody DEF='A' inertia='0.5 0 0 0 0.5 0 0 0 0.5'/>
+      <RigidBody DEF='B' position='2 0 0' inertia='0.25 0 0 0 0.25 0 0 0 0.25'/>
+      <MotorJoint DEF='M' enabledAxes='1' motor1Axis='0 0 1' axis1Torque='1' autoCalc='true'
+          forceOutput='"motor1Angle" "motor1AngleRate"'>
+        <RigidBody USE='A' containerField='body1'/><RigidBody USE='B' containerField='body2'/>
+      </MotorJoint></RigidBodyCollection>""")
+    # body1 gets +1 N m about z (alpha 2), body2 -1 N m (alpha -4): the rate grows at 6 rad/s^2
+    assert last(s, "A", "angularVelocity") == pytest.approx([0, 0, 2.0], abs=1e-9)
+    assert last(s, "B", "angularVelocity") == pytest.approx([0, 0, -4.0], abs=1e-9)
+    assert last(s, "M", "motor1AngleRate")[0] == pytest.approx(6.0, abs=1e-9)

@@ -28,7 +28,12 @@ class Simulation(Protocol):
         """Every body's state, rows as in world.bodies, read in bulk."""
 
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
-        """Overwrite every body's velocities (world frame, body origin); fixed bodies ignore it."""
+        """Overwrite every body's velocities (world frame; linear at the centre of mass);
+        fixed bodies ignore it."""
+
+    def set_loads(self, forces: np.ndarray, torques: np.ndarray) -> None:
+        """The force (at the centre of mass) and torque every body gets at each step from
+        now on, world frame; a build starts with the world's forces and torques fields."""
 
 
 class Engine(Protocol):

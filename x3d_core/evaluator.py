@@ -18,7 +18,7 @@ from . import rotation as R
 from .engine import Engine, Simulation
 from .joint_outputs import JointOutputs
 from .trace import Trace
-from .world import World
+from .world import STATIC, World
 
 # A frame end that lands within this fraction of a step of a step boundary counts as
 # on it: frame times are sums of decimal fractions and carry rounding of ~1e-16 s.
@@ -64,11 +64,41 @@ class _Damping:
         sim.set_velocities(s.linear_velocity * self.keep_linear, s.angular_velocity * self.keep_angular)
 
 
+class _Motors:
+    """MotorJoint as ODE's AMotor: each enabled axis (carried by body1, or fixed in the
+    world where body1 is the static environment) gets axisNTorque, body1 the torque and
+    body2 its opposite, at every step."""
+
+    def __init__(self, world: World):
+        self.world = world
+        self.motors = []
+        for j in world.joints:
+            n = int(j.params.get("enabledAxes", 0)) if j.type == "MotorJoint" else 0
+            torques = np.array([j.params[f"axis{k + 1}Torque"] for k in range(n)])
+            if n and np.any(torques):
+                q1 = R.IDENTITY if j.body1 == STATIC else world.bodies.orientation[j.body1]
+                self.motors.append((j, R.rotate(R.conjugate(q1), j.axes[:n]), torques))
+        self.active = bool(self.motors)
+
+    def apply(self, sim: Simulation) -> None:
+        s = sim.state()
+        torques = self.world.bodies.torques.copy()
+        for j, local_axes, amounts in self.motors:
+            q1 = R.IDENTITY if j.body1 == STATIC else s.orientation[j.body1]
+            tau = amounts @ R.rotate(q1, local_axes)
+            if j.body1 != STATIC:
+                torques[j.body1] += tau
+            if j.body2 != STATIC:
+                torques[j.body2] -= tau
+        sim.set_loads(self.world.bodies.forces, torques)
+
+
 def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times: np.ndarray | None = None) -> Trace:
     """Simulate every world and return the event trace."""
     dt = settings.dt
     sims = [engine.build(w, dt) for w in worlds]
     damping = [_Damping(w) for w in worlds]
+    motors = [_Motors(w) for w in worlds]
     outputs = [JointOutputs(w.joints, w.bodies) for w in worlds]
     trace = Trace()
     _record(trace, 0.0, worlds, sims, outputs)
@@ -76,7 +106,9 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
     for t in settings.frame_times() if frame_times is None else frame_times:
         due = int(math.floor(t / dt + _STEP_SLACK))
         while steps < due:
-            for sim, damp in zip(sims, damping):
+            for sim, damp, motor in zip(sims, damping, motors):
+                if motor.active:
+                    motor.apply(sim)
                 sim.step()
                 if damp.active:
                     damp.apply(sim)

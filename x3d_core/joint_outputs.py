@@ -81,6 +81,10 @@ def _compute(j: Joint, f: _Frames, state: State) -> dict[str, Any]:
     elif t == "SliderJoint":
         out["separation"] = float(axes1[0] @ (p1 - p2 - R.rotate(q1, f.offset0)))
         out["separationRate"] = float(axes1[0] @ (v1 - v2))
+    elif t == "MotorJoint" and not j.params["autoCalc"]:  # ODE's user mode: the angles the user gives
+        for k in range(3):
+            out[f"motor{k + 1}Angle"] = j.params[f"axis{k + 1}Angle"]
+            out[f"motor{k + 1}AngleRate"] = 0.0
     elif t == "MotorJoint":
         for k in range(3):
             out[f"motor{k + 1}Angle"] = float(R.twist_angle(delta, f.axes2[k]))

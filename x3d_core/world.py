@@ -226,7 +226,7 @@ def _forest(w: World) -> None:
     placed = np.zeros(n, dtype=bool)
     adjacency: dict[int, list[tuple[int, int]]] = {i: [] for i in range(-1, n)}
     for k, j in enumerate(w.joints):
-        if j.body1 == j.body2:
+        if j.body1 == j.body2 or j.type == "MotorJoint":  # a motor constrains nothing: it pushes
             continue
         adjacency[j.body1].append((j.body2, k))
         adjacency[j.body2].append((j.body1, k))
@@ -257,4 +257,4 @@ def _forest(w: World) -> None:
             order.append(i)
             grow(i)
     w.parent, w.parent_joint, w.order = parent, parent_joint, order
-    w.loop_joints = [k for k, j in enumerate(w.joints) if k not in used]
+    w.loop_joints = [k for k, j in enumerate(w.joints) if k not in used and j.type != "MotorJoint"]
