@@ -16,7 +16,7 @@ import mujoco
 import numpy as np
 
 from x3d_core import rotation as R
-from x3d_core.engine import Unsupported
+from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, World, State
 
 from .base import Backend, approximate, native, unsupported
@@ -81,6 +81,16 @@ class MujocoSimulation:
         self.data = mujoco.MjData(self.model)
         self.ids = np.array([self.model.body(f"b{i}").id for i in range(len(b))], dtype=int)
         self.roots = self.model.body_rootid[self.ids]
+        self.bad_acceleration = self.data.warning[mujoco.mjtWarning.mjWARN_BADQACC]
+        # free bodies with nothing hanging from them take velocities directly (the usual
+        # case for big scenes); anything jointed goes through a least-squares fit
+        moving = ~b.fixed
+        lone = self.free & ~np.isin(np.arange(len(b)), world.parent[world.parent >= 0])
+        self.direct = np.flatnonzero(lone) if np.array_equal(lone, moving) else None
+        if self.direct is not None:
+            adr = self.model.jnt_dofadr[self.model.body_jntadr[self.ids[self.direct]]]
+            self.dof_lin = adr[:, None] + np.arange(3)
+            self.dof_ang = adr[:, None] + np.arange(3, 6)
         mujoco.mj_forward(self.model, self.data)
         self._set_body_velocities(b.linear_velocity, b.angular_velocity)
         self.set_loads(b.forces, b.torques)
@@ -164,8 +174,11 @@ class MujocoSimulation:
             eq.data = data
 
     # -- running ------------------------------------------------------------
-    def step(self) -> None:
-        mujoco.mj_step(self.model, self.data)
+    def step(self, n: int = 1) -> None:
+        mujoco.mj_step(self.model, self.data, nstep=n)
+        if self.bad_acceleration.number:  # MuJoCo resets the state and goes on: a blow-up it would hide
+            raise BlewUp("MuJoCo found a non-finite or huge acceleration at degree of freedom "
+                         f"{self.bad_acceleration.lastinfo}")
 
     def _forward_kinematics(self) -> None:
         m, d = self.model, self.data
@@ -178,7 +191,7 @@ class MujocoSimulation:
         d = self.data
         cvel = d.cvel[self.ids]  # [angular, linear at the subtree centre of the body's root]
         ang = cvel[:, :3].copy()
-        lin = cvel[:, 3:] + np.cross(ang, d.xipos[self.ids] - d.subtree_com[self.roots])
+        lin = cvel[:, 3:] + R.cross(ang, d.xipos[self.ids] - d.subtree_com[self.roots])
         return State(d.xpos[self.ids].copy(), d.xquat[self.ids].copy(), lin, ang)
 
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
@@ -195,6 +208,11 @@ class MujocoSimulation:
         if m.nv == 0:
             return
         self._forward_kinematics()
+        if self.direct is not None:  # a free joint moves its origin: v_origin = v_com - w x (com - origin)
+            rows, ids = self.direct, self.ids[self.direct]
+            d.qvel[self.dof_lin] = linear[rows] - R.cross(angular[rows], d.xipos[ids] - d.xpos[ids])
+            d.qvel[self.dof_ang] = R.rotate(R.conjugate(d.xquat[ids]), angular[rows])  # body frame
+            return
         moving = [i for i in range(len(self.ids)) if not self.world.bodies.fixed[i]]
         jac = np.zeros((6 * len(moving), m.nv))
         target = np.zeros(6 * len(moving))

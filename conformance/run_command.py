@@ -7,8 +7,8 @@ import sys
 
 from backends import base
 from x3d_core.analysis import run_features
-from x3d_core.engine import Unsupported
-from x3d_core.evaluator import BlewUp, RunSettings, run
+from x3d_core.engine import BlewUp, Unsupported
+from x3d_core.evaluator import RunSettings, run
 from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.world import worlds

@@ -18,11 +18,16 @@ class Unsupported(Exception):
     (a slider closing a loop of joints, say); the message says what."""
 
 
+class BlewUp(RuntimeError):
+    """A body's state stopped being finite, or the engine gave up on it; the message says
+    what (the evaluator adds when)."""
+
+
 class Simulation(Protocol):
     """One World built in one engine."""
 
-    def step(self) -> None:
-        """Advance one fixed step, with the world's gravity, forces and torques applied."""
+    def step(self, n: int = 1) -> None:
+        """Advance n fixed steps, with gravity, forces and torques applied at each."""
 
     def state(self) -> State:
         """Every body's state, rows as in world.bodies, read in bulk."""

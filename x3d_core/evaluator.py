@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import rotation as R
-from .engine import Engine, Simulation
+from .engine import BlewUp, Engine, Simulation
 from .joint_outputs import JointOutputs
 from .trace import Trace
 from .world import STATIC, World
@@ -28,10 +28,6 @@ _OUTPUT_TYPES = {"angle": "SFFloat", "angleRate": "SFFloat", "separation": "SFFl
                  "hinge2AngleRate": "SFFloat", "body1AnchorPoint": "SFVec3f", "body2AnchorPoint": "SFVec3f",
                  "body1Axis": "SFVec3f", "body2Axis": "SFVec3f",
                  **{f"motor{k}{s}": "SFFloat" for k in (1, 2, 3) for s in ("Angle", "AngleRate")}}
-
-
-class BlewUp(RuntimeError):
-    """A body's state stopped being finite."""
 
 
 @dataclass
@@ -99,39 +95,52 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
     sims = [engine.build(w, dt) for w in worlds]
     damping = [_Damping(w) for w in worlds]
     motors = [_Motors(w) for w in worlds]
-    outputs = [JointOutputs(w.joints, w.bodies) for w in worlds]
+    recorders = [_Recorder(w, sim) for w, sim in zip(worlds, sims)]
     trace = Trace()
-    _record(trace, 0.0, worlds, sims, outputs)
+    for rec in recorders:
+        rec.record(trace, 0.0)
     steps = 0
     for t in settings.frame_times() if frame_times is None else frame_times:
         due = int(math.floor(t / dt + _STEP_SLACK))
-        while steps < due:
-            for sim, damp, motor in zip(sims, damping, motors):
-                if motor.active:
-                    motor.apply(sim)
-                sim.step()
-                if damp.active:
-                    damp.apply(sim)
-            steps += 1
-        _record(trace, float(t), worlds, sims, outputs)
+        for sim, damp, motor in zip(sims, damping, motors):
+            try:
+                if damp.active or motor.active:  # inputs that change at every step
+                    for _ in range(due - steps):
+                        if motor.active:
+                            motor.apply(sim)
+                        sim.step()
+                        if damp.active:
+                            damp.apply(sim)
+                elif due > steps:
+                    sim.step(due - steps)
+            except BlewUp as e:
+                raise BlewUp(f"blew up by t={due * dt:g}: {e}") from None
+        steps = max(steps, due)
+        for rec in recorders:
+            rec.record(trace, float(t))
     return trace
 
 
-def _record(trace: Trace, t: float, worlds: list[World], sims: list[Simulation],
-            outputs: list[JointOutputs]) -> None:
-    for w, sim, out in zip(worlds, sims, outputs):
-        s = sim.state()
+class _Recorder:
+    """Reads one world's state at a frame end into the trace, and checks it is finite."""
+
+    def __init__(self, world: World, sim: Simulation):
+        self.world, self.sim = world, sim
+        self.outputs = JointOutputs(world.joints, world.bodies)
+        self.rows = np.flatnonzero(world.bodies.enabled)
+        self.names = [world.bodies.names[i] for i in self.rows]
+        self.all = len(self.rows) == len(world.bodies)
+
+    def record(self, trace: Trace, t: float) -> None:
+        s = self.sim.state()
         for arr in (s.position, s.orientation, s.linear_velocity, s.angular_velocity):
             if not np.isfinite(arr).all():
                 row = int(np.flatnonzero(~np.isfinite(arr).reshape(len(arr), -1).all(axis=1))[0])
-                raise BlewUp(f"blew up at t={t:g}: {w.bodies.names[row]} has a non-finite state")
-        rotations = R.to_axis_angle(s.orientation)
-        b = w.bodies
-        for i in np.flatnonzero(b.enabled):
-            name = b.names[i]
-            trace.add(t, name, "position", "SFVec3f", s.position[i])
-            trace.add(t, name, "orientation", "SFRotation", rotations[i])
-            trace.add(t, name, "linearVelocity", "SFVec3f", s.linear_velocity[i])
-            trace.add(t, name, "angularVelocity", "SFVec3f", s.angular_velocity[i])
-        for joint, field, value in out.values(s):
+                raise BlewUp(f"blew up at t={t:g}: {self.world.bodies.names[row]} has a non-finite state")
+        pick = (lambda a: a) if self.all else (lambda a: a[self.rows])
+        trace.add_many(t, self.names, "position", "SFVec3f", pick(s.position))
+        trace.add_many(t, self.names, "orientation", "SFRotation", pick(s.orientation), convert=R.to_axis_angle)
+        trace.add_many(t, self.names, "linearVelocity", "SFVec3f", pick(s.linear_velocity))
+        trace.add_many(t, self.names, "angularVelocity", "SFVec3f", pick(s.angular_velocity))
+        for joint, field, value in self.outputs.values(s):
             trace.add(t, joint, field, _OUTPUT_TYPES[field], value)

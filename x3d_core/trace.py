@@ -12,7 +12,9 @@ import io
 import os
 import tempfile
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable, NamedTuple
+
+import numpy as np
 
 from . import fields as F
 
@@ -27,14 +29,39 @@ class Row:
     value: str
 
 
+class _Block(NamedTuple):
+    """One field of several nodes at one time, kept as numbers until written: recording
+    a frame costs a few array copies, not a string per value."""
+    time: float
+    nodes: list[str]
+    field: str
+    ftype: F.FieldType
+    values: np.ndarray  # (len(nodes), width), or (len(nodes),) for SFFloat
+    convert: Callable[[np.ndarray], np.ndarray] | None = None  # applied when written (quaternions -> SFRotation)
+
+
 class Trace:
-    """Rows in the order they happened."""
+    """Events in the order they happened."""
 
     def __init__(self) -> None:
-        self.rows: list[Row] = []
+        self.blocks: list[_Block] = []
 
     def add(self, time: float, node: str, field: str, ftype: str, value: Any) -> None:
-        self.rows.append(Row(time, node, field, F.format_xml(F.FIELD_TYPES[ftype], value)))
+        self.add_many(time, [node], field, ftype, np.asarray(value, dtype=np.float64)[None])
+
+    def add_many(self, time: float, nodes: list[str], field: str, ftype: str, values: np.ndarray,
+                 convert: Callable[[np.ndarray], np.ndarray] | None = None) -> None:
+        """The same field of several nodes: values row k (after convert) belongs to nodes[k]."""
+        self.blocks.append(_Block(time, nodes, field, F.FIELD_TYPES[ftype], values, convert))
+
+    @property
+    def rows(self) -> list[Row]:
+        out = []
+        for b in self.blocks:
+            values = b.convert(b.values) if b.convert is not None else b.values
+            for node, value in zip(b.nodes, values.tolist()):
+                out.append(Row(b.time, node, b.field, F.format_xml(b.ftype, value)))
+        return out
 
     def text(self) -> str:
         buf = io.StringIO()
