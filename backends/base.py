@@ -63,6 +63,7 @@ EVALUATOR: dict[str, Declared] = native(
     *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")))
 
 NOT_YET = "not implemented by this backend yet"
+ROUTED = Declared(Support.UNSUPPORTED, "x3drbp runs no ROUTEs or Scripts: this input would keep the file's value")
 
 
 class Backend(ABC):
@@ -78,6 +79,8 @@ class Backend(ABC):
         """An engine model of the world, stepping at dt."""
 
     def support(self, feature: str) -> Declared:
+        if feature.endswith(".routed"):
+            return ROUTED
         d = EVALUATOR.get(feature) or self.declared.get(feature)
         return d if d is not None else Declared(Support.UNSUPPORTED, NOT_YET)
 
