@@ -59,8 +59,9 @@ EVALUATOR: dict[str, Declared] = native(
     *(f"MotorJoint.{f}{k}" for k in (1, 2, 3) for f in ("axis", "motor")),
     *(f"MotorJoint.axis{k}{f}" for k in (1, 2, 3) for f in ("Angle", "Torque")),
     *(f"MotorJoint.motor{k}Axis" for k in (1, 2, 3))) | approximate(
-    "no effect: MotorJoint has no stop angles for these to act on",
-    *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")))
+    "no effect: the joint has no stop angles for these to act on",
+    *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")),
+    *(f"UniversalJoint.stop{k}{f}" for k in (1, 2) for f in ("Bounce", "ErrorCorrection")))
 
 NOT_YET = "not implemented by this backend yet"
 ROUTED = Declared(Support.UNSUPPORTED, "x3drbp runs no ROUTEs or Scripts: this input would keep the file's value")

@@ -257,9 +257,7 @@ class MujocoBackend(Backend):
         **unsupported("MuJoCo limits are soft constraints without a restitution coefficient",
                       "SingleAxisHingeJoint.stopBounce", "SliderJoint.stopBounce"),
         **unsupported("limit stiffness is MuJoCo's solref_limit, not yet mapped from ERP",
-                      "SingleAxisHingeJoint.stopErrorCorrection", "SliderJoint.stopErrorCorrection",
-                      "UniversalJoint.stop1ErrorCorrection", "UniversalJoint.stop2ErrorCorrection",
-                      "UniversalJoint.stop1Bounce", "UniversalJoint.stop2Bounce"),
+                      "SingleAxisHingeJoint.stopErrorCorrection", "SliderJoint.stopErrorCorrection"),
     }
 
     def version(self) -> str:

@@ -70,6 +70,21 @@ def matrix(q: np.ndarray) -> np.ndarray:
         np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], axis=-1)], axis=-2)
 
 
+def from_matrix(m: np.ndarray) -> np.ndarray:
+    """Rotation matrices (n, 3, 3) to unit quaternions w x y z. Row k of `rows` is 4 q_k q;
+    the row with the largest q_k is the best conditioned."""
+    m00, m11, m22 = m[:, 0, 0], m[:, 1, 1], m[:, 2, 2]
+    a, b, c = m[:, 2, 1] - m[:, 1, 2], m[:, 0, 2] - m[:, 2, 0], m[:, 1, 0] - m[:, 0, 1]
+    d, e, f = m[:, 0, 1] + m[:, 1, 0], m[:, 0, 2] + m[:, 2, 0], m[:, 1, 2] + m[:, 2, 1]
+    rows = np.stack([np.stack([1 + m00 + m11 + m22, a, b, c], -1),
+                     np.stack([a, 1 + m00 - m11 - m22, d, e], -1),
+                     np.stack([b, d, 1 - m00 + m11 - m22, f], -1),
+                     np.stack([c, e, f, 1 - m00 - m11 + m22], -1)], axis=1)
+    k = np.argmax(np.diagonal(rows, axis1=1, axis2=2), axis=1)
+    q = rows[np.arange(len(m)), k]
+    return q / np.linalg.norm(q, axis=1, keepdims=True)
+
+
 def twist_angle(q: np.ndarray, axis: np.ndarray) -> np.ndarray:
     """The angle of the rotation q about a unit axis (swing-twist decomposition), in (-pi, pi]."""
     q = np.asarray(q, dtype=np.float64)
