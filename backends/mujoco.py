@@ -107,10 +107,11 @@ class MujocoSimulation:
             body.add_joint(type=mujoco.mjtJoint.mjJNT_BALL, pos=pos)
         elif j.type == "SingleAxisHingeJoint":
             jt = body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=axes[0])
-            self._limit(jt, j.params["minAngle"], j.params["maxAngle"], sign, angular=True)
+            self._limit(jt, j.params["minAngle"], j.params["maxAngle"], sign, j.params["stopErrorCorrection"])
         elif j.type == "SliderJoint":
             jt = body.add_joint(type=mujoco.mjtJoint.mjJNT_SLIDE, pos=pos, axis=axes[0])
-            self._limit(jt, j.params["minSeparation"], j.params["maxSeparation"], sign, angular=False)
+            self._limit(jt, j.params["minSeparation"], j.params["maxSeparation"], sign,
+                        j.params["stopErrorCorrection"], angular=False)
         elif j.type == "UniversalJoint":
             first, second = (axes[0], axes[1]) if child == j.body2 else (axes[1], axes[0])
             body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=first)
@@ -126,7 +127,7 @@ class MujocoSimulation:
         about axis 2 (carried by body2, with its motor)."""
         p = j.params
         hinge1 = body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=axes[0], name=f"{j.name}:1")
-        self._limit(hinge1, p["minAngle1"], p["maxAngle1"], sign, angular=True)
+        self._limit(hinge1, p["minAngle1"], p["maxAngle1"], sign, p["stop1ErrorCorrection"])
         if p["suspensionForce"] > 0:
             dt, cfm, erp = self.dt, p["suspensionForce"], p["suspensionErrorCorrection"]
             body.add_joint(type=mujoco.mjtJoint.mjJNT_SLIDE, pos=pos, axis=axes[0],
@@ -145,12 +146,15 @@ class MujocoSimulation:
                 self.motors.append((f"{j.name}:{k}", sign * p[f"desiredAngularVelocity{k}"], p[f"maxTorque{k}"],
                                     MOTOR_STEPS * inertia / self.dt))
 
-    def _limit(self, jt, lo: float, hi: float, sign: float, angular: bool) -> None:
+    def _limit(self, jt, lo: float, hi: float, sign: float, erp: float, angular: bool = True) -> None:
+        """A stop whose error a step corrects by the fraction ERP: MuJoCo's limit time constant
+        dt/ERP, critically damped, no shorter than the 2 dt MuJoCo needs to stay stable."""
         if angular and lo <= -_FULL_TURN and hi >= _FULL_TURN:
             return
         a, b = sorted((sign * lo, sign * hi))
         jt.limited = mujoco.mjtLimited.mjLIMITED_TRUE
         jt.range = [a, b]
+        jt.solref_limit = [max(2 * self.dt, self.dt / max(erp, 1e-9)), 1.0]
 
     def _loop(self, spec, j, dt: float) -> None:
         """A joint closing a loop, as equality constraints between body frames."""
@@ -247,8 +251,8 @@ class MujocoBackend(Backend):
                       "DoubleAxisHingeJoint.maxTorque1", "DoubleAxisHingeJoint.maxTorque2"),
         **unsupported("MuJoCo limits are soft constraints without a restitution coefficient",
                       "DoubleAxisHingeJoint.stop1Bounce"),
-        **unsupported("limit stiffness is MuJoCo's solref_limit, not yet mapped from ERP and CFM",
-                      "DoubleAxisHingeJoint.stop1ErrorCorrection", "DoubleAxisHingeJoint.stop1ConstantForceMix"),
+        **unsupported("limit softness is MuJoCo's solimp, not mapped from a CFM",
+                      "DoubleAxisHingeJoint.stop1ConstantForceMix"),
         **approximate("MuJoCo has no ERP/CFM: tree joints are exact (generalized coordinates) and loop "
                       "constraints use solref=(2*dt, 1)",
                       "RigidBodyCollection.errorCorrection", "RigidBodyCollection.constantForceMix"),
@@ -256,8 +260,10 @@ class MujocoBackend(Backend):
                       "RigidBodyCollection.preferAccuracy"),
         **unsupported("MuJoCo limits are soft constraints without a restitution coefficient",
                       "SingleAxisHingeJoint.stopBounce", "SliderJoint.stopBounce"),
-        **unsupported("limit stiffness is MuJoCo's solref_limit, not yet mapped from ERP",
-                      "SingleAxisHingeJoint.stopErrorCorrection", "SliderJoint.stopErrorCorrection"),
+        **approximate("a soft limit with time constant max(2 dt, dt/ERP), critically damped: MuJoCo cannot "
+                      "correct more than half the error in one step",
+                      "SingleAxisHingeJoint.stopErrorCorrection", "SliderJoint.stopErrorCorrection",
+                      "DoubleAxisHingeJoint.stop1ErrorCorrection"),
     }
 
     def version(self) -> str:

@@ -1,0 +1,631 @@
+"""Conformance cases: a scene of scenes/conformance/, how to run it, and what must come out.
+
+A case is one scene file, the run settings (one run, or several that must agree), and an
+expectation: a function of the traces that returns Measures, each a measured error with
+the tolerance it must not exceed. Every tolerance is argued below from the step size and
+the order of the integrators the engines use, never tuned until a backend passes.
+
+The closed forms' parameters are written here, not read from the scene through x3d_core,
+so that the expectation does not share the evaluator's reading of the file: a field the
+evaluator misread or dropped fails the case instead of moving the target with it. Each
+scene's leading comment states the same numbers.
+
+Conventions of the argument (the reference integrator is semi-implicit Euler, which
+Bullet, DART, ODE and MuJoCo's default all use):
+- State at a frame ending at time t is the world after n = floor(t/dt) steps
+  (x3d_core.evaluator); closed forms are evaluated at the physics time n*dt.
+- Velocities under a constant acceleration are exact for every one-step scheme; what is
+  left is rounding. ROUNDING = 1e-9 (relative to the quantity's scale) covers it with
+  room to spare: at most ~500 steps of float64 arithmetic on O(10) numbers make ~1e-13.
+- Angles read from a rotation are worse off: an engine that keeps rotations as matrices or
+  rotation vectors recovers the angle from a cosine (acos, the log map), which near the
+  identity is only good to sqrt(2 eps) ~ 2e-8 rad per conversion, and some convert every
+  step. ROUNDING_ANGLE = 1e-7 rad covers a few such losses (DART's free joint shows 2.7e-9
+  rad, gathered while the angle is small).
+- Positions under a constant acceleration a: every scheme in use advances position with
+  a velocity between the step's start and end velocities, which keeps it within
+  |a| t dt / 2 of the exact parabola. Semi-implicit Euler reaches that bound exactly
+  (y_n = y0 - g dt^2 n(n+1)/2), explicit Euler too with the other sign, second-order
+  schemes err by 0. So the tolerance is c*dt with c = |a| t / 2: first order, as the
+  global error of a first-order method is.
+- Invariants held by constraints (joints, stops) are argued from one step's error and the
+  error correction (ERP) that removes a fraction of it each step; see each case.
+
+To add a case: a scene scenes/conformance/NAME.x3d whose leading comment says what it
+checks and the closed form, exercising its field at a non-default value; an expectation
+here with its tolerance argued in the docstring; a Case in CASES naming the features it
+exercises (tests/test_conformance.py checks the scene uses them, and runs it everywhere).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from x3d_core import rotation as R
+from x3d_core.trace import Row
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SCENES = os.path.join(ROOT, "scenes", "conformance")
+ROUNDING = 1e-9
+ROUNDING_ANGLE = 1e-7  # rad
+_STEP_SLACK = 1e-9  # as x3d_core.evaluator: a frame within 1e-9 step of a step boundary is on it
+
+
+# -- what a case is -----------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Settings:
+    """One run: simulated seconds, physics step, frames per second (None: a frame after
+    every step, for expectations that must see every state)."""
+    duration: float
+    dt: float
+    frame_rate: float | None = 60.0
+
+    @property
+    def rate(self) -> float:
+        return 1.0 / self.dt if self.frame_rate is None else self.frame_rate
+
+    def with_dt(self, dt: float) -> Settings:
+        return Settings(self.duration, dt, self.frame_rate)
+
+    def args(self) -> list[str]:
+        """The `x3drbp run` options (repr keeps every digit of the step)."""
+        return ["--duration", repr(self.duration), "--dt", repr(self.dt), "--frame-rate", repr(self.rate)]
+
+
+@dataclass(frozen=True)
+class Measure:
+    """One measured error and the tolerance it is held to (same unit)."""
+    quantity: str
+    error: float
+    tolerance: float
+    unit: str = ""
+
+    def __post_init__(self) -> None:  # plain floats (numpy scalars do not go to JSON)
+        object.__setattr__(self, "error", float(self.error))
+        object.__setattr__(self, "tolerance", float(self.tolerance))
+
+    @property
+    def ok(self) -> bool:
+        return bool(math.isfinite(self.error) and self.error <= self.tolerance)
+
+    @property
+    def ratio(self) -> float:
+        if not math.isfinite(self.error):
+            return math.inf
+        return self.error / self.tolerance if self.tolerance > 0 else (0.0 if self.error == 0 else math.inf)
+
+
+class TraceView:
+    """A trace's rows grouped by (node, field): times, and values as float arrays."""
+
+    def __init__(self, rows: Sequence[Row]):
+        groups: dict[tuple[str, str], tuple[list[float], list[list[float]]]] = {}
+        for r in rows:
+            t, v = groups.setdefault((r.node, r.field), ([], []))
+            t.append(r.time)
+            v.append([float(x) for x in r.value.split()])
+        self._series = {k: (np.array(t), np.array(v, dtype=np.float64)) for k, (t, v) in groups.items()}
+
+    def keys(self) -> list[tuple[str, str]]:
+        return list(self._series)
+
+    def series(self, node: str, fld: str) -> tuple[np.ndarray, np.ndarray]:
+        """(times (n,), values (n, width)) of one output."""
+        try:
+            return self._series[(node, fld)]
+        except KeyError:
+            raise KeyError(f"the trace has no {node}.{fld} rows") from None
+
+    def at(self, time: float) -> dict[tuple[str, str], np.ndarray]:
+        """Every output's value at one frame time (exact match)."""
+        out = {}
+        for k, (t, v) in self._series.items():
+            hit = np.flatnonzero(t == time)
+            if hit.size:
+                out[k] = v[hit[0]]
+        return out
+
+
+Expectation = Callable[[Sequence[TraceView], Sequence[Settings]], list[Measure]]
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    scene: str  # file name under scenes/conformance (or an absolute path)
+    checks: str  # one line: the field(s) exercised and the closed form or invariant
+    runs: tuple[Settings, ...]
+    expect: Expectation
+    # the Measure whose error is against a continuous closed form, so that its decrease with
+    # dt (the fitted order) shows convergence; None where the check is exact or an invariant
+    convergence: str | None = None
+    expected_order: float | None = None  # what semi-implicit Euler gives, for the reader
+    # the feature names (x3d_core.analysis) the case exercises with non-default values: the
+    # case would fail if a backend ignored them
+    exercises: tuple[str, ...] = field(default_factory=tuple)
+
+    @property
+    def path(self) -> str:
+        return self.scene if os.path.isabs(self.scene) else os.path.join(SCENES, self.scene)
+
+    def at_dt(self, dt: float) -> tuple[Settings, ...]:
+        return tuple(s.with_dt(dt) for s in self.runs)
+
+
+# -- helpers ------------------------------------------------------------------------------
+
+def steps(t: np.ndarray, dt: float) -> np.ndarray:
+    return np.floor(np.asarray(t) / dt + _STEP_SLACK)
+
+
+def physics_time(t: np.ndarray, dt: float) -> np.ndarray:
+    """The simulated time of the state recorded at frame time t: floor(t/dt) steps."""
+    return steps(t, dt) * dt
+
+
+def _max_norm(a: np.ndarray) -> float:
+    a = np.asarray(a, dtype=np.float64)
+    n = np.linalg.norm(a.reshape(len(a), -1), axis=1) if a.ndim > 1 else np.abs(a)
+    return float(np.max(n)) if n.size else math.nan
+
+
+def quaternions(rotations: np.ndarray) -> np.ndarray:
+    return R.from_axis_angle(rotations)
+
+
+def rotation_angle_between(q1: np.ndarray, q2: np.ndarray) -> np.ndarray:
+    """The angle of q1 * conj(q2), accurate for small angles (no acos)."""
+    d = R.multiply(q1, R.conjugate(q2))
+    return 2.0 * np.arctan2(np.linalg.norm(d[..., 1:], axis=-1), np.abs(d[..., 0]))
+
+
+def agm(a: float, b: float) -> float:
+    """Arithmetic-geometric mean."""
+    for _ in range(64):
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        if abs(a - b) <= 1e-16 * a:
+            break
+    return a
+
+
+def ellipk(k: float) -> float:
+    """Complete elliptic integral of the first kind K(k), modulus k: pi / (2 AGM(1, sqrt(1-k^2)))."""
+    return math.pi / (2.0 * agm(1.0, math.sqrt(1.0 - k * k)))
+
+
+def ballistic(body: str, p0: Sequence[float], v0: Sequence[float], a: Sequence[float]) -> Expectation:
+    """A body under a constant acceleration a: p = p0 + v0 t + a t^2/2, v = v0 + a t.
+
+    Velocity: exact for any one-step scheme, so only ROUNDING. Position: |a| t dt / 2 (the
+    module's argument), evaluated at the last frame, where the error is largest."""
+    p0, v0, a = (np.asarray(x, dtype=np.float64) for x in (p0, v0, a))
+
+    def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+        tr, s = traces[0], settings[0]
+        t, p = tr.series(body, "position")
+        _, v = tr.series(body, "linearVelocity")
+        tp = physics_time(t, s.dt)[:, None]
+        p_exact = p0 + v0 * tp + 0.5 * a * tp ** 2
+        v_exact = v0 + a * tp
+        T = float(tp[-1, 0])
+        scale = 1.0 + np.linalg.norm(p0) + np.linalg.norm(v0) * T + np.linalg.norm(a) * T * T
+        return [Measure(f"{body}.linearVelocity", _max_norm(v - v_exact),
+                        ROUNDING * (1.0 + np.linalg.norm(v0) + np.linalg.norm(a) * T), "m/s"),
+                Measure(f"{body}.position", _max_norm(p - p_exact),
+                        0.5 * float(np.linalg.norm(a)) * T * s.dt + ROUNDING * scale, "m")]
+    return expect
+
+
+# -- the cases ----------------------------------------------------------------------------
+
+G = 9.81  # the non-default gravity the scenes use
+G_DEFAULT = 9.8
+
+
+def _free_fall() -> Case:
+    return Case("free_fall", "free_fall.x3d",
+                "RigidBodyCollection.gravity 0 -9.81 0: y = y0 - g t^2/2, v = -g t",
+                (Settings(1.0, 1 / 240),),
+                ballistic("Ball", (0, 10, 0), (0, 0, 0), (0, -G, 0)),
+                convergence="Ball.position", expected_order=1.0, exercises=("RigidBodyCollection.gravity",))
+
+
+def _projectile() -> Case:
+    return Case("projectile", "projectile.x3d",
+                "RigidBody.linearVelocity 3 4 1: p = p0 + v0 t + g t^2/2",
+                (Settings(1.0, 1 / 240),),
+                ballistic("Shot", (0, 1, 0), (3, 4, 1), (0, -G, 0)),
+                convergence="Shot.position", expected_order=1.0, exercises=("RigidBody.linearVelocity",))
+
+
+# pendulum_period.x3d: a compound pendulum released 30 degrees from the vertical
+PEND_M, PEND_L, PEND_I, PEND_THETA0 = 1.0, 1.0, 0.001, math.radians(30.0)
+
+
+def pendulum_period(theta0: float = PEND_THETA0, m: float = PEND_M, length: float = PEND_L,
+                    inertia: float = PEND_I, g: float = G) -> float:
+    """T = 4 sqrt(I_p / (m g L)) K(sin(theta0/2)), I_p = I + m L^2 (exact, any amplitude)."""
+    i_pivot = inertia + m * length * length
+    return 4.0 * math.sqrt(i_pivot / (m * g * length)) * ellipk(math.sin(0.5 * theta0))
+
+
+def _crossings(t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Times where x changes sign, by linear interpolation between samples."""
+    k = np.flatnonzero(np.signbit(x[:-1]) != np.signbit(x[1:]))
+    return t[k] - x[k] * (t[k + 1] - t[k]) / (x[k + 1] - x[k])
+
+
+def _pendulum_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Period measured as twice the mean time between successive passes through the vertical
+    (differences of crossings: the O(dt) phase offset of a first-order scheme cancels).
+
+    Tolerance, for a first-order integrator:
+    (a) the discrete oscillator's frequency error is second order; the worst of the Euler
+        family (explicit Euler, cos-phase atan(w dt)) gives |dT| <= T (w0 dt)^2 / 3
+        (semi-implicit Euler: T (w0 dt)^2 / 24);
+    (b) a non-symplectic first-order scheme gains (or loses) energy at a relative rate up to
+        w0^2 dt per second (explicit Euler: |eigenvalue|^2 = 1 + (w0 dt)^2 per step), which
+        changes the amplitude by dtheta = (dE/E) (1 - cos theta0) / sin theta0 by the last
+        crossing t_c, and the period by |dT/dtheta0| dtheta: first order, c*dt with
+        c = |dT/dtheta0| (1 - cos theta0)/sin theta0 w0^2 t_c.
+    The crossings are read from a frame after every step by linear interpolation: at the
+    vertical x'' = 0, so the interpolation error is O(dt^3 w^3), far below (a) and (b)."""
+    tr, s = traces[0], settings[0]
+    t, p = tr.series("Bob", "position")
+    tp = physics_time(t, s.dt)
+    c = _crossings(tp, p[:, 0])
+    T = pendulum_period()
+    w0 = math.sqrt(PEND_M * G * PEND_L / (PEND_I + PEND_M * PEND_L ** 2))
+    h = 1e-6
+    dT = abs(pendulum_period(PEND_THETA0 + h) - pendulum_period(PEND_THETA0 - h)) / (2 * h)
+    t_c = float(c[-1]) if c.size else float(tp[-1])
+    drift = w0 ** 2 * s.dt * t_c * (1 - math.cos(PEND_THETA0)) / math.sin(PEND_THETA0)
+    tol = T * (w0 * s.dt) ** 2 / 3.0 + dT * drift
+    if c.size < 2:
+        return [Measure("Bob.period", math.inf, tol, "s")]
+    measured = 2.0 * (c[-1] - c[0]) / (c.size - 1)
+    return [Measure("Bob.period", abs(measured - T), tol, "s")]
+
+
+def _pendulum() -> Case:
+    return Case("pendulum_period", "pendulum_period.x3d",
+                "SingleAxisHingeJoint, 30 degree release: T = 4 sqrt(I_p/(m g L)) K(sin(theta0/2)) = "
+                f"{pendulum_period():.5f} s",
+                (Settings(2.0, 1 / 240, None),), _pendulum_expect,
+                convergence="Bob.period", expected_order=2.0,
+                exercises=("SingleAxisHingeJoint", "SingleAxisHingeJoint.axis", "RigidBody.inertia"))
+
+
+# torque_free.x3d
+TF_INERTIA = np.array([[0.2, 0.03, 0.01], [0.03, 0.15, -0.02], [0.01, -0.02, 0.1]])
+TF_ORIENTATION = (1.0, 1.0, 0.0, 0.7)
+TF_OMEGA = np.array([1.0, 2.0, 0.5])
+
+
+def torque_free_bounds(inertia: np.ndarray = TF_INERTIA, orientation=TF_ORIENTATION,
+                       omega: np.ndarray = TF_OMEGA) -> dict[str, float]:
+    """E0, L0 and the per-second, per-dt drift constants of a first-order rotational update.
+
+    Euler's equations I w' = (I w) x w in body axes. A first-order step updates w with the
+    gyroscopic torque tau = (I w) x w at one end of the step (explicit: the start; implicit:
+    the end) and turns the body with the new w. Writing I = Ibar + D, Ibar = (Imax+Imin)/2,
+    |D| = dI/2 with dI = Imax - Imin, tau = (D w) x w, so |tau| <= (dI/2) |w|^2. Then per step
+      energy:   dE = dt^2/2 tau . I^-1 tau <= dt^2/2 (dI/2)^2 |w|^4 / Imin
+      momentum: L_world changes by dt^2 [(I^-1 tau) x L + w x tau + 1/2 w x (w x L)]
+                <= dt^2 |w|^3 (dI/2) (Imax/Imin + 3/2)
+    (the exact flow keeps both; expand R exp(dt w') (L + dt L x w) to second order). Summed
+    over t/dt steps: c*t*dt, first order. |w| is bounded through the energy: |w|^2 <= 2E/Imin."""
+    q0 = R.from_axis_angle(np.asarray(orientation, dtype=np.float64))
+    rot = R.matrix(q0)
+    i_world = rot @ inertia @ rot.T
+    e0 = 0.5 * omega @ i_world @ omega
+    l0 = i_world @ omega
+    ev = np.linalg.eigvalsh(inertia)
+    i_min, i_max = float(ev[0]), float(ev[-1])
+    half_spread = 0.5 * (i_max - i_min)
+    w_max = math.sqrt(2.0 * e0 / i_min)
+    return {"E0": float(e0), "L0": l0,
+            "energy_rate": 0.5 * half_spread ** 2 * w_max ** 4 / i_min / e0,  # relative, x t dt
+            "momentum_rate": w_max ** 3 * half_spread * (i_max / i_min + 1.5)}  # kg m^2/s, x t dt
+
+
+def _torque_free_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    tr, s = traces[0], settings[0]
+    t, rot = tr.series("Tumbler", "orientation")
+    _, w = tr.series("Tumbler", "angularVelocity")
+    b = torque_free_bounds()
+    mats = R.matrix(quaternions(rot))
+    i_world = mats @ TF_INERTIA @ np.swapaxes(mats, 1, 2)
+    lw = np.einsum("nij,nj->ni", i_world, w)
+    energy = 0.5 * np.einsum("ni,ni->n", w, lw)
+    T = float(physics_time(t, s.dt)[-1])
+    scale_l = float(np.linalg.norm(b["L0"]))
+    return [Measure("Tumbler.energy (relative)", float(np.max(np.abs(energy - b["E0"]))) / b["E0"],
+                    b["energy_rate"] * T * s.dt + ROUNDING, ""),
+            Measure("Tumbler.angularMomentum (world)", _max_norm(lw - b["L0"]),
+                    b["momentum_rate"] * T * s.dt + ROUNDING * (1 + scale_l), "kg m^2/s")]
+
+
+def _torque_free() -> Case:
+    return Case("torque_free", "torque_free.x3d",
+                "RigidBody.inertia off-diagonal, angularVelocity, orientation: E = 1/2 w.Iw and world "
+                "L = R I R^T w constant",
+                (Settings(1.0, 1 / 240),), _torque_free_expect,
+                convergence="Tumbler.energy (relative)", expected_order=1.0,
+                exercises=("RigidBody.inertia.offDiagonal", "RigidBody.angularVelocity", "RigidBody.orientation"))
+
+
+def _constant_force() -> Case:
+    return Case("constant_force", "constant_force.x3d",
+                "RigidBody.forces (4 0 0) + (0 0 -2) N on 2 kg: a = F/m + g",
+                (Settings(1.0, 1 / 240),),
+                ballistic("Pushed", (0, 5, 0), (0, 0, 0), (2.0, -G_DEFAULT, -1.0)),
+                convergence="Pushed.position", expected_order=1.0, exercises=("RigidBody.forces",))
+
+
+# constant_torque.x3d
+CT_TORQUE, CT_IZZ = 0.4, 0.4
+
+
+def _constant_torque_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """w = alpha t exact for any scheme (ROUNDING); rotation angle alpha t^2/2 about z within
+    alpha t dt / 2 (the constant-acceleration argument, on the angle); any rotation off the z
+    axis counts in the same error (the angle of q_measured * conj(q_exact))."""
+    tr, s = traces[0], settings[0]
+    t, rot = tr.series("Spun", "orientation")
+    _, w = tr.series("Spun", "angularVelocity")
+    alpha = CT_TORQUE / CT_IZZ
+    tp = physics_time(t, s.dt)
+    w_exact = np.outer(alpha * tp, [0.0, 0.0, 1.0])
+    q_exact = R.from_axis_angle(np.column_stack([np.zeros((len(tp), 2)), np.ones(len(tp)), 0.5 * alpha * tp ** 2]))
+    T = float(tp[-1])
+    return [Measure("Spun.angularVelocity", _max_norm(w - w_exact), ROUNDING * (1 + alpha * T), "rad/s"),
+            Measure("Spun.orientation", float(np.max(rotation_angle_between(quaternions(rot), q_exact))),
+                    0.5 * alpha * T * s.dt + ROUNDING_ANGLE, "rad")]
+
+
+def _constant_torque() -> Case:
+    return Case("constant_torque", "constant_torque.x3d",
+                "RigidBody.torques (0 0 0.15) + (0 0 0.25) N m, I_zz 0.4: w = alpha t, angle = alpha t^2/2",
+                (Settings(1.0, 1 / 240),), _constant_torque_expect,
+                convergence="Spun.orientation", expected_order=1.0,
+                exercises=("RigidBody.torques", "RigidBody.inertia"))
+
+
+def _gravity_off_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Floating: at rest, p = p0 and v = 0 up to ROUNDING (nothing acts on it). Falling: the
+    ballistic closed form with the default gravity."""
+    tr = traces[0]
+    _, p = tr.series("Floating", "position")
+    _, v = tr.series("Floating", "linearVelocity")
+    rest = [Measure("Floating.position", _max_norm(p - np.array([0.0, 2.0, 0.0])), ROUNDING * 3, "m"),
+            Measure("Floating.linearVelocity", _max_norm(v), ROUNDING, "m/s")]
+    return rest + ballistic("Falling", (1, 2, 0), (0, 0, 0), (0, -G_DEFAULT, 0))(traces, settings)
+
+
+def _gravity_off() -> Case:
+    return Case("gravity_off", "gravity_off.x3d",
+                "RigidBody.useGlobalGravity FALSE: that body stays at rest while its neighbour falls",
+                (Settings(1.0, 1 / 240),), _gravity_off_expect,
+                convergence="Falling.position", expected_order=1.0, exercises=("RigidBody.useGlobalGravity",))
+
+
+# damping.x3d
+DAMP_V0, DAMP_W0 = np.array([2.0, 0.0, -1.0]), np.array([0.0, 0.0, 3.0])
+DAMP_LINEAR, DAMP_ANGULAR = 0.01, 0.02
+
+
+def _damping_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """x3drbp's definition (ODE's): each step multiplies each velocity by (1 - d), so after
+    n = floor(t/dt) steps v_n = v0 (1-d)^n. No gravity, no force, isotropic inertia: nothing
+    else changes the velocities, under any integrator. The check is exact up to ROUNDING
+    (n multiplications, each within an ulp). There is no continuous limit to converge to:
+    at a fixed d the decay per second depends on dt by definition."""
+    tr, s = traces[0], settings[0]
+    t, v = tr.series("Damped", "linearVelocity")
+    _, w = tr.series("Damped", "angularVelocity")
+    n = steps(t, s.dt)[:, None]
+    v_exact = DAMP_V0 * (1.0 - DAMP_LINEAR) ** n
+    w_exact = DAMP_W0 * (1.0 - DAMP_ANGULAR) ** n
+    return [Measure("Damped.linearVelocity", _max_norm(v - v_exact), ROUNDING * np.linalg.norm(DAMP_V0), "m/s"),
+            Measure("Damped.angularVelocity", _max_norm(w - w_exact), ROUNDING * np.linalg.norm(DAMP_W0), "rad/s")]
+
+
+def _damping() -> Case:
+    return Case("damping", "damping.x3d",
+                "RigidBody.autoDamp, linearDampingFactor 0.01, angularDampingFactor 0.02: v_n = v0 (1-d)^n",
+                (Settings(1.0, 1 / 240),), _damping_expect,
+                exercises=("RigidBody.autoDamp", "RigidBody.linearDampingFactor", "RigidBody.angularDampingFactor"))
+
+
+def stop_overshoot(speed: float, accel: float, dt: float, error_correction: float) -> float:
+    """How far past a hard stop a body may get: the stop acts on the step after the one that
+    crosses it, so a step at the impact speed and acceleration lands up to speed*dt + accel*dt^2
+    beyond (first order); no bounce (stopBounce 0), and the stop's error correction e (ERP)
+    removes a fraction e of what is left each step, so the gravity that keeps pushing adds at
+    most accel*dt^2/e in the steady state."""
+    return speed * dt + accel * dt * dt / error_correction
+
+
+# slider_stops.x3d
+SLIDE_AXIS = np.array([0.6, -0.8, 0.0])
+SLIDE_MIN, SLIDE_MAX, SLIDE_ERP = -0.2, 0.3, 1.0  # SliderJoint.stopErrorCorrection default is 1
+
+
+def _slider_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Gravity along the axis a = g |axis . (0,-1,0)| = 7.848 m/s^2; the block hits the stop at
+    v = sqrt(2 a maxSeparation) = 2.17 m/s. Tolerance: stop_overshoot (v dt + a dt^2, about
+    9.2 mm at dt = 1/240), read from a frame after every step. The block must also be at
+    the stop at the end (within the same tolerance): a block that never moved, or stopped at
+    the default 1 m, fails."""
+    tr, s = traces[0], settings[0]
+    _, sep = tr.series("Slide", "separation")
+    sep = sep[:, 0]
+    a = G * abs(SLIDE_AXIS @ np.array([0.0, -1.0, 0.0]))
+    tol = stop_overshoot(math.sqrt(2 * a * SLIDE_MAX), a, s.dt, SLIDE_ERP)
+    beyond = max(float(np.max(sep)) - SLIDE_MAX, SLIDE_MIN - float(np.min(sep)), 0.0)
+    return [Measure("Slide.separation beyond stops", beyond, tol, "m"),
+            Measure("Slide.separation at the end - maxSeparation", abs(float(sep[-1]) - SLIDE_MAX), tol, "m")]
+
+
+def _slider() -> Case:
+    return Case("slider_stops", "slider_stops.x3d",
+                "SliderJoint minSeparation -0.2 / maxSeparation 0.3, axis 0.6 -0.8 0: separation stays within "
+                "the stops",
+                (Settings(1.0, 1 / 240, None),), _slider_expect,
+                exercises=("SliderJoint.minSeparation", "SliderJoint.maxSeparation", "SliderJoint.axis"))
+
+
+# hinge_limits.x3d
+HINGE_MIN, HINGE_MAX, HINGE_ERP = -0.6, 0.4, 0.8  # SingleAxisHingeJoint.stopErrorCorrection default
+HINGE_M, HINGE_L, HINGE_I = 1.0, 1.0, 0.001
+
+
+def _hinge_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """The arm falls from horizontal through |minAngle| = 0.6 rad: impact rate
+    w = sqrt(2 m g L sin 0.6 / I_p) = 3.33 rad/s, angular acceleration at most m g L / I_p;
+    tolerance stop_overshoot with the hinge's default stopErrorCorrection 0.8 (about 0.014 rad
+    at dt = 1/240). The arm must rest at minAngle at the end, within the same tolerance."""
+    tr, s = traces[0], settings[0]
+    _, ang = tr.series("Hinge", "angle")
+    ang = ang[:, 0]
+    i_p = HINGE_I + HINGE_M * HINGE_L ** 2
+    w = math.sqrt(2 * HINGE_M * G * HINGE_L * math.sin(-HINGE_MIN) / i_p)
+    tol = stop_overshoot(w, HINGE_M * G * HINGE_L / i_p, s.dt, HINGE_ERP)
+    beyond = max(float(np.max(ang)) - HINGE_MAX, HINGE_MIN - float(np.min(ang)), 0.0)
+    return [Measure("Hinge.angle beyond limits", beyond, tol, "rad"),
+            Measure("Hinge.angle at the end - minAngle", abs(float(ang[-1]) - HINGE_MIN), tol, "rad")]
+
+
+def _hinge() -> Case:
+    return Case("hinge_limits", "hinge_limits.x3d",
+                "SingleAxisHingeJoint minAngle -0.6 / maxAngle 0.4: angle stays within the limits",
+                (Settings(1.0, 1 / 240, None),), _hinge_expect,
+                exercises=("SingleAxisHingeJoint.limits", "SingleAxisHingeJoint.minAngle",
+                           "SingleAxisHingeJoint.maxAngle"))
+
+
+# constraint drift, shared by the ball chain and the universal joint
+ERROR_CORRECTION = 0.8  # RigidBodyCollection.errorCorrection default: the scenes leave it
+
+
+def _omega(tr: TraceView, body: str) -> np.ndarray:
+    """|angular velocity| per frame (a fixed body is in the trace too, at rest)."""
+    return np.linalg.norm(tr.series(body, "angularVelocity")[1], axis=1)
+
+
+# ball_chain.x3d: link k joins Link k (body1) to Link k-1 (body2, Anchor for k = 1), anchors
+# at each link's end, 0.1 m from the link's centre
+CHAIN_LINKS, CHAIN_R, CHAIN_MASS, CHAIN_I, CHAIN_LENGTH = 5, 0.1, 0.2, 0.001, 1.0
+
+
+def _omega_cap(inertia: float) -> float:
+    """No link can spin faster than if all the energy the chain can release (its whole mass
+    falling its whole length) went into its rotation: w^2 <= 2 M g L / I."""
+    return math.sqrt(2 * CHAIN_LINKS * CHAIN_MASS * G * CHAIN_LENGTH / inertia)
+
+
+def _chain_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """|body1AnchorPoint - body2AnchorPoint| per joint and frame.
+
+    Engines that build the chain as a kinematic tree (generalized coordinates) hold it exactly:
+    rounding only. An engine that ties free bodies with velocity-level constraints makes the two
+    anchors' velocities agree, and one step then leaves them apart by the difference of their
+    arcs and chords: at most dt^2/2 (|w1|^2 r1 + |w2|^2 r2) (centripetal terms; r = the anchor's
+    distance from the body's origin); error correction (ERP, 0.8 by default) removes that
+    fraction of the gap each step, so it settles below dt^2/(2 ERP) (|w1|^2 r1 + |w2|^2 r2):
+    second order per step, with the rates read from the trace at every step (capped by the
+    energy the chain can release, so that a runaway cannot widen its own tolerance)."""
+    tr, s = traces[0], settings[0]
+    errors, bounds = [], []
+    for k in range(1, CHAIN_LINKS + 1):
+        _, a1 = tr.series(f"Joint{k}", "body1AnchorPoint")
+        _, a2 = tr.series(f"Joint{k}", "body2AnchorPoint")
+        cap = _omega_cap(CHAIN_I)
+        w1 = np.minimum(_omega(tr, f"Link{k}"), cap)
+        w2 = np.minimum(_omega(tr, "Anchor" if k == 1 else f"Link{k - 1}"), cap)
+        r2 = 0.0 if k == 1 else CHAIN_R
+        errors.append(_max_norm(a1 - a2))
+        bounds.append(float(np.max(w1 ** 2 * CHAIN_R + w2 ** 2 * r2)) * s.dt ** 2 / (2 * ERROR_CORRECTION))
+    worst = int(np.argmax(np.array(errors) / (np.array(bounds) + ROUNDING)))
+    return [Measure(f"Joint{worst + 1} anchor gap (worst joint)", errors[worst], bounds[worst] + ROUNDING, "m")]
+
+
+def _chain() -> Case:
+    return Case("ball_chain", "ball_chain.x3d",
+                "BallJoint chain of 5 links: body1AnchorPoint = body2AnchorPoint for every joint",
+                (Settings(1.5, 1 / 240, None),), _chain_expect, exercises=("BallJoint.anchorPoint",))
+
+
+UJ_INERTIA = {"Upper": 0.02, "Lower": 0.01}
+# the most energy gravity can give the arms: Upper's centre (0.5 m from the fixed shoulder, at
+# y = -0.4) can fall 0.1 m; Lower's (at most 1.0 + 0.5 m from the shoulder, at y = -0.8) 0.7 m
+UJ_ENERGY = 1.0 * G * 0.1 + 0.5 * G * 0.7
+
+
+def _universal_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """|body1Axis . body2Axis| (the cosine; the joint keeps it 0).
+
+    Tree-built joints: rounding only. Velocity-level constraints keep d/dt (a1 . a2) = 0; one
+    step's second-order term is at most dt^2/2 |d^2/dt^2 (a1 . a2)| <= dt^2/2 (|w1| + |w2|)^2,
+    and error correction settles the drift below dt^2/(2 ERP) (|w1| + |w2|)^2, with the rates
+    read from the trace at every step (each capped by the energy the arms can release)."""
+    tr, s = traces[0], settings[0]
+    _, a1 = tr.series("Cross", "body1Axis")
+    _, a2 = tr.series("Cross", "body2Axis")
+    w1 = np.minimum(_omega(tr, "Upper"), math.sqrt(2 * UJ_ENERGY / UJ_INERTIA["Upper"]))
+    w2 = np.minimum(_omega(tr, "Lower"), math.sqrt(2 * UJ_ENERGY / UJ_INERTIA["Lower"]))
+    cos = np.abs(np.einsum("ni,ni->n", a1, a2)) / (np.linalg.norm(a1, axis=1) * np.linalg.norm(a2, axis=1))
+    bound = float(np.max((w1 + w2) ** 2)) * s.dt ** 2 / (2 * ERROR_CORRECTION)
+    return [Measure("Cross |body1Axis . body2Axis|", float(np.max(cos)), bound + ROUNDING, "")]
+
+
+def _universal() -> Case:
+    return Case("universal_joint", "universal_joint.x3d",
+                "UniversalJoint axis1 0.8 0.6 0 / axis2 -0.6 0.8 0: body1Axis stays perpendicular to body2Axis",
+                (Settings(1.5, 1 / 240, None),), _universal_expect,
+                exercises=("UniversalJoint.axis1", "UniversalJoint.axis2", "UniversalJoint.anchorPoint"))
+
+
+def _frame_rate_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Tolerance 0: both runs have taken the same floor(1.0/dt) = 240 steps of a deterministic
+    engine when t = 1.0 s, and frames only read state (x3d_core.evaluator's contract). Any
+    difference, even in the last digit (traces keep every digit), is frame-dependent physics."""
+    t_end = 1.0
+    a, b = traces[0].at(t_end), traces[1].at(t_end)
+    if not a or set(a) != set(b):
+        missing = sorted(set(a) ^ set(b))
+        detail = f" (outputs in one run only: {missing[:4]})" if missing else " (no rows at t = 1)"
+        return [Measure("state at t = 1 s, 30 Hz vs 144 Hz" + detail, math.inf, 0.0)]
+    diff = max(float(np.max(np.abs(a[k] - b[k]))) for k in a)
+    return [Measure("state at t = 1 s, 30 Hz vs 144 Hz (max difference)", diff, 0.0)]
+
+
+def _frame_rate() -> Case:
+    return Case("frame_rate", "frame_rate.x3d",
+                "frame-rate independence: 30 Hz and 144 Hz frames, dt 1/240, identical state at t = 1 s",
+                (Settings(1.0, 1 / 240, 30.0), Settings(1.0, 1 / 240, 144.0)), _frame_rate_expect,
+                exercises=("RigidBody.autoDamp", "SingleAxisHingeJoint", "RigidBody.inertia.offDiagonal"))
+
+
+CASES: tuple[Case, ...] = (_free_fall(), _projectile(), _pendulum(), _torque_free(), _constant_force(),
+                           _constant_torque(), _gravity_off(), _damping(), _slider(), _hinge(), _chain(),
+                           _universal(), _frame_rate())
+BY_NAME = {c.name: c for c in CASES}
+CONVERGENCE_DTS = (1 / 60, 1 / 120, 1 / 240, 1 / 480)
+
+
+def select(names: Sequence[str] | None) -> list[Case]:
+    """The named cases (all when None); KeyError naming the unknown ones."""
+    if not names:
+        return list(CASES)
+    unknown = [n for n in names if n not in BY_NAME]
+    if unknown:
+        raise KeyError(f"unknown case(s) {', '.join(unknown)}; known: {', '.join(BY_NAME)}")
+    return [BY_NAME[n] for n in names]
