@@ -63,6 +63,18 @@ EVALUATOR: dict[str, Declared] = native(
     *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")),
     *(f"UniversalJoint.stop{k}{f}" for k in (1, 2) for f in ("Bounce", "ErrorCorrection")))
 
+# What every 3D backend builds from the World's bulk arrays and its joint forest
+BODIES = ("RigidBody.mass", "RigidBody.inertia", "RigidBody.inertia.offDiagonal", "RigidBody.centerOfMass",
+          "RigidBody.massDensityModel", "RigidBody.massDensityModel.Box", "RigidBody.massDensityModel.Sphere",
+          "RigidBody.massDensityModel.Cone", "RigidBody.fixed", "RigidBody.position", "RigidBody.orientation",
+          "RigidBody.linearVelocity", "RigidBody.angularVelocity", "RigidBody.forces", "RigidBody.torques",
+          "RigidBodyCollection.gravity")
+JOINTS = ("BallJoint", "BallJoint.anchorPoint", "SingleAxisHingeJoint", "SingleAxisHingeJoint.anchorPoint",
+          "SingleAxisHingeJoint.axis", "SingleAxisHingeJoint.limits", "SingleAxisHingeJoint.minAngle",
+          "SingleAxisHingeJoint.maxAngle", "SliderJoint", "SliderJoint.axis", "SliderJoint.limits",
+          "SliderJoint.minSeparation", "SliderJoint.maxSeparation", "UniversalJoint", "UniversalJoint.anchorPoint",
+          "UniversalJoint.axis1", "UniversalJoint.axis2")
+
 NOT_YET = "not implemented by this backend yet"
 ROUTED = Declared(Support.UNSUPPORTED, "x3drbp runs no ROUTEs or Scripts: this input would keep the file's value")
 

@@ -31,7 +31,7 @@ from x3d_core import rotation as R
 from x3d_core.engine import Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
-from .base import Backend, approximate, native, unsupported
+from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 _LOOPS = dart.constraint.DynamicJointConstraint  # holds the loop constraints' class-wide parameters
@@ -209,16 +209,7 @@ class DartSimulation:
 class DartBackend(Backend):
     name = "dart"
     declared = {
-        **native("RigidBody.mass", "RigidBody.inertia", "RigidBody.inertia.offDiagonal", "RigidBody.centerOfMass",
-                 "RigidBody.massDensityModel", "RigidBody.massDensityModel.Box", "RigidBody.massDensityModel.Sphere",
-                 "RigidBody.massDensityModel.Cone", "RigidBody.fixed", "RigidBody.position", "RigidBody.orientation",
-                 "RigidBody.linearVelocity", "RigidBody.angularVelocity", "RigidBody.forces", "RigidBody.torques",
-                 "RigidBody.useGlobalGravity", "RigidBodyCollection.gravity", "RigidBodyCollection.errorCorrection",
-                 "BallJoint", "BallJoint.anchorPoint", "SingleAxisHingeJoint", "SingleAxisHingeJoint.anchorPoint",
-                 "SingleAxisHingeJoint.axis", "SingleAxisHingeJoint.limits", "SingleAxisHingeJoint.minAngle",
-                 "SingleAxisHingeJoint.maxAngle", "SliderJoint", "SliderJoint.axis", "SliderJoint.limits",
-                 "SliderJoint.minSeparation", "SliderJoint.maxSeparation", "UniversalJoint",
-                 "UniversalJoint.anchorPoint", "UniversalJoint.axis1", "UniversalJoint.axis2"),
+        **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBodyCollection.errorCorrection"),
         **approximate("DART's CFM is relative to each constraint row (its diagonal A becomes A*(1+cfm)+cfm), "
                       "ODE's adds CFM/dt: converted as cfm = CFM/(2*dt), exact for a unit effective mass; "
                       "it acts on loop constraints only (tree joints are exact)",

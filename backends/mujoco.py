@@ -19,7 +19,7 @@ from x3d_core import rotation as R
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, World, State
 
-from .base import Backend, approximate, native, unsupported
+from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 # ODE's motors reach their target velocity in one step if the torque limit allows. A
@@ -126,16 +126,23 @@ class MujocoSimulation:
         a suspension spring along axis 1 (k = ERP/(h*CFM), c = (1-ERP)/CFM) and a hinge
         about axis 2 (carried by body2, with its motor)."""
         p = j.params
-        hinge1 = body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=axes[0], name=f"{j.name}:1")
-        self._limit(hinge1, p["minAngle1"], p["maxAngle1"], sign, p["stop1ErrorCorrection"])
-        if p["suspensionForce"] > 0:
-            dt, cfm, erp = self.dt, p["suspensionForce"], p["suspensionErrorCorrection"]
-            body.add_joint(type=mujoco.mjtJoint.mjJNT_SLIDE, pos=pos, axis=axes[0],
-                           stiffness=erp / (dt * cfm), damping=(1 - erp) / cfm)
-        hinge2 = body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=axes[1], name=f"{j.name}:2")
-        if child != j.body2:  # body1 is the child: its hinge (axis 1) must come last
-            hinge1.axis, hinge2.axis = axes[1], axes[0]
-            hinge1.name, hinge2.name = f"{j.name}:2", f"{j.name}:1"
+
+        def hinge(k: int) -> None:
+            jt = body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=axes[k - 1], name=f"{j.name}:{k}")
+            if k == 1:
+                self._limit(jt, p["minAngle1"], p["maxAngle1"], sign, p["stop1ErrorCorrection"])
+
+        def suspension() -> None:
+            if p["suspensionForce"] > 0:
+                dt, cfm, erp = self.dt, p["suspensionForce"], p["suspensionErrorCorrection"]
+                body.add_joint(type=mujoco.mjtJoint.mjJNT_SLIDE, pos=pos, axis=axes[0],
+                               stiffness=erp / (dt * cfm), damping=(1 - erp) / cfm)
+
+        # MuJoCo chains a body's joints from its parent outwards: the parent's axis first
+        if child == j.body2:
+            hinge(1), suspension(), hinge(2)
+        else:
+            hinge(2), hinge(1), suspension()
         b = self.world.bodies
         com = b.com[child]
         for k in (1, 2):
@@ -231,16 +238,7 @@ class MujocoSimulation:
 class MujocoBackend(Backend):
     name = "mujoco"
     declared = {
-        **native("RigidBody.mass", "RigidBody.inertia", "RigidBody.inertia.offDiagonal", "RigidBody.centerOfMass",
-                 "RigidBody.massDensityModel", "RigidBody.massDensityModel.Box", "RigidBody.massDensityModel.Sphere",
-                 "RigidBody.massDensityModel.Cone", "RigidBody.fixed", "RigidBody.position", "RigidBody.orientation",
-                 "RigidBody.linearVelocity", "RigidBody.angularVelocity", "RigidBody.forces", "RigidBody.torques",
-                 "RigidBody.useGlobalGravity", "RigidBodyCollection.gravity", "RigidBodyCollection.iterations",
-                 "BallJoint", "BallJoint.anchorPoint", "SingleAxisHingeJoint", "SingleAxisHingeJoint.anchorPoint",
-                 "SingleAxisHingeJoint.axis", "SingleAxisHingeJoint.limits", "SingleAxisHingeJoint.minAngle",
-                 "SingleAxisHingeJoint.maxAngle", "SliderJoint", "SliderJoint.axis", "SliderJoint.limits",
-                 "SliderJoint.minSeparation", "SliderJoint.maxSeparation", "UniversalJoint",
-                 "UniversalJoint.anchorPoint", "UniversalJoint.axis1", "UniversalJoint.axis2",
+        **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBodyCollection.iterations",
                  "DoubleAxisHingeJoint", "DoubleAxisHingeJoint.anchorPoint", "DoubleAxisHingeJoint.axis1",
                  "DoubleAxisHingeJoint.axis2", "DoubleAxisHingeJoint.limits", "DoubleAxisHingeJoint.minAngle1",
                  "DoubleAxisHingeJoint.maxAngle1", "DoubleAxisHingeJoint.suspensionForce",

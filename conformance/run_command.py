@@ -52,6 +52,9 @@ def cmd_run(args: argparse.Namespace) -> int:
     except BlewUp as e:
         print(f"{args.scene}: {args.backend}: {e}", file=sys.stderr)
         return EXIT_ERROR
+    except Exception as e:  # the engine refused its model: still one line, never a traceback
+        print(f"{args.scene}: {args.backend} failed: {type(e).__name__}: {e}", file=sys.stderr)
+        return EXIT_ERROR
     if args.trace:
         trace.write(args.trace)
     else:

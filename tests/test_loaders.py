@@ -285,3 +285,11 @@ def test_errors_found_before_a_fatal_one_are_kept(tmp_path):
         load(str(p))
     assert [(d.loc.line, d.severity) for d in e.value.diagnostics] == [(2, "error"), (3, "error")]
     assert "mass" in e.value.diagnostics[0].subject
+
+
+@pytest.mark.parametrize("inertia,fragment", [("1 0 0 0 1 0 0 0 3", "principal moments 1, 1, 3"),
+                                              ("1 0.5 0 0 1 0 0 0 1", "not symmetric"),
+                                              ("1 0 0 0 -1 0 0 0 1", "must be positive")])
+def test_inertia_must_be_a_rigid_bodys(tmp_path, inertia, fragment):
+    s = xml(tmp_path, f"<RigidBody inertia='{inertia}'/>")
+    assert [e.subject for e in s.errors] == ["RigidBody.inertia"] and fragment in s.errors[0].message

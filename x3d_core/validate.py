@@ -83,6 +83,9 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
         for f in AXIS_FIELDS.get(joint.type_name, ()):
             if not np.any(joint.get(f)):
                 warn(joint, f, "axis is 0 0 0 and defines no direction")
+    for body in groups.get("RigidBody", []):
+        if "inertia" in body.values and body.get("massDensityModel") is None:
+            _physical_inertia(body, err)
     for body_id, colls in body_owners.items():
         if len(colls) > 1:
             body = next(b for b in colls[0].get("bodies") if id(b) == body_id)
@@ -93,6 +96,20 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
                 err(node, "appliedParameters", f"{v!r} is not an applied parameter; allowed: "
                                                f"{', '.join(CANONICAL)} (or with '_' for '-')")
     scene.diagnostics.extend(out)
+
+
+def _physical_inertia(body: Node, err) -> None:
+    """A rigid body's principal moments are positive and each is at most the sum of the
+    other two; engines refuse (MuJoCo) or quietly clamp (Bullet) anything else."""
+    m = np.asarray(body.get("inertia"), dtype=np.float64).reshape(3, 3)
+    if not np.allclose(m, m.T, rtol=1e-6, atol=1e-12):
+        err(body, "inertia", "the inertia tensor is not symmetric (I12 = I21, I13 = I31, I23 = I32)")
+        return
+    a, b, c = np.linalg.eigvalsh(m)
+    tol = 1e-9 * max(abs(c), 1e-300)
+    if a <= 0 or a + b < c - tol:
+        err(body, "inertia", f"not the inertia of a rigid body: principal moments {a:.6g}, {b:.6g}, {c:.6g} "
+                             "must be positive, each no more than the sum of the other two")
 
 
 def _force_output(joint: Node, err) -> None:

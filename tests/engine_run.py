@@ -1,0 +1,52 @@
+"""Running a small scene on one backend and reading its trace back, for the backend tests."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from x3d_core import rotation as R
+from x3d_core.evaluator import RunSettings, run
+from x3d_core.load import load
+from x3d_core.world import worlds
+
+DT = 1 / 240
+G = 9.81
+
+Series = dict[tuple[str, str], list[tuple[float, np.ndarray]]]
+
+
+def run_x3d(tmp_path, body: str, duration: float = 1.0, frame_rate: float = 60, dt: float = DT,
+            times: np.ndarray | None = None, *, backend) -> Series:
+    """Run the scene (X3D XML text of the Scene's content) and return its trace as
+    (node, field) -> [(time, value)], values parsed with float()."""
+    p = tmp_path / "s.x3d"
+    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n"
+                 f"{body}\n</Scene></X3D>\n")
+    scene = load(str(p))
+    assert not scene.errors, [str(e) for e in scene.errors]
+    trace = run(worlds(scene), backend, RunSettings(duration, dt, frame_rate), times)
+    series: Series = {}
+    for r in trace.rows:
+        series.setdefault((r.node, r.field), []).append((r.time, np.array([float(x) for x in r.value.split()])))
+    return series
+
+
+def values(series: Series, node: str, field: str) -> np.ndarray:
+    return np.array([v for _, v in series[(node, field)]])
+
+
+def times(series: Series, node: str, field: str) -> np.ndarray:
+    return np.array([t for t, _ in series[(node, field)]])
+
+
+def first(series: Series, node: str, field: str) -> np.ndarray:
+    return series[(node, field)][0][1]
+
+
+def last(series: Series, node: str, field: str) -> np.ndarray:
+    return series[(node, field)][-1][1]
+
+
+def same_rotation(axis_angle: np.ndarray, expected: np.ndarray, tol: float) -> bool:
+    q, e = R.from_axis_angle(axis_angle), R.from_axis_angle(expected)
+    return min(np.abs(q - e).max(), np.abs(q + e).max()) < tol
