@@ -187,3 +187,26 @@ def test_hinge2_limits_hold_when_body1_is_the_moving_body(tmp_path):
     angles = [v[0] for _, v in s[("H2", "hinge1Angle")]]
     # driven at -1 rad/s into the stop at -0.3: held there (soft by at most a few mrad)
     assert min(angles) > -0.3 - 0.01 and angles[-1] == pytest.approx(-0.3, abs=0.01)
+
+
+def test_auto_disable_stops_a_slow_free_body_after_its_time(tmp_path):
+    s = simulate(tmp_path, """<RigidBodyCollection gravity='0 0 0'>
+      <RigidBody DEF='Slow' linearVelocity='0.05 0 0' autoDisable='true' disableLinearSpeed='0.1'
+          disableAngularSpeed='0.1' disableTime='0.5'/>
+      <RigidBody DEF='Fast' linearVelocity='0.5 0 0' autoDisable='true' disableLinearSpeed='0.1'
+          disableAngularSpeed='0.1' disableTime='0.5'/></RigidBodyCollection>""", duration=1.0, frame_rate=240)
+    slow = dict((round(t * 240), v) for t, v in s[("Slow", "position")])
+    # idle from the first step, disabled once 0.5 s have passed: it moved 0.05 m/s until then
+    assert slow[240][0] == slow[120][0] == pytest.approx(0.05 * 120 * DT, abs=1e-12)
+    assert last(s, "Slow", "linearVelocity") == pytest.approx([0, 0, 0], abs=0)
+    assert last(s, "Fast", "position")[0] == pytest.approx(0.5, abs=1e-9)
+
+
+def test_a_disabled_body_stays_up_under_gravity_and_a_disabled_node_is_out(tmp_path):
+    s = simulate(tmp_path, """<RigidBodyCollection gravity='0 -9.81 0'>
+      <RigidBody DEF='Held' position='0 1 0' autoDisable='true' disableLinearSpeed='0.1'
+          disableAngularSpeed='0.1'/>
+      <RigidBody DEF='Off' position='0 2 0' enabled='false'/></RigidBodyCollection>""")
+    # disableTime 0: disabled after its first step, having fallen g dt^2 and no more
+    assert last(s, "Held", "position")[1] == pytest.approx(1 - 9.81 * DT * DT, abs=1e-12)
+    assert ("Off", "position") not in s  # not enabled: not part of the physics, not in the trace

@@ -18,7 +18,7 @@ from . import rotation as R
 from .engine import BlewUp, Engine, Simulation
 from .joint_outputs import JointOutputs
 from .trace import Trace
-from .world import STATIC, World
+from .world import STATIC, State, World
 
 # A frame end that lands within this fraction of a step of a step boundary counts as
 # on it: frame times are sums of decimal fractions and carry rounding of ~1e-16 s.
@@ -55,10 +55,6 @@ class _Damping:
         self.keep_linear = np.where(on, 1.0 - b.linear_damping, 1.0)[:, None]
         self.keep_angular = np.where(on, 1.0 - b.angular_damping, 1.0)[:, None]
 
-    def apply(self, sim: Simulation) -> None:
-        s = sim.state()
-        sim.set_velocities(s.linear_velocity * self.keep_linear, s.angular_velocity * self.keep_angular)
-
 
 class _Motors:
     """MotorJoint as ODE's AMotor: each enabled axis (carried by body1, or fixed in the
@@ -66,7 +62,6 @@ class _Motors:
     body2 its opposite, at every step."""
 
     def __init__(self, world: World):
-        self.world = world
         self.motors = []
         for j in world.joints:
             n = int(j.params.get("enabledAxes", 0)) if j.type == "MotorJoint" else 0
@@ -76,9 +71,7 @@ class _Motors:
                 self.motors.append((j, R.rotate(R.conjugate(q1), j.axes[:n]), torques))
         self.active = bool(self.motors)
 
-    def apply(self, sim: Simulation) -> None:
-        s = sim.state()
-        torques = self.world.bodies.torques.copy()
+    def add_torques(self, torques: np.ndarray, s: State) -> None:
         for j, local_axes, amounts in self.motors:
             q1 = R.IDENTITY if j.body1 == STATIC else s.orientation[j.body1]
             tau = amounts @ R.rotate(q1, local_axes)
@@ -86,15 +79,82 @@ class _Motors:
                 torques[j.body1] += tau
             if j.body2 != STATIC:
                 torques[j.body2] -= tau
-        sim.set_loads(self.world.bodies.forces, torques)
+
+
+class _AutoDisable:
+    """autoDisable as ODE's auto-disable: a body whose linear and angular speeds stay under
+    its thresholds for disableTime seconds stops; nothing in a run without contacts wakes
+    it. A body's own thresholds apply where its autoDisable is TRUE, else the collection's
+    where that is. Only bodies on no joint take part: ODE disables whole islands of
+    jointed bodies at once, which x3drbp does not model (declared approximate)."""
+
+    def __init__(self, world: World, dt: float):
+        b = world.bodies
+        c = world.node
+        on_collection = bool(c.get("autoDisable"))
+        collection = np.array([c.get("disableLinearSpeed"), c.get("disableAngularSpeed"), c.get("disableTime")])
+        jointed = np.zeros(len(b), dtype=bool)
+        for j in world.joints:
+            for row in (j.body1, j.body2):
+                if row != STATIC:
+                    jointed[row] = True
+        self.candidates = (b.auto_disable | on_collection) & ~b.fixed & ~jointed
+        self.thresholds = np.where(b.auto_disable[:, None], b.disable_thresholds, collection)
+        self.active = bool(self.candidates.any())
+        # idle time counted in whole steps, so that 0.5 s at 1/240 s is 120 steps, not 121
+        self.needed = np.ceil(self.thresholds[:, 2] / dt - _STEP_SLACK)
+        self.idle = np.zeros(len(b))
+        self.disabled = np.zeros(len(b), dtype=bool)
+
+    def update(self, s: State) -> None:
+        slow = (np.linalg.norm(s.linear_velocity, axis=1) < self.thresholds[:, 0]) & \
+            (np.linalg.norm(s.angular_velocity, axis=1) < self.thresholds[:, 1])
+        self.idle = np.where(slow & self.candidates, self.idle + 1, 0)
+        self.disabled |= self.candidates & (self.idle >= self.needed) & slow
+
+
+class _StepInputs:
+    """What changes at every step and must be done between engine steps: motor torques,
+    damping, auto-disable. Inactive (and free) for scenes that use none of them."""
+
+    def __init__(self, world: World, dt: float):
+        self.world = world
+        self.damping = _Damping(world)
+        self.motors = _Motors(world)
+        self.disable = _AutoDisable(world, dt)
+        self.active = self.damping.active or self.motors.active or self.disable.active
+        b = world.bodies
+        self.weight = b.mass[:, None] * world.gravity * b.use_gravity[:, None]
+
+    def before(self, sim: Simulation) -> None:
+        if not (self.motors.active or self.disable.disabled.any()):
+            return
+        b = self.world.bodies
+        forces, torques = b.forces.copy(), b.torques.copy()
+        self.motors.add_torques(torques, sim.state())
+        off = self.disable.disabled
+        forces[off] = -self.weight[off]  # a disabled body feels nothing: its loads cancel gravity
+        torques[off] = 0.0
+        sim.set_loads(forces, torques)
+
+    def after(self, sim: Simulation) -> None:
+        if not (self.damping.active or self.disable.active):
+            return
+        s = sim.state()
+        lin = s.linear_velocity * self.damping.keep_linear
+        ang = s.angular_velocity * self.damping.keep_angular
+        if self.disable.active:
+            self.disable.update(s)
+            lin[self.disable.disabled] = 0.0
+            ang[self.disable.disabled] = 0.0
+        sim.set_velocities(lin, ang)
 
 
 def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times: np.ndarray | None = None) -> Trace:
     """Simulate every world and return the event trace."""
     dt = settings.dt
     sims = [engine.build(w, dt) for w in worlds]
-    damping = [_Damping(w) for w in worlds]
-    motors = [_Motors(w) for w in worlds]
+    inputs = [_StepInputs(w, dt) for w in worlds]
     recorders = [_Recorder(w, sim) for w, sim in zip(worlds, sims)]
     trace = Trace()
     for rec in recorders:
@@ -102,15 +162,13 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
     steps = 0
     for t in settings.frame_times() if frame_times is None else frame_times:
         due = int(math.floor(t / dt + _STEP_SLACK))
-        for sim, damp, motor in zip(sims, damping, motors):
+        for sim, step_inputs in zip(sims, inputs):
             try:
-                if damp.active or motor.active:  # inputs that change at every step
+                if step_inputs.active:
                     for _ in range(due - steps):
-                        if motor.active:
-                            motor.apply(sim)
+                        step_inputs.before(sim)
                         sim.step()
-                        if damp.active:
-                            damp.apply(sim)
+                        step_inputs.after(sim)
                 elif due > steps:
                     sim.step(due - steps)
             except BlewUp as e:

@@ -31,8 +31,8 @@ class Bodies:
     orientation: np.ndarray  # (n, 4) quaternions w x y z
     linear_velocity: np.ndarray  # (n, 3) of the centre of mass (as in ODE and every engine)
     angular_velocity: np.ndarray  # (n, 3)
-    fixed: np.ndarray  # (n,) bool
-    enabled: np.ndarray  # (n,) bool
+    fixed: np.ndarray  # (n,) bool: fixed, or not enabled (out of the physics, held where it is)
+    enabled: np.ndarray  # (n,) bool: in the physics and in the trace
     use_gravity: np.ndarray  # (n,) bool
     auto_damp: np.ndarray  # (n,) bool
     linear_damping: np.ndarray  # (n,)
@@ -158,7 +158,7 @@ def _bodies(nodes: list[Node], names: dict[int, str]) -> Bodies:
         position=vec("position"),
         orientation=R.from_axis_angle(np.array([b.get("orientation") for b in nodes]).reshape(n, 4)),
         linear_velocity=vec("linearVelocity"), angular_velocity=vec("angularVelocity"),
-        fixed=flag("fixed"), enabled=flag("enabled"), use_gravity=flag("useGlobalGravity"),
+        fixed=flag("fixed") | ~flag("enabled"), enabled=flag("enabled"), use_gravity=flag("useGlobalGravity"),
         auto_damp=flag("autoDamp"), linear_damping=num("linearDampingFactor"),
         angular_damping=num("angularDampingFactor"), forces=summed("forces"), torques=summed("torques"),
         finite_rotation=flag("useFiniteRotation"), finite_rotation_axis=axis,
