@@ -42,11 +42,12 @@ def test_the_same_run_twice_gives_the_same_bytes(tmp_path):
 
 def test_unsupported_features_exit_3_naming_each_and_write_nothing(tmp_path):
     scene = tmp_path / "s.x3dv"
-    scene.write_text("#X3D V4.0 utf8\nRigidBodyCollection { bodies [ RigidBody { autoDisable TRUE } ] }\n")
+    scene.write_text("#X3D V4.0 utf8\nRigidBodyCollection { bodies [ DEF A RigidBody { } DEF B RigidBody { } ]\n"
+                     "joints SingleAxisHingeJoint { body1 USE A body2 USE B stopBounce 0.5 maxAngle 1 } }\n")
     out = tmp_path / "t.csv"
     r = x3drbp("run", str(scene), "--backend", "mujoco", "--trace", str(out))
     assert r.returncode == 3
-    assert "RigidBody.autoDisable" in r.stderr and not out.exists()
+    assert "SingleAxisHingeJoint.stopBounce" in r.stderr and not out.exists()
 
 
 @pytest.mark.parametrize("args", [["--backend", "nope"], ["--backend", "mujoco", "--duration", "x"]])
