@@ -1,11 +1,12 @@
 # Two commands do all the set-up on a fresh machine with Python 3.11+:
-#   make check   installs into .venv and runs the main job (x3drbp check over the bundled scenes)
+#   make report  installs into .venv and runs the main job: x3drbp check over the bundled
+#                scenes, then the conformance matrix of every case on every engine
 #   make test    installs into .venv (with the dev tools) and runs the tests
 PYTHON ?= python3
 VENV := .venv
 STAMP := $(VENV)/.installed
 
-.PHONY: check test bench
+.PHONY: report test bench
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -13,11 +14,13 @@ $(STAMP): pyproject.toml
 	$(VENV)/bin/pip install --quiet -e '.[dev]'
 	touch $(STAMP)
 
-check: $(STAMP)
-	$(VENV)/bin/x3drbp check scenes
+report: $(STAMP)
+	$(VENV)/bin/x3drbp check -q scenes
+	$(VENV)/bin/x3drbp conformance --out out/conformance
 
 test: $(STAMP)
 	$(VENV)/bin/python -m pytest -q
 
 bench: $(STAMP)
 	$(VENV)/bin/python benchmarks/load_large.py
+	$(VENV)/bin/python benchmarks/run_overhead.py --backends mujoco,bullet,dart
