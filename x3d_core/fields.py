@@ -297,6 +297,8 @@ def _numbers_text(value: Any, ftype: FieldType, sep: str) -> str:
         return " ".join(str(v) for v in flat)
     if isinstance(value, float):
         return _num(value)
+    if isinstance(value, list) and not (value and isinstance(value[0], list)):
+        return " ".join(map(_num, value))  # one SF vector, as a trace hands it over
     arr = np.asarray(value, dtype=np.float64)
     if arr.ndim == 2:
         return sep.join(" ".join(map(_num, row)) for row in arr.tolist())
