@@ -52,6 +52,8 @@ def _wxyz(q: np.ndarray) -> np.ndarray:
 def _principal(inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Principal moments and the principal frame's orientation in the body frame: pybullet
     takes a diagonal inertia in a turned inertial frame, not a full tensor."""
+    if not np.any(inertia - np.diag(np.diag(inertia))):  # already principal: keep the body's axes
+        return np.maximum(np.diag(inertia), 0.0), R.IDENTITY.copy()
     moments, axes = np.linalg.eigh(inertia)
     if np.linalg.det(axes) < 0:
         axes[:, 2] = -axes[:, 2]
@@ -140,6 +142,11 @@ class BulletSimulation:
         self.unturn = R.conjugate(np.array([pt.principal for pt in parts]).reshape(-1, 4))
         self.inertial = np.array([pt.inertial for pt in parts]).reshape(-1, 3)
         self.offset = np.array([pt.offset for pt in parts]).reshape(-1, 3)
+        # per frame: the body origin is the centre of mass less the turned local offset between
+        # them; most scenes have neither a turned principal frame nor an offset, and skip the maths
+        self.turned = bool(np.any(self.unturn != R.IDENTITY))
+        self.com_local = self.inertial - self.offset
+        self.shifted = bool(np.any(self.com_local))
         self.static_anchor: int | None = None
         for k in world.loop_joints:
             self._loop(world.joints[k])
@@ -320,7 +327,7 @@ class BulletSimulation:
 
     def _frames(self, com: np.ndarray, q_com: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Every part's link frame (position, orientation) from its centre-of-mass frame."""
-        q = R.multiply(q_com, self.unturn)
+        q = R.multiply(q_com, self.unturn) if self.turned else q_com
         return com - R.rotate(q, self.inertial), q
 
     def state(self) -> State:
@@ -328,10 +335,11 @@ class BulletSimulation:
         s = State.initial(b)
         s.linear_velocity[b.fixed] = 0.0
         s.angular_velocity[b.fixed] = 0.0
-        com, q_com, v, w = self._read(velocities=True)
-        frame_pos, q = self._frames(com, q_com)
+        com, q, v, w = self._read(velocities=True)
+        if self.turned:
+            q = R.multiply(q, self.unturn)
         rows, on = self.rows[self.bodies], self.bodies
-        s.position[rows] = (frame_pos + R.rotate(q, self.offset))[on]
+        s.position[rows] = (com - R.rotate(q, self.com_local) if self.shifted else com)[on]
         s.orientation[rows], s.linear_velocity[rows], s.angular_velocity[rows] = q[on], v[on], w[on]
         return s
 

@@ -35,6 +35,10 @@ from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 _LOOPS = dart.constraint.DynamicJointConstraint  # holds the loop constraints' class-wide parameters
+# the mass of a link between a hinge2's degrees of freedom, relative to its child's (its
+# inertia likewise): DART warns that a massless body node may misbehave; this one changes
+# the child's effective inertia by as little (measured in tests/test_backend_dart.py)
+_LINK_MASS = 1e-9
 
 
 def _isometry(q: np.ndarray, p: np.ndarray) -> dart.math.Isometry3:
@@ -51,6 +55,8 @@ class DartSimulation:
         self.dart_world = dart.simulation.World(world.name)
         self.dart_world.setTimeStep(dt)
         self.dart_world.setGravity(np.asarray(world.gravity, dtype=np.float64))
+        self.dt = dt
+        self.motors: list[tuple[dart.dynamics.Joint, int, float]] = []  # (joint, degree of freedom, target velocity)
         sleep = self.dart_world.getDeactivationOptions()
         sleep.mEnabled = False  # on by default (under 1 cm/s and 0.05 rad/s for 0.5 s)
         self.dart_world.setDeactivationOptions(sleep)
@@ -119,16 +125,21 @@ class DartSimulation:
         parent = None if p < 0 else self.nodes[p]
         axes = R.rotate(cq, j.axes)  # joint frame = the child's starting orientation
         sign = -1.0 if child == j.body2 else 1.0  # DART: child relative to parent
+        to_parent = _isometry(R.multiply(R.conjugate(pq), b.orientation[child]),
+                              R.rotate(R.conjugate(pq), j.anchor - pp))
+        to_child = _isometry(R.IDENTITY, R.rotate(cq, j.anchor - b.position[child]))
+        if j.type == "DoubleAxisHingeJoint":
+            return self._hinge2(skeleton, parent, child, j, axes, sign, to_parent, to_child)
         if j.type == "BallJoint":
             joint, node = skeleton.createBallJointAndBodyNodePair(parent)
         elif j.type == "SingleAxisHingeJoint":
             joint, node = skeleton.createRevoluteJointAndBodyNodePair(parent)
             joint.setAxis(axes[0])
-            self._limit(joint, j.params["minAngle"], j.params["maxAngle"], sign, angular=True)
+            self._limit(joint, 0, j.params["minAngle"], j.params["maxAngle"], sign, angular=True)
         elif j.type == "SliderJoint":
             joint, node = skeleton.createPrismaticJointAndBodyNodePair(parent)
             joint.setAxis(axes[0])
-            self._limit(joint, j.params["minSeparation"], j.params["maxSeparation"], sign, angular=False)
+            self._limit(joint, 0, j.params["minSeparation"], j.params["maxSeparation"], sign, angular=False)
         elif j.type == "UniversalJoint":
             joint, node = skeleton.createUniversalJointAndBodyNodePair(parent)
             first, second = (axes[0], axes[1]) if child == j.body2 else (axes[1], axes[0])
@@ -136,18 +147,90 @@ class DartSimulation:
             joint.setAxis2(second)  # carried by the child
         else:
             raise Unsupported(f"{j.type} {j.name}: not built by the dart backend yet")
-        joint.setTransformFromParentBodyNode(
-            _isometry(R.multiply(R.conjugate(pq), b.orientation[child]), R.rotate(R.conjugate(pq), j.anchor - pp)))
-        joint.setTransformFromChildBodyNode(_isometry(R.IDENTITY, R.rotate(cq, j.anchor - b.position[child])))
+        joint.setTransformFromParentBodyNode(to_parent)
+        joint.setTransformFromChildBodyNode(to_child)
         return node
 
+    def _hinge2(self, skeleton: dart.dynamics.Skeleton, parent: dart.dynamics.BodyNode | None, child: int, j: Joint,
+                axes: np.ndarray, sign: float, to_parent: dart.math.Isometry3,
+                to_child: dart.math.Isometry3) -> dart.dynamics.BodyNode:
+        """ODE's hinge2: a hinge about axis 1 (carried by body1, with its limits and motor), a
+        suspension spring along axis 1 (k = ERP/(h*CFM), c = (1-ERP)/CFM; none when
+        suspensionForce is 0) and a hinge about axis 2 (carried by body2, with its motor).
+
+        Degrees of freedom from the parent outwards, as in backends/mujoco.py: hinge 1,
+        slide, hinge 2 when the child is body2; hinge 2, hinge 1, slide when it is body1.
+        Without suspension the two hinges are one UniversalJoint; with it they are a chain of
+        single-dof joints through bodies of _LINK_MASS times the child's mass (and inertia),
+        without gravity. DART's joint spring is implicit, f = -k (q + h v') - c v' with v' the
+        velocity after the step: ODE's soft constraint row, term for term."""
+        p = j.params
+        b = self.world.bodies
+        spring = p["suspensionForce"] > 0
+        order = [1, 0, 2] if child == j.body2 else [2, 1, 0]  # hinge number; 0: the suspension slide
+        if not spring:
+            order.remove(0)
+            joint, node = skeleton.createUniversalJointAndBodyNodePair(parent)
+            joint.setAxis1(axes[order[0] - 1])  # fixed in the parent
+            joint.setAxis2(axes[order[1] - 1])  # carried by the child
+            joint.setTransformFromParentBodyNode(to_parent)
+            joint.setTransformFromChildBodyNode(to_child)
+            dof = {k: (joint, n) for n, k in enumerate(order)}
+        else:
+            dof = {}
+            link_inertia = _LINK_MASS * np.trace(b.inertia[child]) / 3 * np.eye(3)
+            for n, k in enumerate(order):
+                if k == 0:
+                    joint, node = skeleton.createPrismaticJointAndBodyNodePair(parent)
+                    joint.setAxis(axes[0])
+                    cfm, erp = p["suspensionForce"], p["suspensionErrorCorrection"]
+                    joint.setSpringStiffness(0, erp / (self.dt * cfm))
+                    joint.setDampingCoefficient(0, (1 - erp) / cfm)
+                    joint.setRestPosition(0, 0.0)
+                else:
+                    joint, node = skeleton.createRevoluteJointAndBodyNodePair(parent)
+                    joint.setAxis(axes[k - 1])
+                joint.setName(f"{j.name}:{k}")
+                if n == 0:
+                    joint.setTransformFromParentBodyNode(to_parent)
+                if n < len(order) - 1:  # a link between two degrees of freedom, at the anchor
+                    node.setName(f"{j.name}:link{n}")
+                    node.setInertia(dart.dynamics.Inertia(_LINK_MASS * float(b.mass[child]), np.zeros(3),
+                                                          link_inertia))
+                    node.setGravityMode(False)
+                    parent = node
+                else:
+                    joint.setTransformFromChildBodyNode(to_child)
+                dof[k] = (joint, 0)
+        limited, index = dof[1]
+        self._limit(limited, index, p["minAngle1"], p["maxAngle1"], sign, angular=True)
+        for k in (1, 2):
+            if p[f"maxTorque{k}"] > 0:
+                joint, index = dof[k]
+                self._servo(joint, index, sign * p[f"desiredAngularVelocity{k}"], p[f"maxTorque{k}"])
+        return node
+
+    def _servo(self, joint: dart.dynamics.Joint, index: int, target: float, limit: float) -> None:
+        """ODE's motor: a velocity constraint whose torque is bounded by maxTorque. DART's SERVO
+        actuator is that row in its constraint solver (the command is the target velocity,
+        the force limits bound its impulse over the step). DART sets actuator types per
+        joint only, so a joint's other degrees of freedom get zero force limits: no motor."""
+        if joint.getActuatorType() != dart.dynamics.ActuatorType.SERVO:
+            joint.setActuatorType(dart.dynamics.ActuatorType.SERVO)
+            for i in range(joint.getNumDofs()):
+                joint.setForceLowerLimit(i, 0.0)
+                joint.setForceUpperLimit(i, 0.0)
+        joint.setForceLowerLimit(index, -limit)
+        joint.setForceUpperLimit(index, limit)
+        self.motors.append((joint, index, target))
+
     @staticmethod
-    def _limit(joint: dart.dynamics.Joint, lo: float, hi: float, sign: float, angular: bool) -> None:
+    def _limit(joint: dart.dynamics.Joint, index: int, lo: float, hi: float, sign: float, angular: bool) -> None:
         if angular and lo <= -_FULL_TURN and hi >= _FULL_TURN:
             return
         a, b = sorted((sign * lo, sign * hi))
-        joint.setPositionLowerLimit(0, a)
-        joint.setPositionUpperLimit(0, b)
+        joint.setPositionLowerLimit(index, a)
+        joint.setPositionUpperLimit(index, b)
         joint.setLimitEnforcement(True)
 
     def _loop(self, j: Joint) -> list[dart.constraint.BallJointConstraint]:
@@ -174,6 +257,8 @@ class DartSimulation:
             for node, force, com, torque in self.pushed:  # DART clears them after every step
                 node.addExtForce(force, com, False, True)
                 node.addExtTorque(torque, False)
+            for joint, index, target in self.motors:  # and the commands too
+                joint.setCommand(index, target)
             self.dart_world.step()
 
     def state(self) -> State:

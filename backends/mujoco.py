@@ -81,6 +81,10 @@ class MujocoSimulation:
         self.data = mujoco.MjData(self.model)
         self.ids = np.array([self.model.body(f"b{i}").id for i in range(len(b))], dtype=int)
         self.roots = self.model.body_rootid[self.ids]
+        # bodies are usually numbered in row order: read them as one slice (a view, no gather)
+        n = len(self.ids)
+        contiguous = n and np.array_equal(self.ids, np.arange(self.ids[0], self.ids[0] + n))
+        self.rows = slice(int(self.ids[0]), int(self.ids[0]) + n) if contiguous else self.ids
         self.bad_acceleration = self.data.warning[mujoco.mjtWarning.mjWARN_BADQACC]
         # free bodies with nothing hanging from them take velocities directly (the usual
         # case for big scenes); anything jointed goes through a least-squares fit
@@ -200,10 +204,11 @@ class MujocoSimulation:
     def state(self) -> State:
         self._forward_kinematics()
         d = self.data
-        cvel = d.cvel[self.ids]  # [angular, linear at the subtree centre of the body's root]
+        rows = self.rows
+        cvel = d.cvel[rows]  # [angular, linear at the subtree centre of the body's root]
         ang = cvel[:, :3].copy()
-        lin = cvel[:, 3:] + R.cross(ang, d.xipos[self.ids] - d.subtree_com[self.roots])
-        return State(d.xpos[self.ids].copy(), d.xquat[self.ids].copy(), lin, ang)
+        lin = cvel[:, 3:] + R.cross(ang, d.xipos[rows] - d.subtree_com[self.roots])
+        return State(d.xpos[rows].copy(), d.xquat[rows].copy(), lin, ang)
 
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
         self._set_body_velocities(linear, angular)
