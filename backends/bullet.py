@@ -423,8 +423,8 @@ class BulletBackend(Backend):
                       "(it cancels gravity to rounding)", "RigidBody.useGlobalGravity"),
         **approximate("tree joints are exact (reduced coordinates); errorCorrection sets pybullet's erp, which "
                       "acts on joint limits and loop constraints", "RigidBodyCollection.errorCorrection"),
-        **approximate("tree joints are exact (reduced coordinates); pybullet's multibody constraint rows (limits, "
-                      "loop joints) carry no CFM, so the value has no effect", "RigidBodyCollection.constantForceMix"),
+        **unsupported("pybullet's multibody constraint rows (limits, loop joints) carry no CFM: the value cannot "
+                      "reach them (tree joints are exact either way)", "RigidBodyCollection.constantForceMix"),
         **approximate(f"pybullet has one first-order integrator: {_SUBSTEPS_ACCURATE} internal substeps per step",
                       "RigidBodyCollection.preferAccuracy"),
         **unsupported("pybullet's multibody joints have no compliance and its constraint rows no CFM: ODE's "
