@@ -2,7 +2,9 @@
 
 A tree's root gets a FreeJoint (a free root) or its tree joint to the world (a root
 hanging from the static environment); every other body gets its tree joint to its
-parent (BallJoint, RevoluteJoint, PrismaticJoint, UniversalJoint). A joint's frame sits
+parent (BallJoint, RevoluteJoint, PrismaticJoint, UniversalJoint; a DoubleAxisHingeJoint is
+a UniversalJoint, or with its suspension a chain of revolute, prismatic and revolute
+joints through links of negligible mass). A joint's frame sits
 at the anchor with the child's starting orientation, so the child starts at its X3D
 pose with every joint coordinate zero and axes are the child's local axes. DART
 measures a child's joint coordinate relative to its parent; x3d_core's outputs
@@ -19,10 +21,17 @@ getCOMLinearVelocity() is the centre of mass's velocity in world coordinates (X3
 linearVelocity); FreeJoint velocities are world-frame [angular; linear at the origin],
 not body-frame, so velocities are set through world Jacobians at the centre of mass,
 which needs no convention at all; the loop constraints' ERP, CFM and correction cap are
-class-wide (static), so each simulation sets its own before it steps.
+class-wide (static), so each simulation sets its own before it steps; a joint's spring
+and damper are integrated implicitly (f = -k (q + h v') - c v', v' the velocity after the
+step), but constraint impulses (stops, servos, loops) move its joint without them; a
+stop's row takes priority over a SERVO actuator on the same degree of freedom (so hinge2
+motors are joint forces computed here, see _Drives); per-degree-of-freedom actuator types
+are refused except MIMIC.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import dartpy as dart
 import numpy as np
@@ -36,9 +45,10 @@ from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 _LOOPS = dart.constraint.DynamicJointConstraint  # holds the loop constraints' class-wide parameters
 # the mass of a link between a hinge2's degrees of freedom, relative to its child's (its
-# inertia likewise): DART warns that a massless body node may misbehave; this one changes
-# the child's effective inertia by as little (measured in tests/test_backend_dart.py)
-_LINK_MASS = 1e-9
+# inertia likewise): DART warns that a massless body node may misbehave. Measured against
+# MuJoCo's massless stack of joints, outputs move by about 10 * _LINK_MASS (rad/s over
+# 1 s; 3e-14 with massless links): linear in it, so no rounding trouble down to here
+_LINK_MASS = 1e-12
 
 
 def _isometry(q: np.ndarray, p: np.ndarray) -> dart.math.Isometry3:
@@ -46,6 +56,91 @@ def _isometry(q: np.ndarray, p: np.ndarray) -> dart.math.Isometry3:
     t.set_rotation(R.matrix(q))
     t.set_translation(np.asarray(p, dtype=np.float64))
     return t
+
+
+@dataclass
+class _Motor:
+    """ODE's hinge2 motor: the rate sum(weight * joint velocity) driven to target, |torque| <= limit."""
+    skeleton: dart.dynamics.Skeleton
+    row: list[tuple[dart.dynamics.Joint, int, float]]  # (joint, degree of freedom, weight)
+    target: float
+    limit: float
+
+
+class _Drives:
+    """The motors of one skeleton, as ODE solves them: each motor's torque is the one that
+    brings its rate to the target in this step if no more than its limit does, else the
+    limit (all of the skeleton's motors at once, a box-bounded linear problem).
+
+    DART's own SERVO actuator is not used, though its ramp and hold are ODE's: its row goes
+    through DART's constraint solver, where a stop's row on the same degree of freedom
+    takes priority, so a joint that a load presses on a stop stays there however much
+    stronger the motor pulling it off (measured: 0.2 N m against 0.1), and its impulse
+    moves the joint without a suspension's implicit spring-damper (measured: 20% more
+    speed in a step under c h / m = 0.4). Here the torques are joint forces (FORCE
+    actuators, the default) found from DART's own next-step velocity, which these
+    quantities reproduce to rounding (measured): v' = v + h A^-1 f, with A = M + h D + h^2 K
+    and f = Fext - (Coriolis and gravity) - K (q + h v - q0) - D v. DART's stops and loops
+    then act on the result in its constraint solve, after the motors, so a motor answers
+    their impulses at the next step (ODE solves them together)."""
+
+    def __init__(self, skeleton: dart.dynamics.Skeleton, motors: list[_Motor], dt: float):
+        self.skeleton, self.dt = skeleton, dt
+        n = skeleton.getNumDofs()
+        dofs = [skeleton.getDof(i) for i in range(n)]
+        self.stiffness = np.array([d.getSpringStiffness() for d in dofs])
+        self.damping = np.array([d.getDampingCoefficient() for d in dofs])
+        self.rest = np.array([d.getRestPosition() for d in dofs])
+        self.implicit = np.diag(dt * self.damping + dt * dt * self.stiffness)
+        self.rows = np.zeros((len(motors), n))
+        self.actuated: dict[int, tuple[dart.dynamics.Joint, int]] = {}
+        for k, m in enumerate(motors):
+            for joint, i, weight in m.row:
+                column = joint.getIndexInSkeleton(i)
+                self.rows[k, column] += weight
+                self.actuated[column] = (joint, i)
+        self.target = np.array([m.target for m in motors])
+        self.limit = np.array([m.limit for m in motors])
+        self.rhs = np.column_stack([np.zeros(n), self.rows.T])  # the forces, then each motor's unit torque
+
+    def command(self) -> None:
+        s, h = self.skeleton, self.dt
+        q, v = s.getPositions(), s.getVelocities()
+        f = (s.getExternalForces() - s.getCoriolisAndGravityForces()
+             - self.stiffness * (q + h * v - self.rest) - self.damping * v)
+        self.rhs[:, 0] = f
+        x = np.linalg.solve(s.getMassMatrix() + self.implicit, self.rhs)
+        free = self.rows @ (v + h * x[:, 0])  # each motor's rate next step without it
+        torque = _box(h * self.rows @ x[:, 1:], self.target - free, self.limit)
+        force = self.rows.T @ torque
+        for column, (joint, i) in self.actuated.items():
+            joint.setCommand(i, float(force[column]))  # a FORCE actuator's command is its force; reset every step
+
+
+def _box(s: np.ndarray, r: np.ndarray, limit: np.ndarray) -> np.ndarray:
+    """The x with s x = r where |x| < limit allows, x = +-limit elsewhere (s symmetric positive
+    definite: the minimum of x.s.x/2 - x.r over the box, found by moving torques onto and
+    off their limits until its optimality conditions hold)."""
+    x = np.linalg.solve(s, r)
+    at = np.abs(x) > limit  # the torques held at a limit
+    if not at.any():
+        return x  # the usual case once the motors have reached their targets
+    x = np.minimum(np.maximum(x, -limit), limit)  # np.clip costs more on a few numbers
+    for _ in range(4 * len(r) + 4):
+        free = ~at
+        if free.any():
+            rows = s[free]
+            x[free] = np.linalg.solve(rows[:, free], r[free] - rows[:, at] @ x[at])
+            over = free & (np.abs(x) > limit)
+            if over.any():
+                x[over] = np.copysign(limit[over], x[over])
+                at |= over
+                continue
+        back = at & ((r - s @ x) * x < 0)  # r - s x: where more torque lowers the objective
+        if not back.any():
+            break
+        at &= ~back
+    return x
 
 
 class DartSimulation:
@@ -56,7 +151,7 @@ class DartSimulation:
         self.dart_world.setTimeStep(dt)
         self.dart_world.setGravity(np.asarray(world.gravity, dtype=np.float64))
         self.dt = dt
-        self.motors: list[tuple[dart.dynamics.Joint, int, float]] = []  # (joint, degree of freedom, target velocity)
+        self.motors: list[_Motor] = []  # hinge2 motors, as they are built
         sleep = self.dart_world.getDeactivationOptions()
         sleep.mEnabled = False  # on by default (under 1 cm/s and 0.05 rad/s for 0.5 s)
         self.dart_world.setDeactivationOptions(sleep)
@@ -87,6 +182,8 @@ class DartSimulation:
             self._body(node, i)
         for skeleton in self.skeletons:
             self.dart_world.addSkeleton(skeleton)
+        self.drives = [_Drives(s, [m for m in self.motors if m.skeleton is s], dt) for s in self.skeletons
+                       if any(m.skeleton is s for m in self.motors)]
         self.loops = [c for k in world.loop_joints for c in self._loop(world.joints[k])]
         for c in self.loops:
             self.dart_world.getConstraintSolver().addConstraint(c)
@@ -202,27 +299,15 @@ class DartSimulation:
                 else:
                     joint.setTransformFromChildBodyNode(to_child)
                 dof[k] = (joint, 0)
-        limited, index = dof[1]
-        self._limit(limited, index, p["minAngle1"], p["maxAngle1"], sign, angular=True)
+        joint, index = dof[1]
+        self._limit(joint, index, p["minAngle1"], p["maxAngle1"], sign, angular=True)
         for k in (1, 2):
             if p[f"maxTorque{k}"] > 0:
-                joint, index = dof[k]
-                self._servo(joint, index, sign * p[f"desiredAngularVelocity{k}"], p[f"maxTorque{k}"])
+                # its rate in joint space: the motor's axis against each hinge's (constant: each
+                # hinge turns about its own axis, and the other hinge's axis is carried across it)
+                row = [(dof[h][0], dof[h][1], float(axes[h - 1] @ axes[k - 1])) for h in (1, 2)]
+                self.motors.append(_Motor(skeleton, row, sign * p[f"desiredAngularVelocity{k}"], p[f"maxTorque{k}"]))
         return node
-
-    def _servo(self, joint: dart.dynamics.Joint, index: int, target: float, limit: float) -> None:
-        """ODE's motor: a velocity constraint whose torque is bounded by maxTorque. DART's SERVO
-        actuator is that row in its constraint solver (the command is the target velocity,
-        the force limits bound its impulse over the step). DART sets actuator types per
-        joint only, so a joint's other degrees of freedom get zero force limits: no motor."""
-        if joint.getActuatorType() != dart.dynamics.ActuatorType.SERVO:
-            joint.setActuatorType(dart.dynamics.ActuatorType.SERVO)
-            for i in range(joint.getNumDofs()):
-                joint.setForceLowerLimit(i, 0.0)
-                joint.setForceUpperLimit(i, 0.0)
-        joint.setForceLowerLimit(index, -limit)
-        joint.setForceUpperLimit(index, limit)
-        self.motors.append((joint, index, target))
 
     @staticmethod
     def _limit(joint: dart.dynamics.Joint, index: int, lo: float, hi: float, sign: float, angular: bool) -> None:
@@ -257,8 +342,8 @@ class DartSimulation:
             for node, force, com, torque in self.pushed:  # DART clears them after every step
                 node.addExtForce(force, com, False, True)
                 node.addExtTorque(torque, False)
-            for joint, index, target in self.motors:  # and the commands too
-                joint.setCommand(index, target)
+            for drives in self.drives:  # after the loads: the motors answer them
+                drives.command()
             self.dart_world.step()
 
     def state(self) -> State:
@@ -305,11 +390,30 @@ class DartBackend(Backend):
         **approximate("DART has one integrator (semi-implicit Euler) and its constraint solver is already "
                       "the accurate direct one: nothing to switch",
                       "RigidBodyCollection.preferAccuracy"),
+        **native("DoubleAxisHingeJoint", "DoubleAxisHingeJoint.anchorPoint", "DoubleAxisHingeJoint.axis1",
+                 "DoubleAxisHingeJoint.axis2", "DoubleAxisHingeJoint.limits", "DoubleAxisHingeJoint.minAngle1",
+                 "DoubleAxisHingeJoint.maxAngle1"),
+        **approximate("ODE's motor rows solved here before each step from DART's own next-step dynamics, "
+                      "applied as joint forces: a motor reaches its target in one step when maxTorque allows "
+                      "and ramps at maxTorque otherwise (measured exact), and leaves a stop a load presses it "
+                      "on when it is the stronger; DART solves stops and loop constraints after, so in a step "
+                      "where one acts on the same tree the motors answer its impulse a step late (ODE solves "
+                      "them together)",
+                      "DoubleAxisHingeJoint.desiredAngularVelocity1", "DoubleAxisHingeJoint.desiredAngularVelocity2",
+                      "DoubleAxisHingeJoint.maxTorque1", "DoubleAxisHingeJoint.maxTorque2"),
+        **approximate("a prismatic joint along axis 1 between the two hinges, with DART's implicit spring-damper "
+                      "k = ERP/(h*CFM), c = (1-ERP)/CFM: ODE's soft row term for term (measured against its "
+                      "recurrence to 1e-12 m), through links of 1e-12 the child's mass; DART's stop and loop "
+                      "impulses move it without the spring-damper's implicit terms in their step",
+                      "DoubleAxisHingeJoint.suspensionForce", "DoubleAxisHingeJoint.suspensionErrorCorrection"),
         **unsupported("DART's joint limits are hard constraints without a restitution coefficient",
-                      "SingleAxisHingeJoint.stopBounce", "SliderJoint.stopBounce"),
+                      "SingleAxisHingeJoint.stopBounce", "SliderJoint.stopBounce", "DoubleAxisHingeJoint.stop1Bounce"),
         **unsupported("DART's joint limits are predictive and exact (a step ends on the stop, measured); the "
                       "limit ERP has no effect, so a stop's error correction cannot be set",
-                      "SingleAxisHingeJoint.stopErrorCorrection", "SliderJoint.stopErrorCorrection"),
+                      "SingleAxisHingeJoint.stopErrorCorrection", "SliderJoint.stopErrorCorrection",
+                      "DoubleAxisHingeJoint.stop1ErrorCorrection"),
+        **unsupported("DART's joint limits are hard: their rows' CFM is one class-wide relative value (1e-9), "
+                      "not a per-stop softness", "DoubleAxisHingeJoint.stop1ConstantForceMix"),
     }
 
     def version(self) -> str:

@@ -127,7 +127,7 @@ class MujocoSimulation:
 
     def _hinge2(self, body, child: int, j, pos: np.ndarray, axes: np.ndarray, sign: float) -> None:
         """ODE's hinge2: a hinge about axis 1 (carried by body1, with its limits and motor),
-        a suspension spring along axis 1 (k = ERP/(h*CFM), c = (1-ERP)/CFM) and a hinge
+        a suspension spring along axis 1 (ODE's k = ERP/(h*CFM), c = (1-ERP)/CFM) and a hinge
         about axis 2 (carried by body2, with its motor)."""
         p = j.params
 
@@ -139,8 +139,11 @@ class MujocoSimulation:
         def suspension() -> None:
             if p["suspensionForce"] > 0:
                 dt, cfm, erp = self.dt, p["suspensionForce"], p["suspensionErrorCorrection"]
+                # MuJoCo's Euler step takes damping implicitly and stiffness explicitly: ODE's
+                # implicit spring-damper (k = ERP/(h CFM), c = (1-ERP)/CFM) is then exactly
+                # stiffness k with damping c + h k = 1/CFM
                 body.add_joint(type=mujoco.mjtJoint.mjJNT_SLIDE, pos=pos, axis=axes[0],
-                               stiffness=erp / (dt * cfm), damping=(1 - erp) / cfm)
+                               stiffness=erp / (dt * cfm), damping=1.0 / cfm)
 
         # MuJoCo chains a body's joints from its parent outwards: the parent's axis first
         if child == j.body2:
@@ -169,6 +172,8 @@ class MujocoSimulation:
 
     def _loop(self, spec, j, dt: float) -> None:
         """A joint closing a loop, as equality constraints between body frames."""
+        if j.body1 == j.body2 or (j.body1 == STATIC and j.body2 == STATIC):
+            return  # both ends in the static environment: nothing to hold together
         if j.type not in ("BallJoint", "SingleAxisHingeJoint"):
             raise Unsupported(f"{j.type} {j.name} closes a loop of joints; the mujoco backend closes loops "
                               "with BallJoint and SingleAxisHingeJoint only")

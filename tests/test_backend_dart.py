@@ -380,3 +380,208 @@ def test_a_slider_closing_a_loop_is_refused(tmp_path):
 def test_declared_features_use_the_reference_names():
     mujoco_backend = pytest.importorskip("backends.mujoco").BACKEND
     assert set(BACKEND.declared) <= set(mujoco_backend.declared)
+
+
+# -- DoubleAxisHingeJoint (ODE's hinge2) ------------------------------------------------
+
+HINGE2 = """<RigidBodyCollection gravity='0 {g} 0'>
+  <RigidBody DEF='Car' fixed='true'/>
+  <RigidBody DEF='Wheel' position='1 0 0' mass='{m}' inertia='0.1 0 0 0 0.1 0 0 0 0.1'/>
+  <DoubleAxisHingeJoint DEF='H2' anchorPoint='1 0 0' axis1='0 1 0' axis2='1 0 0' desiredAngularVelocity2='3'
+     maxTorque2='5' suspensionForce='{cfm}' suspensionErrorCorrection='{erp}' forceOutput='"ALL"'>
+    <RigidBody USE='{b1}' containerField='body1'/><RigidBody USE='{b2}' containerField='body2'/>
+  </DoubleAxisHingeJoint></RigidBodyCollection>"""
+
+
+def hinge2(g: float = 0.0, m: float = 1.0, cfm: float = 0.0, erp: float = 0.5, wheel_is_body1: bool = False) -> str:
+    b1, b2 = ("Wheel", "Car") if wheel_is_body1 else ("Car", "Wheel")
+    return HINGE2.format(g=g, m=m, cfm=cfm, erp=erp, b1=b1, b2=b2)
+
+
+@pytest.mark.parametrize("cfm", [0.0, 0.001], ids=["universal", "suspension"])
+@pytest.mark.parametrize("wheel_is_body1", [False, True])
+def test_hinge2_motor_reaches_its_speed_within_its_torque(tmp_path, cfm, wheel_is_body1):
+    s = simulate(tmp_path, hinge2(cfm=cfm, wheel_is_body1=wheel_is_body1), duration=0.5, frame_rate=240)
+    rate = {round(t * 240): v[0] for t, v in s[("H2", "hinge2AngleRate")]}
+    # ODE's motor reaches its target in one step if its torque allows: 5 N m on 0.1 kg m^2
+    # is 50 rad/s^2 (the wheel turns about its centre of mass), 1.25 rad/s after 6 steps,
+    # whichever body is the child (the rate is body1's relative to body2 either way). The
+    # torque comes from DART's own next-step velocity: only rounding is left, and with the
+    # suspension the links between the joints (1e-12 of the wheel; measured 2e-12 relative
+    # when hinge 2 is the parent's joint and turns them too)
+    assert rate[6] == pytest.approx(50 * 6 * DT, rel=1e-11)
+    assert rate[120] == pytest.approx(3.0, abs=1e-12)  # then held at the target
+    assert np.abs(values(s, "H2", "hinge1AngleRate")).max() < 1e-12
+
+
+def odes_suspension(cfm: float, erp: float, m: float, g: float, steps: int) -> np.ndarray:
+    """ODE's soft row between a fixed body and a mass m under gravity g along it: an implicit
+    spring-damper, m (v' - v) = -h (k (x + h v') + c v' + m g), x' = x + h v'."""
+    k, c = erp / (DT * cfm), (1 - erp) / cfm
+    x, v, out = 0.0, 0.0, [0.0]
+    for _ in range(steps):
+        v = (m * v - DT * (k * x + m * g)) / (m + DT * c + DT * DT * k)
+        x += DT * v
+        out.append(x)
+    return np.array(out)
+
+
+@pytest.mark.parametrize("cfm,erp", [(0.001, 0.5), (0.01, 0.2), (0.01, 0.0)])
+def test_hinge2_suspension_is_odes_spring(tmp_path, cfm, erp):
+    s = simulate(tmp_path, hinge2(g=-G, m=2, cfm=cfm, erp=erp), duration=2.0, frame_rate=240)
+    height = values(s, "Wheel", "position")[:, 1]
+    # DART's joint spring-damper is implicit, f = -k (q + h v') - c v': ODE's soft row, so the
+    # wheel follows ODE's recurrence step for step (the links between the joints, 1e-12 of
+    # the wheel's mass, and rounding are all that is left: 1e-9 of the motion bounds them)
+    ode = odes_suspension(cfm, erp, 2.0, G, len(height) - 1)
+    assert np.abs(height - ode).max() < 1e-9 * np.abs(ode).max()
+    if erp > 0:  # settled at m g / k, k = ERP / (h CFM)
+        assert height[-1] == pytest.approx(-2 * G * DT * cfm / erp, rel=1e-9)
+    anchors = values(s, "H2", "body1AnchorPoint") - values(s, "H2", "body2AnchorPoint")
+    assert anchors[-1] == pytest.approx([0, -height[-1], 0], abs=1e-12)  # the spring stretches along axis 1
+
+
+@pytest.mark.parametrize("wheel_is_body1", [True, False])
+def test_hinge2_limits_hold_when_body1_is_the_moving_body(tmp_path, wheel_is_body1):
+    first, second = ("Wheel", "Car") if wheel_is_body1 else ("Car", "Wheel")
+    s = simulate(tmp_path, f"""<RigidBodyCollection gravity='0 0 0'>
+      <RigidBody DEF='Car' fixed='true'/>
+      <RigidBody DEF='Wheel' position='1 0 0' inertia='0.1 0 0 0 0.1 0 0 0 0.1'/>
+      <DoubleAxisHingeJoint DEF='H2' anchorPoint='1 0 0' axis1='0 1 0' axis2='1 0 0' minAngle1='-0.3'
+          maxAngle1='0.5' desiredAngularVelocity1='-1' maxTorque1='10' forceOutput='"hinge1Angle"'>
+        <RigidBody USE='{first}' containerField='body1'/><RigidBody USE='{second}' containerField='body2'/>
+      </DoubleAxisHingeJoint></RigidBodyCollection>""", duration=1.0)
+    angles = values(s, "H2", "hinge1Angle")[:, 0]
+    # driven at -1 rad/s (body1 relative to body2, whichever is the child) into the stop at
+    # -0.3: DART's stops are predictive, so the step that would pass it ends on it, short of
+    # it by its relative CFM (1e-9 of the last step's 1/240 rad) at most
+    assert angles.min() > -0.3 - 1e-9 and angles[-1] == pytest.approx(-0.3, abs=1e-9)
+
+
+LIFT = """<RigidBodyCollection gravity='0 -9.81 0'>
+  <RigidBody DEF='Car' fixed='true'/>
+  <RigidBody DEF='Wheel' position='1 0 0' centerOfMass='0.1 0 0' inertia='0.1 0 0 0 0.1 0 0 0 0.1'/>
+  <DoubleAxisHingeJoint DEF='H2' anchorPoint='1 0 0' axis1='0 0 1' axis2='1 0 0' minAngle1='-0.5' maxAngle1='0'
+      desiredAngularVelocity1='-1' maxTorque1='{torque}' {suspension} forceOutput='"hinge1Angle" "hinge1AngleRate"'>
+    <RigidBody USE='Car' containerField='body1'/><RigidBody USE='Wheel' containerField='body2'/>
+  </DoubleAxisHingeJoint></RigidBodyCollection>"""
+
+
+@pytest.mark.parametrize("suspension", ["", "suspensionForce='0.001' suspensionErrorCorrection='0.5'"],
+                         ids=["universal", "suspension"])
+@pytest.mark.parametrize("torque", [0.5, 1.2])
+def test_hinge2_motor_leaves_a_stop_only_when_stronger_than_the_load(tmp_path, torque, suspension):
+    s = simulate(tmp_path, LIFT.format(torque=torque, suspension=suspension), duration=0.25, frame_rate=240)
+    angle, rate = values(s, "H2", "hinge1Angle")[:, 0], values(s, "H2", "hinge1AngleRate")[:, 0]
+    # gravity presses hinge 1 on its stop at 0 with m g r = 0.981 N m; the motor pulls it
+    # off at maxTorque1. ODE's stop and motor rows act together: the joint leaves only if the
+    # motor is the stronger, turning at (T - m g r cos(angle)) / (I + m r^2). (DART's SERVO
+    # actuator stayed on the stop here at 1.2 N m: its stop row takes priority)
+    if torque < 0.981:
+        assert np.abs(angle).max() < 1e-9 and np.abs(rate).max() < 1e-9
+    else:
+        # by step 30 the angle is 0.016 rad: cos changes the load by 1.3e-4 of itself
+        assert rate[30] == pytest.approx(-(torque - 0.981) / 0.11 * 30 * DT, rel=1e-3)
+        assert angle[-1] < -0.05
+
+
+H2_TREE = """<RigidBodyCollection gravity='0 -9.81 0'>
+  <RigidBody DEF='Top' fixed='true'/>
+  <RigidBody DEF='Car' position='0 -0.5 0' mass='3' inertia='0.05 0 0 0 0.06 0 0 0 0.07' angularVelocity='0 0.5 0'
+      {fixed}/>
+  <RigidBody DEF='Wheel' position='1 -0.7 0.1' orientation='0 0 1 0.3' centerOfMass='0.1 0 0.05'
+      inertia='0.05 0.01 0 0.01 0.08 0 0 0 0.1' angularVelocity='0.5 1 2'/>
+  {hang}
+  <DoubleAxisHingeJoint DEF='H2' anchorPoint='1 -0.5 0' axis1='0 0.6 0.8' axis2='1 0 0' minAngle1='{lo}'
+      maxAngle1='{hi}' desiredAngularVelocity1='-20' maxTorque1='0.05' desiredAngularVelocity2='30' maxTorque2='0.3'
+      {suspension} forceOutput='"ALL"'>
+    <RigidBody USE='{b1}' containerField='body1'/><RigidBody USE='{b2}' containerField='body2'/>
+  </DoubleAxisHingeJoint></RigidBodyCollection>"""
+HANG = ("<BallJoint DEF='Hang'><RigidBody USE='Top' containerField='body1'/>"
+        "<RigidBody USE='Car' containerField='body2'/></BallJoint>")
+# hinge 1's range of motion in each run is inside these stops by 0.1 rad or more, and
+# reaches past the mirrored stops (-hi, -lo) were they not mirrored for the child's side
+H2_CASES = {"fixed car, wheel body2": (True, False, -0.45, 1.3), "fixed car, wheel body1": (True, True, -1.35, 0.4),
+            "hung car, wheel body2": (False, False, -1.3, 0.65), "hung car, wheel body1": (False, True, -0.1, 1.1)}
+
+
+def h2_tree(name: str, suspension: bool) -> str:
+    fixed, wheel_is_body1, lo, hi = H2_CASES[name]
+    b1, b2 = ("Wheel", "Car") if wheel_is_body1 else ("Car", "Wheel")
+    # a suspension with ERP 0 is a pure damper, c = 1/CFM, which MuJoCo integrates as ODE does
+    damper = "suspensionForce='0.01' suspensionErrorCorrection='0'" if suspension else ""
+    return H2_TREE.format(fixed="fixed='true'" if fixed else "", hang="" if fixed else HANG, lo=lo, hi=hi, b1=b1,
+                          b2=b2, suspension=damper)
+
+
+@pytest.mark.parametrize("suspension", [False, True], ids=["universal", "damper"])
+@pytest.mark.parametrize("name", list(H2_CASES))
+def test_hinge2_outputs_agree_with_mujoco(tmp_path, name, suspension):
+    mujoco_backend = pytest.importorskip("backends.mujoco").BACKEND
+    scene = h2_tree(name, suspension)
+    d, m = simulate(tmp_path, scene), simulate(tmp_path, scene, backend=mujoco_backend)
+    assert d.keys() == m.keys()
+    # Both integrate the same tree with semi-implicit Euler (the damper implicitly in both);
+    # both motors stay at their torque limits the whole run (targets of -20 and 30 rad/s),
+    # where MuJoCo's clipped servo applies exactly maxTorque, as ODE's motor does; no stop is
+    # reached. What is left (measured): rounding, 4e-14 with a fixed car; the links between
+    # the joints, 1e-11 with the suspension; 3e-9 with the car on a ball joint, which DART
+    # turns by the exponential of its whole twist (so for any joint below a ball or free
+    # root). 1e-6 is far above these and far below a wrong sign, axis or order (0.1 and up)
+    for (node, field), series in d.items():
+        gap = np.abs(values(d, node, field) - values(m, node, field)).max()
+        assert gap < 1e-6, (node, field, gap)
+    hinge1 = values(d, "H2", "hinge1Angle")[:, 0]
+    assert np.ptp(hinge1) > 0.9 and np.ptp(values(d, "H2", "hinge2Angle")) > 0.6  # and both hinges turned
+    if suspension:  # and the damper gave: the anchors parted along axis 1
+        gaps = np.linalg.norm(values(d, "H2", "body1AnchorPoint") - values(d, "H2", "body2AnchorPoint"), axis=1)
+        assert gaps.max() > 0.03
+
+
+def test_hinge2_links_weigh_nothing_measurable(tmp_path, monkeypatch):
+    """The links between a suspended hinge2's joints carry _LINK_MASS of the child's mass:
+    against MuJoCo's massless joint stack the outputs move in proportion to it, so it is
+    their only effect, and at its value the effect is under 1e-10."""
+    mujoco_backend = pytest.importorskip("backends.mujoco").BACKEND
+    from backends import dart as dart_backend
+    scene = h2_tree("fixed car, wheel body1", suspension=True)
+    m = simulate(tmp_path, scene, backend=mujoco_backend)
+
+    def gap() -> float:
+        d = simulate(tmp_path, scene)
+        return max(np.abs(values(d, n, f) - values(m, n, f)).max() for n, f in d)
+
+    default = gap()
+    monkeypatch.setattr(dart_backend, "_LINK_MASS", 1e-6)
+    heavy = gap()
+    assert default < 1e-10
+    assert 1e-7 < heavy < 1e-4  # measured 1.2e-5: about 10 times the link mass, rad/s over 1 s
+    assert heavy / default > 1e4
+
+
+def test_hinge2_declarations():
+    d = BACKEND.support
+    for f in ("DoubleAxisHingeJoint", "DoubleAxisHingeJoint.axis1", "DoubleAxisHingeJoint.limits",
+              "DoubleAxisHingeJoint.minAngle1"):
+        assert d(f).support is base.Support.NATIVE, f
+    for f in ("DoubleAxisHingeJoint.suspensionForce", "DoubleAxisHingeJoint.maxTorque2"):
+        assert d(f).support is base.Support.APPROXIMATE and d(f).note, f
+    for f in ("DoubleAxisHingeJoint.stop1Bounce", "DoubleAxisHingeJoint.stop1ErrorCorrection",
+              "DoubleAxisHingeJoint.stop1ConstantForceMix"):
+        assert d(f).support is base.Support.UNSUPPORTED and d(f).note != base.NOT_YET, f
+
+
+def test_box_bounded_motor_torques_meet_their_optimality_conditions():
+    from backends.dart import _box
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        n = int(rng.integers(1, 6))
+        a = rng.normal(size=(n, n))
+        s = a @ a.T + 0.1 * np.eye(n)
+        r, limit = rng.normal(size=n) * 3, rng.uniform(0.1, 2, size=n)
+        x = _box(s, r, limit)
+        wants = r - s @ x  # minus the gradient of x.s.x/2 - x.r
+        inside = np.abs(x) < limit - 1e-12
+        assert np.all(np.abs(x) <= limit + 1e-15)
+        assert np.abs(wants[inside]).max(initial=0) < 1e-9  # unbounded ones solve their rows
+        assert np.all(wants[~inside] * np.sign(x[~inside]) >= -1e-9)  # bounded ones push against their limit
