@@ -75,6 +75,15 @@ EVALUATOR: dict[str, Declared] = native(
     *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")),
     *(f"UniversalJoint.stop{k}{f}" for k in (1, 2) for f in ("Bounce", "ErrorCorrection")))
 
+# Collision layout x3d_core resolves for every engine (x3d_core/collision.py): which
+# collidables take part and where they sit; a backend builds what comes out
+EVALUATOR |= native(
+    "CollidableShape", "CollidableShape.translation", "CollidableShape.rotation", "CollidableShape.enabled",
+    "CollidableOffset", "CollidableOffset.translation", "CollidableOffset.rotation", "CollidableOffset.enabled",
+    "CollisionSpace", "CollisionSpace.enabled", "CollisionCollection.enabled") | approximate(
+    "collidables of a space with useGeometry FALSE collide as their bounding boxes, as the field's bounds-only "
+    "reading allows", "CollisionSpace.useGeometry")
+
 # What every 3D backend builds from the World's bulk arrays and its joint forest
 BODIES = ("RigidBody.mass", "RigidBody.inertia", "RigidBody.inertia.offDiagonal", "RigidBody.centerOfMass",
           "RigidBody.massDensityModel", "RigidBody.massDensityModel.Box", "RigidBody.massDensityModel.Sphere",

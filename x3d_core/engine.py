@@ -10,6 +10,7 @@ from typing import Protocol
 
 import numpy as np
 
+from .collision import ContactPoints
 from .world import State, World
 
 
@@ -35,6 +36,10 @@ class Simulation(Protocol):
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
         """Overwrite every body's velocities (world frame; linear at the centre of mass);
         fixed bodies ignore it."""
+
+    def contacts(self) -> ContactPoints:
+        """The contact points of the last step (only asked for where a CollisionSensor or
+        the trace needs them; a world without collisions has none)."""
 
     def set_loads(self, forces: np.ndarray, torques: np.ndarray) -> None:
         """The force (at the centre of mass) and torque every body gets at each step from

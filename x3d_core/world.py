@@ -8,6 +8,7 @@ world coordinates unless its name says 'local'.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -97,6 +98,7 @@ class World:
     parent_joint: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
     order: list[int] = field(default_factory=list)  # bodies, every parent before its children
     loop_joints: list[int] = field(default_factory=list)
+    collisions: Any = None  # x3d_core.collision.Collisions, or None: nothing collides
 
     FREE = -2
 
@@ -116,8 +118,12 @@ def node_names(scene: Scene) -> dict[int, str]:
 
 
 def worlds(scene: Scene) -> list[World]:
+    from .collision import plan  # collision builds on World
     names = node_names(scene)
-    return [_world(c, names) for c in scene.of_type("RigidBodyCollection") if c.get("enabled")]
+    out = [_world(c, names) for c in scene.of_type("RigidBodyCollection") if c.get("enabled")]
+    for w in out:
+        w.collisions = plan(w, names)
+    return out
 
 
 def _inertia(node: Node) -> np.ndarray:

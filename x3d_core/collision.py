@@ -1,0 +1,269 @@
+"""What collides, with what shape, and with which contact parameters: written once.
+
+The rules (clause 37.4), as x3drbp reads them:
+- Only collidables reachable from a RigidBodyCollection's collider collide, through
+  CollisionSpace nesting; a disabled collection, space or collidable drops out.
+- A collidable in a RigidBody's geometry moves with the body. At the top of that list its
+  own translation and rotation are outputs (the body sets them), so it sits at the body's
+  frame; below a CollidableOffset, translation and rotation place it relative to the
+  offset. A collidable on no body is static, placed by its own translation and rotation.
+- A Shape with an explicit bboxSize collides as that box (the spec's approximation), and
+  so does every collidable of a CollisionSpace whose useGeometry is FALSE (bounds only).
+- Collidables of one body never collide with each other, and neither do the collidables
+  of two bodies joined by a joint (ODE's usual rule, and Xj3D's).
+- Contact parameters come from the CollisionCollection; appliedParameters decides which
+  apply (either spelling), as ODE's contact mode bits do.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import rotation as R
+from .applied import applied
+from .model import Node
+from .world import STATIC, World
+
+KINDS = ("box", "sphere", "cylinder", "cone", "mesh", "heightfield")
+
+
+@dataclass
+class Geometry:
+    """One collision shape, fixed to a body (or to the static environment)."""
+    name: str  # the CollidableShape's trace name
+    node: Node  # the CollidableShape
+    body: int  # row in world.bodies, or STATIC
+    kind: str  # one of KINDS
+    size: np.ndarray  # box: full extents (3,); sphere: (r,); cylinder and cone: (r, h), axis y
+    position: np.ndarray  # in the body's frame (world for STATIC)
+    orientation: np.ndarray  # quaternion, in the body's frame
+    vertices: np.ndarray | None = None  # mesh: (n, 3); heightfield: (nx*nz, 3) grid points
+    triangles: np.ndarray | None = None  # mesh: (m, 3) vertex indices
+    grid: tuple[int, int] | None = None  # heightfield: (xDimension, zDimension)
+
+
+@dataclass
+class ContactParameters:
+    """The parameters a contact gets, already resolved through appliedParameters."""
+    bounce: float  # 0 unless BOUNCE applies
+    min_bounce_speed: float
+    friction: np.ndarray  # (mu1, mu2): mu2 = mu1 unless FRICTION_COEFFICIENT-2 applies
+    user_friction: bool  # USER_FRICTION: the first friction direction is the scene's
+    slip: np.ndarray  # (2,), each 0 unless SLIP-n applies
+    surface_speed: np.ndarray  # (2,), each 0 unless SPEED-n applies
+    softness_erp: float | None  # None unless ERROR_REDUCTION applies
+    softness_cfm: float | None  # None unless CONSTANT_FORCE applies
+    surface_thickness: float  # the collection's contactSurfaceThickness
+    applied: frozenset[str] = field(default_factory=frozenset)
+
+
+@dataclass
+class ContactPoints:
+    """Every contact point of a step, in bulk, world frame: the engine's own points."""
+    position: np.ndarray  # (k, 3)
+    normal: np.ndarray  # (k, 3) unit, pointing from geometry1 towards geometry2
+    depth: np.ndarray  # (k,) penetration, positive when overlapping
+    geometry1: np.ndarray  # (k,) index into Collisions.geometries
+    geometry2: np.ndarray  # (k,)
+
+    @classmethod
+    def none(cls) -> ContactPoints:
+        return cls(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0), np.zeros(0, dtype=int), np.zeros(0, dtype=int))
+
+
+@dataclass
+class Collisions:
+    geometries: list[Geometry]
+    excluded: set[tuple[int, int]]  # body-row pairs (low, high) that never touch (joined bodies)
+    parameters: ContactParameters
+    collider: Node
+
+    def may_touch(self, a: Geometry, b: Geometry) -> bool:
+        """Whether two geometries of this collision set are tested against each other."""
+        if a.body == b.body:
+            return False
+        pair = (min(a.body, b.body), max(a.body, b.body))
+        return pair not in self.excluded
+
+
+def friction_directions(normal: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The two friction directions of contacts with these unit normals (n, 3), as ODE's
+    dPlaneSpace makes them: surfaceSpeed and slipFactors components 1 and 2 act along
+    these unless USER_FRICTION gives the first. For an upward normal: -x and +z."""
+    n = np.atleast_2d(np.asarray(normal, dtype=np.float64))
+    p, q = np.zeros_like(n), np.zeros_like(n)
+    steep = np.abs(n[:, 2]) > np.sqrt(0.5)
+    a = n[:, 1] ** 2 + n[:, 2] ** 2  # in the y-z plane
+    k = 1 / np.sqrt(np.where(steep, a, 1))
+    p[steep] = np.stack([np.zeros_like(k), -n[:, 2] * k, n[:, 1] * k], axis=1)[steep]
+    q[steep] = np.stack([a * k, -n[:, 0] * p[:, 2], n[:, 0] * p[:, 1]], axis=1)[steep]
+    a2 = n[:, 0] ** 2 + n[:, 1] ** 2  # in the x-y plane
+    k2 = 1 / np.sqrt(np.where(~steep, a2, 1))
+    flat = ~steep
+    p[flat] = np.stack([-n[:, 1] * k2, n[:, 0] * k2, np.zeros_like(k2)], axis=1)[flat]
+    q[flat] = np.stack([-n[:, 2] * p[:, 1], n[:, 2] * p[:, 0], a2 * k2], axis=1)[flat]
+    return p, q
+
+
+def parameters(collection: Node, thickness: float) -> ContactParameters:
+    """The contact parameters of a CollisionCollection or a Contact node."""
+    on = applied(collection.get("appliedParameters"))
+    fc = np.asarray(collection.get("frictionCoefficients"), dtype=np.float64)
+    slip_field = "slipFactors" if collection.type_name == "CollisionCollection" else "slipCoefficients"
+    slip = np.asarray(collection.get(slip_field), dtype=np.float64)
+    speed = np.asarray(collection.get("surfaceSpeed"), dtype=np.float64)
+    return ContactParameters(
+        bounce=float(collection.get("bounce")) if "BOUNCE" in on else 0.0,
+        min_bounce_speed=float(collection.get("minBounceSpeed")),
+        friction=np.array([fc[0], fc[1] if "FRICTION_COEFFICIENT-2" in on else fc[0]]),
+        user_friction="USER_FRICTION" in on,
+        slip=np.array([slip[0] if "SLIP-1" in on else 0.0, slip[1] if "SLIP-2" in on else 0.0]),
+        surface_speed=np.array([speed[0] if "SPEED-1" in on else 0.0, speed[1] if "SPEED-2" in on else 0.0]),
+        softness_erp=float(collection.get("softnessErrorCorrection")) if "ERROR_REDUCTION" in on else None,
+        softness_cfm=float(collection.get("softnessConstantForceMix")) if "CONSTANT_FORCE" in on else None,
+        surface_thickness=thickness, applied=on)
+
+
+def plan(world: World, names: dict[int, str]) -> Collisions | None:
+    """The world's collision set, or None where the collection has no (enabled) collider."""
+    collider = world.node.get("collider")
+    if collider is None or not collider.get("enabled"):
+        return None
+    owner: dict[int, int] = {}  # top-level collidable -> body row
+    for row, body in enumerate(world.bodies.nodes):
+        for g in body.get("geometry"):
+            owner.setdefault(id(g), row)
+    out: list[Geometry] = []
+    seen: set[int] = set()
+
+    def collidable(node: Node, bounds_only: bool) -> None:
+        if id(node) in seen or not node.get("enabled"):
+            return
+        seen.add(id(node))
+        if node.type_name == "CollisionSpace":
+            for child in node.get("collidables"):
+                collidable(child, bounds_only or not node.get("useGeometry"))
+            return
+        row = owner.get(id(node), STATIC)
+        if row != STATIC and not world.bodies.enabled[row]:
+            return
+        if row == STATIC:  # a static collidable is where its own fields put it
+            pose = (np.asarray(node.get("translation"), dtype=np.float64), R.from_axis_angle(node.get("rotation")))
+        else:  # the body sets a top-level collidable's translation and rotation
+            pose = (np.zeros(3), R.IDENTITY.copy())
+        _shapes(node, row, pose, bounds_only, names, out)
+
+    for node in collider.get("collidables"):
+        collidable(node, False)
+    excluded = set()
+    for j in world.joints:
+        if j.body1 != j.body2:
+            excluded.add((min(j.body1, j.body2), max(j.body1, j.body2)))
+    return Collisions(out, excluded, parameters(collider, world.contact_surface_thickness), collider)
+
+
+def _shapes(node: Node, row: int, pose: tuple[np.ndarray, np.ndarray], bounds_only: bool,
+            names: dict[int, str], out: list[Geometry]) -> None:
+    """The shapes under a collidable, posed in its body's frame."""
+    position, orientation = pose
+    if node.type_name == "CollidableOffset":
+        inner = node.get("collidable")
+        if inner is None or not inner.get("enabled"):
+            return
+        local = np.asarray(inner.get("translation"), dtype=np.float64)
+        turn = R.from_axis_angle(inner.get("rotation"))
+        _shapes(inner, row, (position + R.rotate(orientation, local), R.multiply(orientation, turn)),
+                bounds_only, names, out)
+        return
+    shape = node.get("shape")
+    geometry = shape.get("geometry") if shape is not None else None
+    if geometry is None:
+        return
+    g = _geometry(geometry, shape, bounds_only)
+    if g is None:
+        return
+    kind, size, centre, vertices, triangles, grid = g
+    out.append(Geometry(names[id(node)], node, row, kind, size, position + R.rotate(orientation, centre),
+                        orientation, vertices, triangles, grid))
+
+
+def _geometry(geometry: Node, shape: Node, bounds_only: bool):
+    """(kind, size, centre in the shape's frame, vertices, triangles, grid), or None for a
+    geometry that does not collide (no points)."""
+    bbox = np.asarray(shape.get("bboxSize"), dtype=np.float64)
+    if np.all(bbox >= 0):  # the spec: an explicit bounding box approximates the geometry
+        return "box", bbox, np.asarray(shape.get("bboxCenter"), dtype=np.float64), None, None, None
+    t = geometry.type_name
+    zero = np.zeros(3)
+    if t == "Box":
+        found = ("box", np.asarray(geometry.get("size"), dtype=np.float64), zero, None, None, None)
+    elif t == "Sphere":
+        found = ("sphere", np.array([geometry.get("radius")]), zero, None, None, None)
+    elif t == "Cylinder":
+        found = ("cylinder", np.array([geometry.get("radius"), geometry.get("height")]), zero, None, None, None)
+    elif t == "Cone":
+        found = ("cone", np.array([geometry.get("bottomRadius"), geometry.get("height")]), zero, None, None, None)
+    elif t in ("IndexedFaceSet", "IndexedTriangleSet", "TriangleSet"):
+        mesh = _mesh(geometry)
+        if mesh is None:
+            return None
+        found = ("mesh", np.zeros(3), zero, mesh[0], mesh[1], None)
+    elif t == "ElevationGrid":
+        nx, nz = int(geometry.get("xDimension")), int(geometry.get("zDimension"))
+        heights = np.asarray(geometry.get("height"), dtype=np.float64)
+        if nx < 2 or nz < 2 or heights.size != nx * nz:
+            return None
+        xs = np.arange(nx) * geometry.get("xSpacing")
+        zs = np.arange(nz) * geometry.get("zSpacing")
+        gx, gz = np.meshgrid(xs, zs)
+        points = np.stack([gx.ravel(), heights, gz.ravel()], axis=1)
+        found = ("heightfield", np.zeros(3), zero, points, None, (nx, nz))
+    else:
+        return None
+    if bounds_only:
+        return _bounds(found)
+    return found
+
+
+def _mesh(geometry: Node) -> tuple[np.ndarray, np.ndarray] | None:
+    coord = geometry.get("coord")
+    if coord is None:
+        return None
+    points = np.asarray(coord.get("point"), dtype=np.float64).reshape(-1, 3)
+    t = geometry.type_name
+    if t == "TriangleSet":
+        tris = np.arange(len(points) - len(points) % 3).reshape(-1, 3)
+    elif t == "IndexedTriangleSet":
+        index = np.asarray(geometry.get("index"), dtype=np.int64)
+        tris = index[:len(index) - len(index) % 3].reshape(-1, 3)
+    else:  # IndexedFaceSet: each polygon (ended by -1) as a fan of triangles
+        index = np.asarray(geometry.get("coordIndex"), dtype=np.int64)
+        tris_list = []
+        face: list[int] = []
+        for i in list(index) + [-1]:
+            if i < 0:
+                tris_list.extend((face[0], face[k], face[k + 1]) for k in range(1, len(face) - 1))
+                face = []
+            else:
+                face.append(int(i))
+        tris = np.array(tris_list, dtype=np.int64).reshape(-1, 3)
+    if not len(tris) or tris.max() >= len(points) or tris.min() < 0:
+        return None
+    return points, tris
+
+
+def _bounds(found):
+    """The axis-aligned box (in the shape's frame) around a geometry: useGeometry FALSE."""
+    kind, size, centre, vertices, _, _ = found
+    if kind == "box":
+        return found
+    if kind == "sphere":
+        extents = np.full(3, 2 * size[0])
+    elif kind in ("cylinder", "cone"):
+        extents = np.array([2 * size[0], size[1], 2 * size[0]])
+    else:
+        lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+        extents, centre = hi - lo, (hi + lo) / 2
+    return "box", extents, centre, None, None, None
