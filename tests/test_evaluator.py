@@ -145,3 +145,88 @@ def test_quaternion_round_trips():
     assert back[0] == pytest.approx(np.append(unit[0], 0.7))
     assert back[2] == pytest.approx(np.append(unit[2], math.pi - 1e-9))
     assert R.matrix(R.from_axis_angle([0, 0, 1, math.pi / 2])) @ [1, 0, 0] == pytest.approx([0, 1, 0])
+
+
+class _FakeEngine:
+    """A simulation that stands still and reports one contact, to see the sensor's rows."""
+    name = "fake"
+
+    def build(self, world, dt):
+        from x3d_core.collision import ContactPoints
+
+        class Sim:
+            def step(self, n=1):
+                pass
+
+            def state(self):
+                return State.initial(world.bodies)
+
+            def contacts(self):
+                return ContactPoints(np.array([[0, 0.5, 0]]), np.array([[0, 1.0, 0]]), np.array([0.001]),
+                                     np.array([1]), np.array([0]))
+        return Sim()
+
+
+def test_collision_sensor_rows_name_bodies_collidables_and_parameters(tmp_path):
+    from x3d_core.evaluator import run
+    s = scene(tmp_path, """
+<Group><CollidableShape DEF='BallShape'><Shape containerField='shape'><Sphere radius='0.5'/></Shape></CollidableShape>
+  <CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape containerField='shape'><Box size='4 1 4'/></Shape>
+  </CollidableShape></Group>
+<RigidBodyCollection><RigidBody DEF='Ball' position='0 1 0'><CollidableShape USE='BallShape' containerField='geometry'/>
+  </RigidBody>
+  <CollisionCollection DEF='C' bounce='0.4' appliedParameters='"BOUNCE" "FRICTION_COEFFICIENT_2"'
+      frictionCoefficients='0.3 0.6'><CollidableShape USE='BallShape'/><CollidableShape USE='Floor'/>
+  </CollisionCollection></RigidBodyCollection>
+<CollisionSensor DEF='Sensor'><CollisionCollection USE='C' containerField='collider'/></CollisionSensor>""")
+    (w,) = worlds(s)
+    assert [(g.name, g.body, g.kind) for g in w.collisions.geometries] == [("BallShape", 0, "sphere"),
+                                                                          ("Floor", STATIC, "box")]
+    rows = {(r.field): r.value for r in run([w], _FakeEngine(), RunSettings(0.1, 0.05, 10)).rows
+            if r.node == "Sensor" and r.time == 0.1}
+    assert rows["isActive"] == "true"
+    assert (rows["contacts[0].body1"], rows["contacts[0].body2"]) == ("NULL", "Ball")
+    assert (rows["contacts[0].geometry1"], rows["contacts[0].geometry2"]) == ("Floor", "BallShape")
+    assert rows["contacts[0].contactNormal"] == "0 1 0" and rows["contacts[0].depth"] == "0.001"
+    assert rows["contacts[0].frictionDirection"] == "-1 0 0"  # ODE's first direction for an upward normal
+    assert rows["contacts[0].appliedParameters"] == '"BOUNCE" "FRICTION_COEFFICIENT-2"'
+    assert (rows["contacts[0].bounce"], rows["contacts[0].frictionCoefficients"]) == ("0.4", "0.3 0.6")
+    assert (rows["intersections[0]"], rows["intersections[1]"]) == ("Floor", "BallShape")
+
+
+def test_collision_plan_follows_the_collider_spaces_and_offsets(tmp_path):
+    s = scene(tmp_path, """
+<Group>
+  <CollidableShape DEF='A'><Shape containerField='shape'><Box size='1 2 3'/></Shape></CollidableShape>
+  <CollidableOffset DEF='O' translation='9 9 9'>
+    <CollidableShape containerField='collidable' translation='0 -2 0' rotation='0 0 1 1.5707963267948966'>
+      <Shape containerField='shape'><Cylinder radius='0.1' height='1'/></Shape></CollidableShape></CollidableOffset>
+  <CollidableShape DEF='Bounded'><Shape containerField='shape' bboxSize='1 1 1'><Sphere radius='5'/></Shape>
+  </CollidableShape>
+  <CollidableShape DEF='InSpace'><Shape containerField='shape'><Sphere radius='0.25'/></Shape></CollidableShape>
+  <CollidableShape DEF='Off' enabled='false'><Shape containerField='shape'><Sphere/></Shape></CollidableShape>
+  <CollidableShape DEF='Outside'><Shape containerField='shape'><Sphere/></Shape></CollidableShape>
+</Group>
+<RigidBodyCollection>
+  <RigidBody DEF='B1' position='5 0 0'><CollidableShape USE='A' containerField='geometry'/>
+    <CollidableOffset USE='O' containerField='geometry'/></RigidBody>
+  <RigidBody DEF='B2'><CollidableShape USE='Outside' containerField='geometry'/></RigidBody>
+  <RigidBody DEF='B3'><CollidableShape USE='InSpace' containerField='geometry'/></RigidBody>
+  <BallJoint><RigidBody USE='B1' containerField='body1'/><RigidBody USE='B3' containerField='body2'/></BallJoint>
+  <CollisionCollection><CollidableShape USE='A'/><CollidableOffset USE='O'/><CollidableShape USE='Bounded'/>
+    <CollidableShape USE='Off'/><CollisionSpace><CollidableShape USE='InSpace'/></CollisionSpace>
+  </CollisionCollection></RigidBodyCollection>""")
+    (w,) = worlds(s)
+    c = w.collisions
+    geoms = {g.name: g for g in c.geometries}
+    assert set(geoms) == {"A", "CollidableShape_1", "Bounded", "InSpace"}  # not Off, not Outside
+    assert geoms["A"].position.tolist() == [0, 0, 0]  # the body sets a top-level collidable's pose
+    inner = geoms["CollidableShape_1"]  # the offset's own fields are the body's; the shape hangs below it
+    assert inner.body == 0 and inner.position == pytest.approx([0, -2, 0])
+    assert R.rotate(inner.orientation, [0, 1, 0]) == pytest.approx([-1, 0, 0])
+    assert (geoms["Bounded"].kind, geoms["Bounded"].size.tolist(), geoms["Bounded"].body) == ("box", [1, 1, 1], STATIC)
+    assert (geoms["InSpace"].kind, geoms["InSpace"].size.tolist()) == ("box", [0.5, 0.5, 0.5])  # useGeometry FALSE
+    assert not c.may_touch(geoms["A"], inner)  # one body
+    assert not c.may_touch(geoms["A"], geoms["InSpace"])  # joined by the ball joint
+    assert c.may_touch(geoms["A"], geoms["Bounded"])
+    assert c.parameters.bounce == 0 and c.parameters.friction.tolist() == [0, 0]  # X3D's defaults: BOUNCE, no friction

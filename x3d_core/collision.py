@@ -79,6 +79,7 @@ class Collisions:
     excluded: set[tuple[int, int]]  # body-row pairs (low, high) that never touch (joined bodies)
     parameters: ContactParameters
     collider: Node
+    sensors: list[tuple[str, Node]] = field(default_factory=list)  # enabled CollisionSensors on this collider
 
     def may_touch(self, a: Geometry, b: Geometry) -> bool:
         """Whether two geometries of this collision set are tested against each other."""

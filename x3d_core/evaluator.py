@@ -15,6 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import rotation as R
+from . import fields as F
+from .collision import ContactPoints, friction_directions
 from .engine import BlewUp, Engine, Simulation
 from .joint_outputs import JointOutputs
 from .trace import Trace
@@ -179,6 +181,58 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
     return trace
 
 
+class _Sensors:
+    """CollisionSensor outputs from the engine's contact points, in the spec's terms: per
+    contact a Contact node (position, contactNormal from body1 towards body2, depth, the
+    bodies and collidables, the first friction direction and the collection's applied
+    parameters), the collidables in contact as intersections, and isActive."""
+
+    def __init__(self, world: World):
+        c = world.collisions
+        self.names = [n for n, _ in c.sensors]
+        self.geometry_names = [g.name for g in c.geometries]
+        self.body_names = [world.bodies.names[g.body] if g.body != STATIC else "NULL" for g in c.geometries]
+        p = c.parameters
+        self.applied = sorted(p.applied)
+        self.constant = [("bounce", "SFFloat", p.bounce), ("minBounceSpeed", "SFFloat", p.min_bounce_speed),
+                         ("frictionCoefficients", "SFVec2f", p.friction), ("slipCoefficients", "SFVec2f", p.slip),
+                         ("surfaceSpeed", "SFVec2f", p.surface_speed),
+                         ("softnessErrorCorrection", "SFFloat", p.softness_erp if p.softness_erp is not None
+                          else c.collider.get("softnessErrorCorrection")),
+                         ("softnessConstantForceMix", "SFFloat", p.softness_cfm if p.softness_cfm is not None
+                          else c.collider.get("softnessConstantForceMix"))]
+
+    def __bool__(self) -> bool:
+        return bool(self.names)
+
+    def record(self, trace: Trace, t: float, pts: ContactPoints) -> None:
+        k = len(pts.depth)
+        directions = friction_directions(pts.normal)[0] if k else np.zeros((0, 3))
+        seen: dict[int, None] = {}
+        for g1, g2 in zip(pts.geometry1.tolist(), pts.geometry2.tolist()):
+            seen.setdefault(g1)
+            seen.setdefault(g2)
+        for name in self.names:
+            trace.add(t, name, "isActive", "SFBool", k > 0)
+            for i in range(k):
+                g1, g2 = int(pts.geometry1[i]), int(pts.geometry2[i])
+                field = f"contacts[{i}]."
+                trace.add(t, name, field + "position", "SFVec3f", pts.position[i])
+                trace.add(t, name, field + "contactNormal", "SFVec3f", pts.normal[i])
+                trace.add(t, name, field + "depth", "SFFloat", pts.depth[i])
+                trace.add_text(t, name, field + "body1", self.body_names[g1])
+                trace.add_text(t, name, field + "body2", self.body_names[g2])
+                trace.add_text(t, name, field + "geometry1", self.geometry_names[g1])
+                trace.add_text(t, name, field + "geometry2", self.geometry_names[g2])
+                trace.add(t, name, field + "frictionDirection", "SFVec3f", directions[i])
+                trace.add_text(t, name, field + "appliedParameters",
+                               F.format_xml(F.FIELD_TYPES["MFString"], self.applied))
+                for fname, ftype, value in self.constant:
+                    trace.add(t, name, field + fname, ftype, value)
+            for i, g in enumerate(seen):
+                trace.add_text(t, name, f"intersections[{i}]", self.geometry_names[g])
+
+
 class _Recorder:
     """Reads one world's state at a frame end into the trace, and checks it is finite."""
 
@@ -188,6 +242,7 @@ class _Recorder:
         self.rows = np.flatnonzero(world.bodies.enabled)
         self.names = [world.bodies.names[i] for i in self.rows]
         self.all = len(self.rows) == len(world.bodies)
+        self.sensors = _Sensors(world) if world.collisions is not None and world.collisions.sensors else None
 
     def record(self, trace: Trace, t: float) -> None:
         s = self.sim.state()
@@ -202,3 +257,5 @@ class _Recorder:
         trace.add_many(t, self.names, "angularVelocity", "SFVec3f", pick(s.angular_velocity))
         for joint, field, value in self.outputs.values(s):
             trace.add(t, joint, field, _OUTPUT_TYPES[field], value)
+        if self.sensors:
+            self.sensors.record(trace, t, self.sim.contacts())

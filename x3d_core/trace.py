@@ -35,7 +35,7 @@ class _Block(NamedTuple):
     time: float
     nodes: list[str]
     field: str
-    ftype: F.FieldType
+    ftype: F.FieldType | None  # None: values hold the text itself
     values: np.ndarray  # (len(nodes), width), or (len(nodes),) for SFFloat
     convert: Callable[[np.ndarray], np.ndarray] | None = None  # applied when written (quaternions -> SFRotation)
 
@@ -54,10 +54,17 @@ class Trace:
         """The same field of several nodes: values row k (after convert) belongs to nodes[k]."""
         self.blocks.append(_Block(time, nodes, field, F.FIELD_TYPES[ftype], values, convert))
 
+    def add_text(self, time: float, node: str, field: str, value: str) -> None:
+        """A value already in its trace text (a node's name for an SFNode output, say)."""
+        self.blocks.append(_Block(time, [node], field, None, np.array([value], dtype=object)))
+
     @property
     def rows(self) -> list[Row]:
         out = []
         for b in self.blocks:
+            if b.ftype is None:
+                out.append(Row(b.time, b.nodes[0], b.field, b.values[0]))
+                continue
             values = b.convert(b.values) if b.convert is not None else b.values
             for node, value in zip(b.nodes, values.tolist()):
                 out.append(Row(b.time, node, b.field, F.format_xml(b.ftype, value)))

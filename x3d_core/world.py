@@ -121,8 +121,11 @@ def worlds(scene: Scene) -> list[World]:
     from .collision import plan  # collision builds on World
     names = node_names(scene)
     out = [_world(c, names) for c in scene.of_type("RigidBodyCollection") if c.get("enabled")]
+    sensors = [s for s in scene.of_type("CollisionSensor") if s.get("enabled")]
     for w in out:
         w.collisions = plan(w, names)
+        if w.collisions is not None:
+            w.collisions.sensors = [(names[id(s)], s) for s in sensors if s.get("collider") is w.collisions.collider]
     return out
 
 
