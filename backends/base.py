@@ -80,9 +80,9 @@ EVALUATOR: dict[str, Declared] = native(
 EVALUATOR |= native(
     "CollidableShape", "CollidableShape.translation", "CollidableShape.rotation", "CollidableShape.enabled",
     "CollidableOffset", "CollidableOffset.translation", "CollidableOffset.rotation", "CollidableOffset.enabled",
-    "CollisionSpace", "CollisionSpace.enabled", "CollisionCollection.enabled") | approximate(
-    "collidables of a space with useGeometry FALSE collide as their bounding boxes, as the field's bounds-only "
-    "reading allows", "CollisionSpace.useGeometry")
+    "CollisionSpace", "CollisionSpace.enabled", "CollisionCollection.enabled",
+    # a speed hint: the geometry itself is always tested (x3d_core/collision.py says why)
+    "CollisionSpace.useGeometry")
 
 # What every 3D backend builds from the World's bulk arrays and its joint forest
 BODIES = ("RigidBody.mass", "RigidBody.inertia", "RigidBody.inertia.offDiagonal", "RigidBody.centerOfMass",

@@ -225,7 +225,7 @@ def test_collision_plan_follows_the_collider_spaces_and_offsets(tmp_path):
     assert inner.body == 0 and inner.position == pytest.approx([0, -2, 0])
     assert R.rotate(inner.orientation, [0, 1, 0]) == pytest.approx([-1, 0, 0])
     assert (geoms["Bounded"].kind, geoms["Bounded"].size.tolist(), geoms["Bounded"].body) == ("box", [1, 1, 1], STATIC)
-    assert (geoms["InSpace"].kind, geoms["InSpace"].size.tolist()) == ("box", [0.5, 0.5, 0.5])  # useGeometry FALSE
+    assert (geoms["InSpace"].kind, geoms["InSpace"].size.tolist()) == ("sphere", [0.25])  # useGeometry: a hint
     assert not c.may_touch(geoms["A"], inner)  # one body
     assert not c.may_touch(geoms["A"], geoms["InSpace"])  # joined by the ball joint
     assert c.may_touch(geoms["A"], geoms["Bounded"])

@@ -7,8 +7,11 @@ The rules (clause 37.4), as x3drbp reads them:
   own translation and rotation are outputs (the body sets them), so it sits at the body's
   frame; below a CollidableOffset, translation and rotation place it relative to the
   offset. A collidable on no body is static, placed by its own translation and rotation.
-- A Shape with an explicit bboxSize collides as that box (the spec's approximation), and
-  so does every collidable of a CollisionSpace whose useGeometry is FALSE (bounds only).
+- A Shape with an explicit bboxSize collides as that box (the spec's approximation).
+  CollisionSpace useGeometry is read as the speed hint it describes ("only make
+  approximations using the bounds... using the geometry will be more accurate"): the
+  geometry itself is always used, as every browser does; a literal reading would turn
+  the wheels of Xj3D's own toy car (in a space, useGeometry left FALSE) into boxes.
 - Collidables of one body never collide with each other, and neither do the collidables
   of two bodies joined by a joint (ODE's usual rule, and Xj3D's).
 - Contact parameters come from the CollisionCollection; appliedParameters decides which
@@ -139,13 +142,13 @@ def plan(world: World, names: dict[int, str]) -> Collisions | None:
     out: list[Geometry] = []
     seen: set[int] = set()
 
-    def collidable(node: Node, bounds_only: bool) -> None:
+    def collidable(node: Node) -> None:
         if id(node) in seen or not node.get("enabled"):
             return
         seen.add(id(node))
         if node.type_name == "CollisionSpace":
             for child in node.get("collidables"):
-                collidable(child, bounds_only or not node.get("useGeometry"))
+                collidable(child)
             return
         row = owner.get(id(node), STATIC)
         if row != STATIC and not world.bodies.enabled[row]:
@@ -154,10 +157,10 @@ def plan(world: World, names: dict[int, str]) -> Collisions | None:
             pose = (np.asarray(node.get("translation"), dtype=np.float64), R.from_axis_angle(node.get("rotation")))
         else:  # the body sets a top-level collidable's translation and rotation
             pose = (np.zeros(3), R.IDENTITY.copy())
-        _shapes(node, row, pose, bounds_only, names, out)
+        _shapes(node, row, pose, names, out)
 
     for node in collider.get("collidables"):
-        collidable(node, False)
+        collidable(node)
     excluded = set()
     for j in world.joints:
         if j.body1 != j.body2:
@@ -165,8 +168,8 @@ def plan(world: World, names: dict[int, str]) -> Collisions | None:
     return Collisions(out, excluded, parameters(collider, world.contact_surface_thickness), collider)
 
 
-def _shapes(node: Node, row: int, pose: tuple[np.ndarray, np.ndarray], bounds_only: bool,
-            names: dict[int, str], out: list[Geometry]) -> None:
+def _shapes(node: Node, row: int, pose: tuple[np.ndarray, np.ndarray], names: dict[int, str],
+            out: list[Geometry]) -> None:
     """The shapes under a collidable, posed in its body's frame."""
     position, orientation = pose
     if node.type_name == "CollidableOffset":
@@ -175,14 +178,13 @@ def _shapes(node: Node, row: int, pose: tuple[np.ndarray, np.ndarray], bounds_on
             return
         local = np.asarray(inner.get("translation"), dtype=np.float64)
         turn = R.from_axis_angle(inner.get("rotation"))
-        _shapes(inner, row, (position + R.rotate(orientation, local), R.multiply(orientation, turn)),
-                bounds_only, names, out)
+        _shapes(inner, row, (position + R.rotate(orientation, local), R.multiply(orientation, turn)), names, out)
         return
     shape = node.get("shape")
     geometry = shape.get("geometry") if shape is not None else None
     if geometry is None:
         return
-    g = _geometry(geometry, shape, bounds_only)
+    g = _geometry(geometry, shape)
     if g is None:
         return
     kind, size, centre, vertices, triangles, grid = g
@@ -190,7 +192,7 @@ def _shapes(node: Node, row: int, pose: tuple[np.ndarray, np.ndarray], bounds_on
                         orientation, vertices, triangles, grid))
 
 
-def _geometry(geometry: Node, shape: Node, bounds_only: bool):
+def _geometry(geometry: Node, shape: Node):
     """(kind, size, centre in the shape's frame, vertices, triangles, grid), or None for a
     geometry that does not collide (no points)."""
     bbox = np.asarray(shape.get("bboxSize"), dtype=np.float64)
@@ -199,19 +201,19 @@ def _geometry(geometry: Node, shape: Node, bounds_only: bool):
     t = geometry.type_name
     zero = np.zeros(3)
     if t == "Box":
-        found = ("box", np.asarray(geometry.get("size"), dtype=np.float64), zero, None, None, None)
-    elif t == "Sphere":
-        found = ("sphere", np.array([geometry.get("radius")]), zero, None, None, None)
-    elif t == "Cylinder":
-        found = ("cylinder", np.array([geometry.get("radius"), geometry.get("height")]), zero, None, None, None)
-    elif t == "Cone":
-        found = ("cone", np.array([geometry.get("bottomRadius"), geometry.get("height")]), zero, None, None, None)
-    elif t in ("IndexedFaceSet", "IndexedTriangleSet", "TriangleSet"):
+        return ("box", np.asarray(geometry.get("size"), dtype=np.float64), zero, None, None, None)
+    if t == "Sphere":
+        return ("sphere", np.array([geometry.get("radius")]), zero, None, None, None)
+    if t == "Cylinder":
+        return ("cylinder", np.array([geometry.get("radius"), geometry.get("height")]), zero, None, None, None)
+    if t == "Cone":
+        return ("cone", np.array([geometry.get("bottomRadius"), geometry.get("height")]), zero, None, None, None)
+    if t in ("IndexedFaceSet", "IndexedTriangleSet", "TriangleSet"):
         mesh = _mesh(geometry)
         if mesh is None:
             return None
-        found = ("mesh", np.zeros(3), zero, mesh[0], mesh[1], None)
-    elif t == "ElevationGrid":
+        return ("mesh", np.zeros(3), zero, mesh[0], mesh[1], None)
+    if t == "ElevationGrid":
         nx, nz = int(geometry.get("xDimension")), int(geometry.get("zDimension"))
         heights = np.asarray(geometry.get("height"), dtype=np.float64)
         if nx < 2 or nz < 2 or heights.size != nx * nz:
@@ -220,12 +222,8 @@ def _geometry(geometry: Node, shape: Node, bounds_only: bool):
         zs = np.arange(nz) * geometry.get("zSpacing")
         gx, gz = np.meshgrid(xs, zs)
         points = np.stack([gx.ravel(), heights, gz.ravel()], axis=1)
-        found = ("heightfield", np.zeros(3), zero, points, None, (nx, nz))
-    else:
-        return None
-    if bounds_only:
-        return _bounds(found)
-    return found
+        return ("heightfield", np.zeros(3), zero, points, None, (nx, nz))
+    return None
 
 
 def _mesh(geometry: Node) -> tuple[np.ndarray, np.ndarray] | None:
@@ -254,17 +252,3 @@ def _mesh(geometry: Node) -> tuple[np.ndarray, np.ndarray] | None:
         return None
     return points, tris
 
-
-def _bounds(found):
-    """The axis-aligned box (in the shape's frame) around a geometry: useGeometry FALSE."""
-    kind, size, centre, vertices, _, _ = found
-    if kind == "box":
-        return found
-    if kind == "sphere":
-        extents = np.full(3, 2 * size[0])
-    elif kind in ("cylinder", "cone"):
-        extents = np.array([2 * size[0], size[1], 2 * size[0]])
-    else:
-        lo, hi = vertices.min(axis=0), vertices.max(axis=0)
-        extents, centre = hi - lo, (hi + lo) / 2
-    return "box", extents, centre, None, None, None
