@@ -69,8 +69,6 @@ EVALUATOR: dict[str, Declared] = native(
     "the exponential map turns the body about its whole angular velocity, not split along this axis as ODE's "
     "finite rotation axis does; the two differ only for fast spin about the axis with a slow tumble",
     "RigidBody.finiteRotationAxis") | approximate(
-    "ODE's limit on the speed contacts use to undo penetration: no effect in a scene without a collider",
-    "RigidBodyCollection.maxCorrectionSpeed", "RigidBodyCollection.contactSurfaceThickness") | approximate(
     "no effect: the joint has no stop angles for these to act on",
     *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")),
     *(f"UniversalJoint.stop{k}{f}" for k in (1, 2) for f in ("Bounce", "ErrorCorrection")))

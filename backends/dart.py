@@ -27,17 +27,35 @@ step), but constraint impulses (stops, servos, loops) move its joint without the
 stop's row takes priority over a SERVO actuator on the same degree of freedom (so hinge2
 motors are joint forces computed here, see _Drives); per-degree-of-freedom actuator types
 are refused except MIMIC.
+
+Collisions (where world.collisions is not None) go through DART's Bullet collision
+detector, measured against the others dartpy offers: the default FCL detector misses
+sphere-versus-mesh contacts, the ODE detector turns a cone into a 1 cm sphere and lets
+crossed cylinders sink (ODE has no cylinder-cylinder test), DART's own detector sinks
+boxes 6 cm into meshes. Bullet takes a mesh's convex hull (measured: a ball is held at
+the hull's top over a V trough), so a mesh is built triangle by triangle, each its own
+shape: a triangle soup, as ODE's trimesh. Each geometry is a ShapeNode on its body's node
+(the static ones on one welded node at the origin). DART combines friction by MIN and
+restitution by PRODUCT, so every shape gets mu and sqrt(bounce): each contact gets the
+collection's values exactly. Its contact normal points from collisionObject2 towards
+collisionObject1 (measured), the point lies on object 1, the depth is positive when
+overlapping. Its contact error correction is fixed (ERP 0.01, at most 1 mm/s, no surface
+layer) and it bounces only where e times the approach speed exceeds 0.1 m/s: constants
+of its ContactConstraint, which dartpy does not bind.
 """
 
 from __future__ import annotations
 
+import os
+import tempfile
 from dataclasses import dataclass
 
 import dartpy as dart
 import numpy as np
 
 from x3d_core import rotation as R
-from x3d_core.engine import Unsupported
+from x3d_core.collision import Collisions, ContactPoints, Geometry
+from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
 from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
@@ -49,6 +67,8 @@ _LOOPS = dart.constraint.DynamicJointConstraint  # holds the loop constraints' c
 # MuJoCo's massless stack of joints, outputs move by about 10 * _LINK_MASS (rad/s over
 # 1 s; 3e-14 with massless links): linear in it, so no rounding trouble down to here
 _LINK_MASS = 1e-12
+_Z_TO_Y = np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]])  # DART's cylinders and cones lie along z, X3D's along y
+_MAX_CONTACTS = 1000  # DART's CollisionOption.maxNumContacts: dartpy returns the option by value, so it stays
 
 
 def _isometry(q: np.ndarray, p: np.ndarray) -> dart.math.Isometry3:
@@ -143,6 +163,61 @@ def _box(s: np.ndarray, r: np.ndarray, limit: np.ndarray) -> np.ndarray:
     return x
 
 
+def _shapes(g: Geometry) -> list[tuple[dart.dynamics.Shape, np.ndarray]]:
+    """The DART shapes of one geometry, each with the turn from its frame to the geometry's."""
+    if g.kind == "box":
+        return [(dart.dynamics.BoxShape(np.asarray(g.size, dtype=np.float64)), np.eye(3))]
+    if g.kind == "sphere":
+        return [(dart.dynamics.SphereShape(float(g.size[0])), np.eye(3))]
+    if g.kind == "cylinder":
+        return [(dart.dynamics.CylinderShape(float(g.size[0]), float(g.size[1])), _Z_TO_Y)]
+    if g.kind == "cone":  # DART's (and Bullet's) cone is centred, apex at +z: X3D's, turned
+        return [(dart.dynamics.ConeShape(float(g.size[0]), float(g.size[1])), _Z_TO_Y)]
+    if g.kind == "mesh":
+        return [(shape, np.eye(3)) for shape in _triangles(g.vertices, g.triangles)]
+    if g.kind == "heightfield":
+        return [(shape, np.eye(3)) for shape in _triangles(g.vertices, _grid_triangles(*g.grid))]
+    raise Unsupported(f"{g.name}: no DART shape for a {g.kind}")
+
+
+def _grid_triangles(nx: int, nz: int) -> np.ndarray:
+    """An ElevationGrid's cells as two triangles each, facing +y, split along the diagonal
+    from (i+1, j) to (i, j+1); point (i, j) is row j * nx + i."""
+    i, j = np.meshgrid(np.arange(nx - 1), np.arange(nz - 1))
+    a = (j * nx + i).ravel()
+    return np.concatenate([np.stack([a, a + nx, a + 1], axis=1), np.stack([a + 1, a + nx, a + nx + 1], axis=1)])
+
+
+def _triangles(vertices: np.ndarray, triangles: np.ndarray) -> list[dart.dynamics.MeshShape]:
+    """One MeshShape per (non-degenerate) triangle. DART's Bullet detector takes a mesh's
+    convex hull, which for a single triangle is the triangle. dartpy builds a MeshShape only
+    from a file (through assimp), so each triangle is a small OBJ file, all loaded through
+    one URDF string."""
+    v = np.asarray(vertices, dtype=np.float64)
+    t = np.asarray(triangles, dtype=np.int64).reshape(-1, 3)
+    area = np.linalg.norm(np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]), axis=1)
+    scale = max(float(np.ptp(v, axis=0).max()), 1e-300) if len(v) else 1.0
+    t = t[area > 1e-12 * scale * scale]  # assimp drops degenerate faces: leave them out here
+    if not len(t):
+        return []
+    with tempfile.TemporaryDirectory(prefix="x3drbp-dart-") as folder:
+        parts = []
+        for n, tri in enumerate(t):
+            path = os.path.join(folder, f"t{n}.obj")
+            with open(path, "w") as f:
+                f.write("".join("v %.17g %.17g %.17g\n" % tuple(p) for p in v[tri]) + "f 1 2 3\n")
+            parts.append(f'<collision><geometry><mesh filename="{path}"/></geometry></collision>')
+        urdf = f'<robot name="mesh"><link name="mesh">{"".join(parts)}</link></robot>'
+        loaded = dart.utils.DartLoader().parseSkeletonString(urdf, dart.common.Uri("file:///"))
+        if loaded is None or loaded.getNumBodyNodes() != 1:
+            raise Unsupported("DART could not load a mesh's triangles")
+        body = loaded.getBodyNode(0)
+        shapes = [body.getShapeNode(k).getShape() for k in range(body.getNumShapeNodes())]
+    if len(shapes) != len(t):
+        raise Unsupported(f"DART loaded {len(shapes)} of a mesh's {len(t)} triangles")
+    return shapes
+
+
 class DartSimulation:
     def __init__(self, world: World, dt: float):
         self.world = world
@@ -180,6 +255,10 @@ class DartSimulation:
             else:
                 node = self._tree_joint(skeleton, i, world.joints[world.parent_joint[i]])
             self._body(node, i)
+        self.geometry_of: dict[str, int] = {}  # shape node name -> index in world.collisions.geometries
+        self.split = False  # whether some geometry is built of several shapes (a mesh's triangles)
+        if world.collisions is not None:
+            self._collide(world.collisions)
         for skeleton in self.skeletons:
             self.dart_world.addSkeleton(skeleton)
         self.drives = [_Drives(s, [m for m in self.motors if m.skeleton is s], dt) for s in self.skeletons
@@ -209,9 +288,50 @@ class DartSimulation:
         joint, node = skeleton.createWeldJointAndBodyNodePair(None)
         joint.setTransformFromParentBodyNode(_isometry(b.orientation[i], b.position[i]))
         self._body(node, i)
-        skeleton.setMobile(False)
+        # no degrees of freedom, so nothing moves it; left "mobile" because DART never tests
+        # two immobile skeletons against each other, and x3d_core tests a fixed body's
+        # geometry against the static environment's (contacts that move nothing)
         self.skeletons.append(skeleton)
         self.members.append([i])
+
+    def _collide(self, c: Collisions) -> None:
+        """A ShapeNode per geometry (colliding, with the collection's friction and bounce), the
+        Bullet detector, and the pairs x3d_core's may_touch rules out blacklisted."""
+        self.dart_world.setCollisionDetector(dart.collision.BulletCollisionDetector())
+        static = None
+        if any(g.body == STATIC for g in c.geometries):
+            skeleton = dart.dynamics.Skeleton("static")
+            _, static = skeleton.createWeldJointAndBodyNodePair(None)
+            static.setName("static")
+            skeleton.setMobile(False)
+            self.dart_world.addSkeleton(skeleton)
+        p = c.parameters
+        mu, e = float(p.friction[0]), float(np.sqrt(p.bounce))  # DART: min(mu, mu) = mu, e * e = bounce
+        for k, g in enumerate(c.geometries):
+            node = static if g.body == STATIC else self.nodes[g.body]
+            for n, (shape, turn) in enumerate(_shapes(g)):
+                frame = node.createShapeNode(shape, f"g{k}" if n == 0 else f"g{k}.{n}")
+                pose = dart.math.Isometry3()
+                pose.set_rotation(R.matrix(g.orientation) @ turn)
+                pose.set_translation(np.asarray(g.position, dtype=np.float64))
+                frame.setRelativeTransform(pose)
+                frame.createCollisionAspect()
+                surface = frame.createDynamicsAspect()
+                surface.setFrictionCoeff(mu)
+                surface.setRestitutionCoeff(e)
+                self.geometry_of[frame.getName()] = k
+                self.split |= n > 0
+        # bodies of one tree are one skeleton: test them against each other (DART's default
+        # skips them all) and leave out exactly the joined pairs, as everywhere else
+        for skeleton in self.skeletons:
+            if skeleton.getNumBodyNodes() > 1:
+                skeleton.enableSelfCollisionCheck()
+                skeleton.enableAdjacentBodyCheck()
+        keep_apart = self.dart_world.getConstraintSolver().getCollisionOption().collisionFilter  # shared
+        for a, b in c.excluded:
+            ends = [static if r == STATIC else self.nodes[r] for r in (a, b)]
+            if ends[0] is not None and ends[1] is not None:
+                keep_apart.addBodyNodePairToBlackList(*ends)
 
     def _tree_joint(self, skeleton: dart.dynamics.Skeleton, child: int, j: Joint) -> dart.dynamics.BodyNode:
         """The child's body node, joined to its parent (or the world) at the joint's anchor."""
@@ -345,6 +465,33 @@ class DartSimulation:
             for drives in self.drives:  # after the loads: the motors answer them
                 drives.command()
             self.dart_world.step()
+            if self.geometry_of and self.dart_world.getLastCollisionResult().getNumContacts() >= _MAX_CONTACTS:
+                raise BlewUp(f"{_MAX_CONTACTS} contacts in one step: DART's cap (not settable from Python) "
+                             "leaves the others out")
+
+    def contacts(self) -> ContactPoints:
+        """DART's contacts of the last step, copied out at once (its objects must not outlive
+        the world). DART's normal points from object 2 towards object 1: turned round."""
+        if not self.geometry_of:
+            return ContactPoints.none()
+        found = self.dart_world.getLastCollisionResult().getContacts()
+        k = len(found)
+        position, normal, depth = np.empty((k, 3)), np.empty((k, 3)), np.empty(k)
+        first, second = np.empty(k, dtype=int), np.empty(k, dtype=int)
+        for i, c in enumerate(found):
+            position[i] = c.point
+            normal[i] = c.normal
+            depth[i] = c.penetrationDepth
+            first[i] = self.geometry_of[c.collisionObject1.getShapeFrame().getName()]
+            second[i] = self.geometry_of[c.collisionObject2.getShapeFrame().getName()]
+        del found
+        if self.split and k > 1:  # a mesh's triangles meeting at a point each report it: keep one
+            key = np.column_stack([first, second, np.round(position * 1e9), np.round(normal * 1e9)])
+            _, keep = np.unique(key, axis=0, return_index=True)
+            keep.sort()
+            position, normal, depth = position[keep], normal[keep], depth[keep]
+            first, second = first[keep], second[keep]
+        return ContactPoints(position, -normal, depth, first, second)
 
     def state(self) -> State:
         n = len(self.nodes)
@@ -379,11 +526,90 @@ class DartSimulation:
 class DartBackend(Backend):
     name = "dart"
     declared = {
-        **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBodyCollection.errorCorrection"),
+        **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity"),
+        **approximate("set on the loop constraints (DART's tree joints and predictive stops need none); DART's "
+                      "contacts keep their own fixed ERP 0.01, correcting at most 1 mm/s (constants of its "
+                      "ContactConstraint, which dartpy does not bind), where ODE corrects contacts by "
+                      "errorCorrection too",
+                      "RigidBodyCollection.errorCorrection"),
         **approximate("DART's CFM is relative to each constraint row (its diagonal A becomes A*(1+cfm)+cfm), "
                       "ODE's adds CFM/dt: converted as cfm = CFM/(2*dt), exact for a unit effective mass; "
-                      "it acts on loop constraints only (tree joints are exact)",
+                      "it acts on loop constraints only (tree joints are exact; contacts keep DART's fixed "
+                      "1e-5, dartpy binds no setter)",
                       "RigidBodyCollection.constantForceMix"),
+        # -- collisions (world.collisions): DART's Bullet detector, see the module's docstring
+        **native("CollidableShape.geometry.Box", "CollidableShape.geometry.Sphere",
+                 "CollidableShape.geometry.Cylinder", "CollidableShape.geometry.Cone",
+                 # DART's own contact points (Bullet's: the point on geometry1's surface), copied out;
+                 # a point several of a mesh's triangles report once
+                 "CollisionSensor",
+                 # resolved by x3d_core; each parameter it applies is declared below
+                 "CollisionCollection.appliedParameters",
+                 # these act only where appliedParameters names SLIP-n, SPEED-n, ERROR_REDUCTION or
+                 # CONSTANT_FORCE (declared unsupported, so such a scene is refused): alone they have
+                 # no effect, in ODE as here
+                 "CollisionCollection.slipFactors", "CollisionCollection.surfaceSpeed",
+                 "CollisionCollection.softnessErrorCorrection", "CollisionCollection.softnessConstantForceMix"),
+        **approximate("DART's contacts: each step's contacts are found before it moves the bodies and stop the "
+                      "approach in that step, so a body lands up to one step's travel (v*dt) deep; DART then "
+                      "undoes penetration at its fixed contact ERP 0.01, at most 1 mm/s, without a surface layer "
+                      "(ODE: errorCorrection, contactSurfaceThickness, maxCorrectionSpeed); dartpy binds none of "
+                      "these. So a landing that stops dead stays up to v*dt deep (measured 1.1 cm from 0.5 m at "
+                      "1/240 s), rising out at 1 mm/s; a body set down gently rests within g*dt^2. At most 1000 "
+                      "contacts a step (DART's cap, not settable from Python): a run that reaches it stops as "
+                      "blown up rather than drop contacts",
+                      "CollisionCollection"),
+        **approximate("each shape gets restitution sqrt(bounce) and DART multiplies the two: the rebound speed "
+                      "is bounce times the approach speed of the contact step (measured within 6e-5 relative), a "
+                      "speed that already holds that step's gravity g*dt, so a rebound is up to bounce*g*dt fast "
+                      "(apex after a 1 m drop above bounce^2 m by 0.1, 5.1, 12.5 mm for bounce 0.2, 0.5, 0.8 at "
+                      "1/240 s: about bounce^2*v*dt; with bounce 1 a ball "
+                      "rises about v*dt higher each bounce: measured 2.9 cm from 2.4 m at 1/240 s, Xj3D's "
+                      "ball_bounce). And DART bounces only "
+                      "where bounce times the approach speed exceeds 0.1 m/s, a constant (ODE: the approach speed "
+                      "exceeds minBounceSpeed, 0.1 m/s by default): impacts between the two thresholds differ",
+                      "CollisionCollection.bounce", "CollisionCollection.appliedParameters.BOUNCE"),
+        **unsupported("DART's bounce threshold is a constant of its ContactConstraint (it bounces where bounce "
+                      "times the approach speed exceeds 0.1 m/s, measured), not settable from Python: "
+                      "minBounceSpeed would have no effect",
+                      "CollisionCollection.minBounceSpeed"),
+        **approximate("each shape gets mu and DART takes the smaller of two, so every contact has exactly mu "
+                      "(measured: a block slides down 30 and 45 degree inclines at g(sin - mu cos) within 2e-5 "
+                      "relative, and sticks where tan <= mu, creeping under 0.1 mm while it settles). Friction "
+                      "is a pyramid along two directions, as ODE's: DART's are ODE's own (negated) wherever the "
+                      "normal's z component is at most sqrt(1/2) or the normal is along z, and turned about the "
+                      "normal for other normals near z (sliding between the directions meets up to sqrt(2) mu in "
+                      "both engines, along different diagonals there). DART turns friction off below mu = 1e-3",
+                      "CollisionCollection.frictionCoefficients"),
+        **unsupported("dartpy binds one friction coefficient per shape (DynamicsAspect.setFrictionCoeff sets "
+                      "both directions), no second one",
+                      "CollisionCollection.appliedParameters.FRICTION_COEFFICIENT-2"),
+        **unsupported("dartpy binds no friction direction (DynamicsAspect.setFirstFrictionDirection)",
+                      "CollisionCollection.appliedParameters.USER_FRICTION"),
+        **unsupported("DART's slip compliance (ODE's force-dependent slip) is not bound in dartpy",
+                      "CollisionCollection.appliedParameters.SLIP-1", "CollisionCollection.appliedParameters.SLIP-2"),
+        **unsupported("DART 6 has no contact surface velocity reachable from Python",
+                      "CollisionCollection.appliedParameters.SPEED-1", "CollisionCollection.appliedParameters.SPEED-2"),
+        **unsupported("DART's contact ERP and CFM are fixed constants of its ContactConstraint (0.01 and 1e-5), "
+                      "class-wide and not bound in dartpy: no per-collection softness",
+                      "CollisionCollection.appliedParameters.ERROR_REDUCTION",
+                      "CollisionCollection.appliedParameters.CONSTANT_FORCE"),
+        **unsupported("DART's contacts allow no penetration before correcting (its ContactConstraint's error "
+                      "allowance is 0, class-wide, not bound in dartpy)",
+                      "RigidBodyCollection.contactSurfaceThickness"),
+        **unsupported("DART's contacts correct penetration at most 1 mm/s, a constant of its ContactConstraint "
+                      "not bound in dartpy", "RigidBodyCollection.maxCorrectionSpeed"),
+        **approximate("a triangle soup, as ODE's trimesh: each triangle its own convex shape (DART's Bullet "
+                      "detector takes a whole mesh's convex hull: measured, it held a ball at the top of a V "
+                      "trough's hull); surfaces without volume, so a body moving more than its own thickness in "
+                      "a step passes through; a ball rests in a V trough at r sqrt(2) (measured 4e-4 m deep, "
+                      "DART's contact settling)",
+                      "CollidableShape.geometry.IndexedFaceSet", "CollidableShape.geometry.IndexedTriangleSet",
+                      "CollidableShape.geometry.TriangleSet"),
+        **approximate("dartpy binds no HeightmapShape: the grid is a triangle soup, two triangles a cell (split "
+                      "from point (i+1, j) to (i, j+1)), a surface without volume below it (ODE's heightfield "
+                      "is solid below)",
+                      "CollidableShape.geometry.ElevationGrid"),
         **approximate("DART solves the joint constraints (loops, limits) with a direct Dantzig LCP solver, "
                       "as if iterations were unlimited; tree joints need none",
                       "RigidBodyCollection.iterations"),

@@ -122,12 +122,16 @@ def features(scene: Scene) -> list[str]:
     return sorted(out)
 
 
-COLLISION_TYPES = ("CollisionCollection", "CollisionSpace", "CollisionSensor", "CollidableShape", "CollidableOffset",
-                   "Contact")
+COLLISION_FEATURES = ("CollisionCollection", "CollisionSpace", "CollisionSensor", "CollidableShape",
+                      "CollidableOffset", "RigidBodyCollection.contactSurfaceThickness",
+                      "RigidBodyCollection.maxCorrectionSpeed")
 
 
 def run_features(scene: Scene) -> list[str]:
-    """The features a run of the scene needs: collision geometry counts only where some
-    enabled RigidBodyCollection has a collider (a body's shapes collide with nothing else)."""
+    """The features a run of the scene needs. Collision geometry and contact settings count
+    only where some enabled RigidBodyCollection has a collider (otherwise nothing collides);
+    a Contact node counts never by itself: only set_contacts, which only a ROUTE can feed
+    (and a routed input is refused by name), gives it an effect."""
     colliding = any(c.get("collider") is not None for c in scene.of_type("RigidBodyCollection") if c.get("enabled"))
-    return [f for f in features(scene) if colliding or not f.startswith(COLLISION_TYPES)]
+    return [f for f in features(scene)
+            if not f.startswith("Contact") and (colliding or not f.startswith(COLLISION_FEATURES))]
