@@ -408,26 +408,3 @@ def test_collision_declarations():
         assert d(f).support is base.Support.UNSUPPORTED and d(f).note != base.NOT_YET, f
     for f in ("RigidBodyCollection.contactSurfaceThickness", "RigidBodyCollection.maxCorrectionSpeed"):
         assert BACKEND.declared[f].support is base.Support.UNSUPPORTED, f  # base.EVALUATOR answers first for now
-
-
-def test_declared_collision_names_are_feature_names():
-    """Every collision feature declared is a name x3d_core.analysis can produce: a node type,
-    one of its fields, a collidable's geometry type, or an applied parameter."""
-    from x3d_core.analysis import COLLISION_TYPES
-    from x3d_core.applied import CANONICAL
-    from x3d_core.schema import node_type
-    for name in BACKEND.declared:
-        kind, _, rest = name.partition(".")
-        if kind not in COLLISION_TYPES and not rest.startswith(("contactSurfaceThickness", "maxCorrectionSpeed")):
-            continue
-        spec = node_type(kind)
-        assert spec is not None, name
-        if not rest:
-            continue
-        head, _, tail = rest.partition(".")
-        assert head in spec.fields or (kind, head) == ("CollidableShape", "geometry"), name  # the shape's geometry
-        if tail:
-            if head == "geometry":
-                assert node_type(tail) is not None and node_type(tail).is_a("X3DGeometryNode"), name
-            else:
-                assert head == "appliedParameters" and tail in CANONICAL, name
