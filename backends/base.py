@@ -78,7 +78,7 @@ EVALUATOR: dict[str, Declared] = native(
 EVALUATOR |= native(
     "CollidableShape", "CollidableShape.translation", "CollidableShape.rotation", "CollidableShape.enabled",
     "CollidableOffset", "CollidableOffset.translation", "CollidableOffset.rotation", "CollidableOffset.enabled",
-    "CollisionSpace", "CollisionSpace.enabled", "CollisionCollection.enabled",
+    "CollisionSpace", "CollisionSpace.enabled", "CollisionCollection.enabled", "CollisionSensor.enabled",
     # a speed hint: the geometry itself is always tested (x3d_core/collision.py says why)
     "CollisionSpace.useGeometry")
 

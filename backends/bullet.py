@@ -18,6 +18,20 @@ createMultiBody's linkParentIndices count the base as 0; its joints carry veloci
 motors that hold them still until given zero force; multibodies are damped and joint
 speeds clamped to 100 rad/s by default; a free base or a ball joint turns at most pi/4
 per step (faster spins are clamped: 188 rad/s at dt = 1/240), a revolute joint exactly.
+
+Collisions (where the world has a collider): a moving body's first geometry is its link's
+collision shape, each further one rides on a massless link fixed to it, so contact points
+name their geometry exactly; a static geometry (or a fixed body's) is a massless multibody
+of its own. Links of one multibody collide (self collision on; pybullet never tests a link
+against its parent, which is a joint anyway); the plan's other excluded pairs are filtered
+pair by pair. Contact parameters are per body and pybullet combines them: friction and
+restitution multiply (every shape gets the square root), contact springs go in series and
+dampers add (every shape gets 2k and c/2). Measured: collision shape frames are relative to
+the link frame (not the inertial frame); pybullet ignores a heightfield's frame; convex
+hulls collide a margin (1 mm unless changed) outside their points, boxes and cylinders
+within theirs (edges rounded by it); createCollisionShapeArray takes no vertices; friction
+is a pyramid along btPlaneSpace1's directions, ODE's, once cone friction is off; restitution
+needs a small contactProcessingThreshold and no contact ERP (which it would add to).
 """
 
 from __future__ import annotations
@@ -29,6 +43,7 @@ import numpy as np
 import pybullet as p
 
 from x3d_core import rotation as R
+from x3d_core.collision import ContactPoints, friction_directions
 from x3d_core.engine import Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
@@ -38,6 +53,14 @@ _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 _MAX_SPEED = 1e6  # pybullet clamps joint speeds to 100 rad/s unless told otherwise
 _MAX_FORCE = 1e12  # a loop constraint's impulse bound (pybullet's default is 500 N)
 _SUBSTEPS_ACCURATE = 4  # internal steps per step when preferAccuracy asks for more
+# the gap within which pybullet's solver takes a contact point (its contactProcessingThreshold): 0
+# (as restitution needs, against speculative contacts) lets a resting contact drop out whenever
+# rounding makes its distance positive, and the body fall for a step; 0.1 mm keeps it
+_PROCESSING = 1e-4
+_THIN = 1e-6  # the least size a collision shape gets (pybullet refuses empty ones)
+_HULL_MARGIN = 1e-4  # the collision margin of convex hulls: they collide this far outside their vertices
+_CONE_SIDES = 64  # a cone is the convex hull of a 64-gon and its apex
+_Z_TO_Y = np.array([np.cos(-np.pi / 4), np.sin(-np.pi / 4), 0.0, 0.0])  # turns pybullet's z axis to X3D's y
 
 
 def _xyzw(q: np.ndarray) -> list[float]:
@@ -67,6 +90,27 @@ def _angle_limits(lo: float, hi: float, sign: float) -> tuple[float, float] | No
     return tuple(sorted((sign * lo, sign * hi)))
 
 
+def _cone(radius: float, height: float) -> np.ndarray:
+    """A cone's hull points: X3D's cone, axis y, apex at +height/2, base at -height/2."""
+    a = 2 * np.pi * np.arange(_CONE_SIDES) / _CONE_SIDES
+    rim = np.stack([radius * np.cos(a), np.full(_CONE_SIDES, -height / 2), radius * np.sin(a)], axis=1)
+    return np.vstack([rim, [[0.0, height / 2, 0.0]]])
+
+
+def _spacing(g) -> tuple[float, float]:
+    """An elevation grid's xSpacing and zSpacing, from its grid points."""
+    nx = g.grid[0]
+    return float(g.vertices[1, 0] - g.vertices[0, 0]), float(g.vertices[nx, 2] - g.vertices[0, 2])
+
+
+def _friction_frame(up: np.ndarray) -> np.ndarray:
+    """The orientation whose y is the unit normal up and whose z and x are ODE's second and (but for
+    its sign) first friction directions for that normal."""
+    _, second = friction_directions(up)
+    axes = np.stack([np.cross(up, second[0]), up, second[0]], axis=1)
+    return R.from_matrix(axes[None])[0]
+
+
 def _skew(v: np.ndarray) -> np.ndarray:
     return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
@@ -87,6 +131,8 @@ class _Part:
     moments: np.ndarray  # principal moments of inertia
     limits: tuple[float, float] | None = None
     motor: tuple[float, float] | None = None  # target joint velocity, torque limit
+    shape: int = -1  # pybullet collision shape, -1 for none
+    geometry: int = -1  # the index in world.collisions.geometries that shape is
 
 
 @dataclass
@@ -132,6 +178,14 @@ class BulletSimulation:
         for i in world.order:
             if not b.fixed[i]:
                 self._place(i)
+        self.dt = dt
+        self.geometry_at: dict[tuple[int, int], int] = {}  # (multibody, link) -> geometry index
+        self.objects: dict[int, list[tuple[int, int]]] = {}  # body row (STATIC too) -> its (multibody, link)s
+        self.hulls: set[int] = set()  # collision shapes that are convex hulls
+        self.hull_objects: set[tuple[int, int]] = set()
+        self.second_axis: dict[int, int] = {}  # static geometry -> its body's axis along ODE's second direction
+        if world.collisions is not None:
+            self._shapes()
         for tree in self.trees:
             self._create(tree)
         # every part of every tree, flat, in the order _read returns them
@@ -150,6 +204,8 @@ class BulletSimulation:
         self.static_anchor: int | None = None
         for k in world.loop_joints:
             self._loop(world.joints[k])
+        if world.collisions is not None:
+            self._contacts_setup()
         self.moving = np.flatnonzero(~b.fixed)
         self.weight = -b.mass[:, None] * world.gravity * ~b.use_gravity[:, None]  # cancels gravity where it is off
         self.set_loads(b.forces, b.torques)
@@ -221,19 +277,21 @@ class BulletSimulation:
         base = tree.parts[0] if tree.free else None
         links = tree.links
         tree.uid = p.createMultiBody(
-            baseMass=base.mass if base else 0.0, baseCollisionShapeIndex=-1, baseVisualShapeIndex=-1,
+            baseMass=base.mass if base else 0.0, baseCollisionShapeIndex=base.shape if base else -1,
+            baseVisualShapeIndex=-1,
             basePosition=base.position if base else [0, 0, 0],
             baseOrientation=_xyzw(base.orientation if base else R.IDENTITY),
             baseInertialFramePosition=base.inertial if base else [0, 0, 0],
             baseInertialFrameOrientation=_xyzw(base.principal if base else R.IDENTITY),
-            linkMasses=[lk.mass for lk in links], linkCollisionShapeIndices=[-1] * len(links),
+            linkMasses=[lk.mass for lk in links], linkCollisionShapeIndices=[lk.shape for lk in links],
             linkVisualShapeIndices=[-1] * len(links), linkPositions=[lk.position for lk in links],
             linkOrientations=[_xyzw(lk.orientation) for lk in links],
             linkInertialFramePositions=[lk.inertial for lk in links],
             linkInertialFrameOrientations=[_xyzw(lk.principal) for lk in links],
             linkParentIndices=[tree.link(lk.parent) + 1 for lk in links],  # pybullet counts the base as 0 here
             linkJointTypes=[lk.joint_type for lk in links], linkJointAxis=[lk.axis for lk in links],
-            physicsClientId=c)
+            # links of one multibody collide only when asked (parent and child never do)
+            flags=p.URDF_USE_SELF_COLLISION if self.world.collisions is not None else 0, physicsClientId=c)
         if tree.uid < 0:
             raise Unsupported("pybullet refused to build a multibody")
         # pybullet damps multibodies and clamps their joint speeds by default
@@ -251,6 +309,8 @@ class BulletSimulation:
             if part.limits is not None:
                 p.changeDynamics(tree.uid, link, jointLowerLimit=part.limits[0], jointUpperLimit=part.limits[1],
                                  physicsClientId=c)
+            if part.joint_type == p.JOINT_FIXED:  # a further collision shape of its parent's body
+                continue
             if part.joint_type == p.JOINT_SPHERICAL:  # createMultiBody's joint motors hold every joint still
                 p.setJointMotorControlMultiDof(tree.uid, link, p.POSITION_CONTROL, targetPosition=[0, 0, 0, 1],
                                                force=[0, 0, 0], physicsClientId=c)
@@ -286,6 +346,178 @@ class BulletSimulation:
         cid = p.createConstraint(*ends[0], *ends[1], p.JOINT_POINT2POINT, [0, 0, 0], pivots[0], pivots[1],
                                  physicsClientId=self.client)
         p.changeConstraint(cid, maxForce=_MAX_FORCE, physicsClientId=self.client)
+
+    # -- collisions ---------------------------------------------------------
+    def _shapes(self) -> None:
+        """Every moving body's collision shapes: its first geometry on its own link (at the geometry's
+        pose in the link frame), each further one on a massless link fixed to it, so that pybullet's
+        contact points name the geometry itself (createCollisionShapeArray takes no vertices)."""
+        col = self.world.collisions
+        for gi, g in enumerate(col.geometries):
+            if g.body == STATIC or self.world.bodies.fixed[g.body]:
+                continue
+            t, k = self.where[g.body]
+            tree = self.trees[t]
+            part = tree.parts[k]
+            position = part.offset + g.position  # the link frame is turned as the body, at its offset
+            if part.shape < 0:
+                part.shape, part.geometry = self._shape(g, position, g.orientation, moving=True), gi
+                continue
+            tree.parts.append(_Part(
+                row=-1, parent=k, joint_type=p.JOINT_FIXED, axis=np.array([0.0, 0.0, 1.0]), position=position,
+                orientation=g.orientation, offset=np.zeros(3), inertial=np.zeros(3), principal=R.IDENTITY.copy(),
+                mass=0.0, moments=np.zeros(3), shape=self._shape(g, np.zeros(3), R.IDENTITY, moving=True),
+                geometry=gi))
+
+    def _shape(self, g, position: np.ndarray, orientation: np.ndarray, moving: bool) -> int:
+        """A pybullet collision shape for one geometry, posed in its link frame (but a static elevation
+        grid: pybullet ignores a heightfield's frame, so _contacts_setup poses its body instead)."""
+        kw: dict = {}
+        turn = orientation
+        if g.kind == "box":
+            kw = dict(shapeType=p.GEOM_BOX, halfExtents=(np.maximum(g.size, _THIN) / 2).tolist())
+        elif g.kind == "sphere":
+            kw = dict(shapeType=p.GEOM_SPHERE, radius=max(float(g.size[0]), _THIN))
+        elif g.kind == "cylinder":  # pybullet's cylinder axis is its z, X3D's is y
+            kw = dict(shapeType=p.GEOM_CYLINDER, radius=max(float(g.size[0]), _THIN),
+                      height=max(float(g.size[1]), _THIN))
+            turn = R.multiply(orientation, _Z_TO_Y)
+        elif g.kind == "cone":
+            kw = dict(shapeType=p.GEOM_MESH, vertices=_cone(float(g.size[0]), float(g.size[1])).tolist())
+        elif g.kind == "mesh" and not moving:  # static: the triangles themselves
+            kw = dict(shapeType=p.GEOM_MESH, vertices=g.vertices.tolist(), indices=g.triangles.ravel().tolist(),
+                      flags=p.GEOM_FORCE_CONCAVE_TRIMESH)
+        elif g.kind == "heightfield" and not moving:
+            nx, nz = g.grid
+            heights = g.vertices[:, 1].reshape(nz, nx)
+            # pybullet's heightfield: heights along its z, rows (x) and columns (y) centred on its bounds;
+            # turned so that its z is X3D's y, its y is X3D's -z, so the columns run backwards
+            kw = dict(shapeType=p.GEOM_HEIGHTFIELD, meshScale=[*_spacing(g), 1.0],
+                      heightfieldData=heights[::-1].ravel().tolist(), numHeightfieldRows=nx, numHeightfieldColumns=nz)
+        else:  # a mesh or an elevation grid on a moving body: pybullet collides its convex hull
+            kw = dict(shapeType=p.GEOM_MESH, vertices=g.vertices.tolist())
+        if kw["shapeType"] != p.GEOM_HEIGHTFIELD:
+            kw.update(collisionFramePosition=np.asarray(position, dtype=float).tolist(),
+                      collisionFrameOrientation=_xyzw(turn))
+        shape = p.createCollisionShape(**kw, physicsClientId=self.client)
+        if shape < 0:
+            raise Unsupported(f"pybullet refused the collision shape of {g.name} ({g.kind})")
+        if kw["shapeType"] == p.GEOM_MESH and "flags" not in kw:
+            self.hulls.add(shape)
+        return shape
+
+    def _contacts_setup(self) -> None:
+        """Static shapes as fixed multibodies, the pairs that never touch filtered out, and every
+        collision object's contact parameters set so that pybullet's combinations of two bodies'
+        values give the collection's own."""
+        c, w, b = self.client, self.world, self.world.bodies
+        col = w.collisions
+        for tree in self.trees:
+            for k, part in enumerate(tree.parts):
+                if part.geometry >= 0:
+                    self._object(tree.uid, tree.link(k), part.geometry, part.shape)
+        for gi, g in enumerate(col.geometries):
+            if g.body == STATIC:
+                position, orientation = g.position, g.orientation
+            elif b.fixed[g.body]:  # a fixed body's shapes: static, where the body is
+                position = b.position[g.body] + R.rotate(b.orientation[g.body], g.position)
+                orientation = R.multiply(b.orientation[g.body], g.orientation)
+            else:
+                continue
+            up = R.rotate(orientation, np.array([0.0, 1.0, 0.0]))
+            if g.kind == "heightfield":  # its frame is its body's
+                shape = self._shape(g, np.zeros(3), R.IDENTITY, moving=False)
+                xs, zs = _spacing(g)
+                nx, nz = g.grid
+                heights = g.vertices[:, 1]
+                centre = np.array([(nx - 1) * xs / 2, (heights.min() + heights.max()) / 2, (nz - 1) * zs / 2])
+                position, frame = position + R.rotate(orientation, centre), R.multiply(orientation, _Z_TO_Y)
+                # the frame axis nearest ODE's second friction direction there takes mu2 (below)
+                second = R.rotate(R.conjugate(frame), friction_directions(up)[1][0])
+                self.second_axis[gi] = int(np.argmax(np.abs(second)))
+            else:
+                # the static body's frame: its y along the geometry's up, its z along ODE's second
+                # friction direction there, the axis pybullet's anisotropic friction scales (mu2 below)
+                frame = _friction_frame(up)
+                shape = self._shape(g, np.zeros(3), R.multiply(R.conjugate(frame), orientation), moving=False)
+            uid = p.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=shape, basePosition=position.tolist(),
+                                    baseOrientation=_xyzw(frame), physicsClientId=c)
+            if uid < 0:
+                raise Unsupported(f"pybullet refused the static shape of {g.name}")
+            self._object(uid, -1, gi, shape)
+        # never together: shapes of one body (siblings on fixed links), bodies joined by a joint
+        for row, objs in self.objects.items():
+            if row != STATIC and not b.fixed[row]:
+                for n, (ua, la) in enumerate(objs):
+                    for ub, lb in objs[n + 1:]:
+                        p.setCollisionFilterPair(ua, ub, la, lb, 0, physicsClientId=c)
+        for first, second in col.excluded:
+            for ua, la in self.objects.get(first, ()):
+                for ub, lb in self.objects.get(second, ()):
+                    p.setCollisionFilterPair(ua, ub, la, lb, 0, physicsClientId=c)
+        # the contact parameters
+        par = col.parameters
+        mu1, mu2 = (float(m) for m in par.friction)
+        base = mu1 if mu1 > 0 else mu2  # pybullet multiplies the two bodies' lateral friction
+        erp = par.softness_erp if par.softness_erp is not None else w.error_correction
+        # contacts are rigid unless CONSTANT_FORCE applies: the world's constantForceMix, which ODE would
+        # use, reaches no constraint row in this backend (declared so)
+        cfm = par.softness_cfm if par.softness_cfm is not None else 0.0
+        if par.bounce > 0 and par.softness_erp is None:
+            erp = 0.0  # pybullet adds the position correction to the bounce (ODE takes the larger)
+        # ODE's soft contact as a spring and damper, k = ERP/(h CFM) and c = (1-ERP)/CFM with h the
+        # scene's step (pybullet's substeps keep the spring), both given per body: pybullet puts two
+        # bodies' springs in series and adds their dampers
+        soft = cfm > 0
+        stiffness, damping = (2 * erp / (self.dt * cfm), (1 - erp) / cfm / 2) if soft else (-1.0, -1.0)
+        p.setPhysicsEngineParameter(
+            restitutionVelocityThreshold=par.min_bounce_speed, contactSlop=par.surface_thickness,
+            enableConeFriction=0, contactERP=erp, physicsClientId=c)
+        for (uid, link), gi in self.geometry_at.items():
+            kw = dict(lateralFriction=float(np.sqrt(base)), restitution=float(np.sqrt(par.bounce)),
+                      rollingFriction=0.0, spinningFriction=0.0, contactProcessingThreshold=_PROCESSING)
+            if soft:
+                kw.update(contactStiffness=stiffness, contactDamping=damping)
+            static = col.geometries[gi].body == STATIC or b.fixed[col.geometries[gi].body]
+            if static and mu1 != mu2 and base > 0:  # scaled along the axis of ODE's second direction
+                scale = [mu1 / base] * 3
+                scale[self.second_axis.get(gi, 2)] = mu2 / base
+                kw.update(anisotropicFriction=scale)
+            if (uid, link) in self.hull_objects:  # pybullet's hulls grow by their margin (1 mm by default)
+                kw.update(collisionMargin=_HULL_MARGIN)
+            p.changeDynamics(uid, link, **kw, physicsClientId=c)
+
+    def _object(self, uid: int, link: int, geometry: int, shape: int) -> None:
+        self.geometry_at[(uid, link)] = geometry
+        if shape in self.hulls:
+            self.hull_objects.add((uid, link))
+        self.objects.setdefault(self.world.collisions.geometries[geometry].body, []).append((uid, link))
+
+    def contacts(self) -> ContactPoints:
+        """pybullet's contact points of the last step (found at its start) that its solver took, those
+        within _PROCESSING of touching, each named by its geometries (the lower index first), at the
+        middle of the two bodies' points, the normal from the first geometry towards the second and
+        the depth minus pybullet's distance (so down to -0.1 mm for a point not quite touching)."""
+        if self.world.collisions is None:
+            return ContactPoints.none()
+        rows = []
+        at = self.geometry_at
+        for cp in p.getContactPoints(physicsClientId=self.client):
+            if cp[8] > _PROCESSING:
+                continue
+            a, b = at.get((cp[1], cp[3])), at.get((cp[2], cp[4]))
+            if a is None or b is None:
+                continue
+            n = cp[7]  # on B, pointing from B towards A
+            if a < b:
+                rows.append((a, b, *cp[5], *cp[6], -n[0], -n[1], -n[2], -cp[8]))
+            else:
+                rows.append((b, a, *cp[5], *cp[6], n[0], n[1], n[2], -cp[8]))
+        if not rows:
+            return ContactPoints.none()
+        m = np.array(rows, dtype=np.float64)
+        return ContactPoints(position=(m[:, 2:5] + m[:, 5:8]) / 2, normal=m[:, 8:11], depth=m[:, 11],
+                             geometry1=m[:, 0].astype(int), geometry2=m[:, 1].astype(int))
 
     # -- running ------------------------------------------------------------
     def step(self, n: int = 1) -> None:
@@ -357,7 +589,7 @@ class BulletSimulation:
         all_pos, q = self._frames(all_com, q_com)
         all_turn = R.matrix(q)
         for tree, first in zip(self.trees, self.first):
-            if tree.free and not tree.links:
+            if tree.free and tree.dofs == 6:  # a free body (its further collision shapes ride on fixed links)
                 row = tree.parts[0].row
                 p.resetBaseVelocity(tree.uid, linear[row], angular[row], physicsClientId=c)
                 continue
@@ -390,6 +622,8 @@ class BulletSimulation:
                 link, col = tree.link(k), tree.columns[k]
                 if link < 0:
                     p.resetBaseVelocity(tree.uid, qd[0:3], qd[3:6], physicsClientId=c)
+                elif part.joint_type == p.JOINT_FIXED:
+                    continue
                 elif part.joint_type == p.JOINT_SPHERICAL:
                     position = p.getJointStateMultiDof(tree.uid, link, physicsClientId=c)[0]
                     p.resetJointStateMultiDof(tree.uid, link, position, qd[col:col + 3], physicsClientId=c)
@@ -410,6 +644,13 @@ class BulletSimulation:
             pass
 
 
+_BOUNCE = ("restitution sqrt(e) on every shape (pybullet multiplies two bodies'), minBounceSpeed as its "
+           "restitutionVelocityThreshold; Bullet applies e to the approach speed after the step's gravity, "
+           "+e g dt (rebound speed +0.9% at 4.4 m/s, dt 1/240); no position correction where a bounce applies "
+           "(pybullet would add it to the rebound): an impact's penetration (up to v dt) stays. Apex of a 1 m "
+           "drop, dt 1/240: e = 0.2, 0.5, 0.8 within -0.4%, +2.0%, +1.9% of e^2 h")
+
+
 class BulletBackend(Backend):
     name = "bullet"
     declared = {
@@ -422,7 +663,9 @@ class BulletBackend(Backend):
         **approximate("pybullet has no per-body gravity switch: -m*g is applied at the centre of mass each step "
                       "(it cancels gravity to rounding)", "RigidBody.useGlobalGravity"),
         **approximate("tree joints are exact (reduced coordinates); errorCorrection sets pybullet's erp, which "
-                      "acts on joint limits and loop constraints", "RigidBodyCollection.errorCorrection"),
+                      "acts on joint limits and loop constraints, and its contactERP, ODE's position correction of "
+                      "contacts (none where a bounce applies: see CollisionCollection.bounce)",
+                      "RigidBodyCollection.errorCorrection"),
         **unsupported("pybullet's multibody constraint rows (limits, loop joints) carry no CFM: the value cannot "
                       "reach them (tree joints are exact either way)", "RigidBodyCollection.constantForceMix"),
         **approximate(f"pybullet has one first-order integrator: {_SUBSTEPS_ACCURATE} internal substeps per step",
@@ -435,6 +678,52 @@ class BulletBackend(Backend):
                       "SingleAxisHingeJoint.stopErrorCorrection", "SliderJoint.stopErrorCorrection",
                       "DoubleAxisHingeJoint.stop1Bounce",
                       "DoubleAxisHingeJoint.stop1ErrorCorrection", "DoubleAxisHingeJoint.stop1ConstantForceMix"),
+        # collisions (measured with pybullet 3.2.7; tests/test_collisions_bullet.py)
+        **native("CollisionCollection", "CollisionCollection.appliedParameters", "CollidableShape.geometry.Box",
+                 "CollidableShape.geometry.Sphere", "CollidableShape.geometry.Cylinder",
+                 "CollisionCollection.minBounceSpeed", "CollisionCollection.softnessErrorCorrection",
+                 "CollisionCollection.softnessConstantForceMix", "CollisionCollection.appliedParameters.CONSTANT_FORCE",
+                 "CollisionSensor"),
+        **approximate(_BOUNCE, "CollisionCollection.bounce", "CollisionCollection.appliedParameters.BOUNCE"),
+        **approximate("pybullet multiplies two bodies' lateral friction: every shape gets sqrt(mu), so contacts get "
+                      "mu, on ODE's friction pyramid along the same two directions (incline slides within 0.6% of "
+                      "g(sin - mu cos)); Bullet clamps the combined coefficient at 10, so larger ones act as 10",
+                      "CollisionCollection.frictionCoefficients"),
+        **approximate("pybullet's anisotropic friction scales the static shape's friction along ODE's second "
+                      "direction for the normal of that shape's up (+y) face: exact there (slides along x and z "
+                      "within 1%), approximate for other normals; contacts between two moving bodies get mu1 both "
+                      "ways (mu2 both ways when mu1 is 0)",
+                      "CollisionCollection.appliedParameters.FRICTION_COEFFICIENT-2"),
+        **approximate("ODE's ERP as pybullet's contact ERP, or as k = ERP/(h CFM) with CONSTANT_FORCE: exact at rest "
+                      "(penetration m g / k to 1e-9 m); where a bounce applies pybullet adds the correction to the "
+                      "bounce velocity, where ODE takes the larger",
+                      "CollisionCollection.appliedParameters.ERROR_REDUCTION"),
+        **approximate(f"the convex hull of a {_CONE_SIDES}-gon and the apex (radius within 0.12%), "
+                      f"{_HULL_MARGIN * 1000:g} mm collision margin outside", "CollidableShape.geometry.Cone"),
+        **approximate(f"static: pybullet's triangle mesh, exact; on a moving body: the convex hull of its points "
+                      f"(pybullet collides no concave moving shape), {_HULL_MARGIN * 1000:g} mm margin outside",
+                      "CollidableShape.geometry.IndexedFaceSet", "CollidableShape.geometry.IndexedTriangleSet",
+                      "CollidableShape.geometry.TriangleSet"),
+        **approximate("static: pybullet's heightfield (on a planar grid, contact normals to 1e-6 and points to "
+                      "0.1 mm; each quad split along pybullet's own diagonal); on a moving body: the convex hull "
+                      "of its grid points",
+                      "CollidableShape.geometry.ElevationGrid"),
+        **approximate("pybullet's contactSlop: resting penetration equals the thickness (to 1e-6 m); ODE lets a "
+                      "body that lands within the layer stay where it landed, pybullet lets it sink to the full "
+                      "thickness", "RigidBodyCollection.contactSurfaceThickness"),
+        **unsupported("pybullet has no limit on the speed that corrects a contact's penetration (without a "
+                      "collider the value has no effect)",
+                      "RigidBodyCollection.maxCorrectionSpeed"),
+        **unsupported("pybullet picks its contacts' friction directions itself (ODE's, from the normal)",
+                      "CollisionCollection.appliedParameters.USER_FRICTION"),
+        **unsupported("pybullet's contacts have no surface velocity (no conveyor)",
+                      "CollisionCollection.appliedParameters.SPEED-1", "CollisionCollection.appliedParameters.SPEED-2"),
+        **unsupported("pybullet's friction has no force-dependent slip",
+                      "CollisionCollection.appliedParameters.SLIP-1", "CollisionCollection.appliedParameters.SLIP-2"),
+        **approximate("no effect unless appliedParameters holds SPEED-1 or SPEED-2 (unsupported here)",
+                      "CollisionCollection.surfaceSpeed"),
+        **approximate("no effect unless appliedParameters holds SLIP-1 or SLIP-2 (unsupported here)",
+                      "CollisionCollection.slipFactors"),
     }
 
     def version(self) -> str:

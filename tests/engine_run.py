@@ -27,8 +27,16 @@ def run_x3d(tmp_path, body: str, duration: float = 1.0, frame_rate: float = 60, 
     trace = run(worlds(scene), backend, RunSettings(duration, dt, frame_rate), times)
     series: Series = {}
     for r in trace.rows:
-        series.setdefault((r.node, r.field), []).append((r.time, np.array([float(x) for x in r.value.split()])))
+        series.setdefault((r.node, r.field), []).append((r.time, _value(r.value)))
     return series
+
+
+def _value(text: str):
+    """Numbers as an array; anything else (true, a node's name) as the text itself."""
+    try:
+        return np.array([float(x) for x in text.split()])
+    except ValueError:
+        return text
 
 
 def values(series: Series, node: str, field: str) -> np.ndarray:
