@@ -8,6 +8,28 @@ parent; x3d_core's outputs measure body1 relative to body2, so limits are mirror
 where the child is body2. State is read for every body at once from d.xpos, d.xquat
 and d.cvel after the position and velocity stages of mj_forward (linear velocity at
 each body's centre of mass).
+
+Collisions (world.collisions): a geom per Geometry on its body (static ones on the world
+body), massless (bodies keep the scene's inertia): boxes, spheres and cylinders natively
+(MuJoCo's cylinder axis z turned onto y), a cone as the hull of a 64-gon and its apex, a
+mesh as MuJoCo's convex hull of its points (a flat one as a thin slab behind its faces), an
+ElevationGrid on the static environment or a fixed body as a height field. Every pair that
+collisions.may_touch allows, with a side able to move, is an explicit `pair` carrying the
+collection's parameters: friction [mu2, mu1] (MuJoCo's first tangent is z on a floor,
+ODE's x) with condim 3 on an elliptic cone, softened friction rows and no-slip iterations
+(FRICTION_BDT), or condim 1 without friction; solref from bounce, softness or the world's
+ERP; with a surface layer, a damper pair from touching and a spring pair from the layer's
+depth (_layers). Two immovable geoms get no pair (it would exert nothing, so contacts()
+never lists such contacts). Explicit pairs are all tested every step: measured with N
+spheres in a box (dt 1/240), 20900 pairs stepped in 0.60 ms against 0.52 ms through
+contype/conaffinity and the broad phase, and built in 0.17 s against 0.02 s; 81800 pairs
+took 2.1 ms and 1.1 s against 1.5 ms and 0.06 s. Past PAIR_CAP pairs, geoms therefore
+collide through contype/conaffinity with an `exclude` per joined body pair: the same
+parameters per geom combine to the same values (MuJoCo takes the max friction, mixes or
+takes the stiffer solref), except that mu2, the softer friction rows, the layer's two pairs
+and the pair's reduced mass for softness are lost (mu1 everywhere; friction rows as stiff as
+the normal's; margin -thickness; each geom's own body mass). contacts() reads d.contact:
+normal frame[0:3] from geom1 to geom2, depth -dist.
 """
 
 from __future__ import annotations
@@ -16,10 +38,11 @@ import mujoco
 import numpy as np
 
 from x3d_core import rotation as R
+from x3d_core.collision import Collisions, ContactPoints, Geometry, friction_directions
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, World, State
 
-from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
+from .base import BODIES, JOINTS, Backend, Declared, Support, approximate, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 # ODE's motors reach their target velocity in one step if the torque limit allows. A
@@ -28,6 +51,72 @@ _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 # stability bound (s < 2) where the parent's inertia adds to I. Torque is clipped to
 # maxTorque like ODE's fMax.
 MOTOR_STEPS = 0.5
+
+# -- collisions ---------------------------------------------------------------
+# Every allowed geometry pair becomes an explicit MuJoCo `pair` (exact friction, solref and
+# filtering per pair) up to this many pairs; beyond, geoms collide through contype/conaffinity
+# bits with `exclude`s for joined bodies (MuJoCo's broad phase: explicit pairs are all tested
+# every step, see the module notes for the cost measured).
+PAIR_CAP = 20000
+# Friction: Coulomb's elliptic cone per pair. MuJoCo's convex contact model (Anitescu's
+# relaxation) lets a sliding contact push its bodies apart: a 1 kg box put down sliding at 3 m/s
+# (mu 0.6) hopped at 1.3 m/s with friction rows as stiff as the normal's (b = 1/dt), and its
+# speed strayed 0.8 m/s from v0 - mu g t. Softer friction rows (damping FRICTION_BDT/dt) ask
+# less of the cone: measured at dt 1/240 (b dt = 0.1 / 0.15 / 0.2), the hop fell to 0.12 /
+# 0.19 / 0.28 m/s and the speed error to 0.08 / 0.11 / 0.17 m/s, a box sliding down a 35 deg
+# incline kept a = g (sin - mu cos) within 0.03 %, while sticking got softer: a stack of five
+# boxes under a 1 m/s^2 sideways load crept 1.6 / 1.2 / 1.0 mm in 10 s (16 mm at dt 1/60 with
+# 0.15), a box on a 20 deg incline 0.56 / 0.37 / 0.28 mm in 2 s. MuJoCo's no-slip pass (PGS on
+# the friction rows with the normal forces held) stops the rest of the creep: without it the
+# stack slid 131 mm. (Friction 1e4 times softer than the normal, impratio 1e-4, with the
+# no-slip pass solving friction alone removes the hop but not the creep: with the normal forces
+# fixed, friction's torque cannot shift them and the stack slid 220 mm.) Those figures were
+# taken with MuJoCo's default impedance; with the hard contacts' (HARD_SOLIMP) the stack crept
+# 0.6 mm (11 mm at dt 1/60, 0.06 mm at 1/1000).
+FRICTION_BDT = 0.15
+NOSLIP_ITERATIONS = 30
+CONE_EDGES = 64  # a cone collides as the hull of its apex and a 64-gon: radius error 1 - cos(pi/64) = 0.12 %
+_Z_TO_Y = np.array([np.sqrt(0.5), -np.sqrt(0.5), 0.0, 0.0])  # MuJoCo's cylinder and hfield axis z onto X3D's y
+# MuJoCo has no restitution coefficient: a bouncing contact is a spring-damper (direct solref
+# -k, -b, acceleration units) with natural frequency w/dt and damping ratio zeta. A soft
+# contact lets go when its force reaches zero, so e(zeta) is the unilateral Kelvin-Voigt law
+# as MuJoCo's step discretises it. The table is e measured in MuJoCo 4.0 without gravity,
+# averaged over where in a step the contact begins (dt, mass and speed drop out: the law is in
+# accelerations and w is per step). That phase moves e by up to +-0.055 about the table, and
+# gravity during the contact lowers e by about 2 g dt / (w v) at impact speed v. w = 0.35
+# trades those against the penetration of the bounce (about 1.3 v dt / w deep: 3.5 cm at
+# 4.4 m/s, dt = 1/240); damping is capped at b dt = 0.75 (w = 0.375/zeta past zeta = 1.07),
+# where MuJoCo's step stays stable.
+_BOUNCE_ZETA = np.array([0, 0.025, 0.05, 0.075, 0.1, 0.125, 0.15, 0.175, 0.2, 0.225, 0.25, 0.275, 0.3, 0.325, 0.35,
+                         0.375, 0.4, 0.425, 0.45, 0.475, 0.5, 0.525, 0.55, 0.575, 0.6, 0.625, 0.65, 0.675, 0.7, 0.725,
+                         0.75, 0.775, 0.8, 0.825, 0.85, 0.875, 0.9, 0.925, 0.95, 0.975, 1, 1.1, 1.25, 1.5, 1.75, 2,
+                         2.5, 3, 4])
+_BOUNCE_E = np.array([1.0000, 0.9257, 0.8585, 0.7975, 0.7420, 0.6913, 0.6449, 0.6025, 0.5638, 0.5283, 0.4956, 0.4654,
+                      0.4374, 0.4113, 0.3873, 0.3652, 0.3448, 0.3259, 0.3082, 0.2916, 0.2760, 0.2612, 0.2475, 0.2349,
+                      0.2232, 0.2122, 0.2019, 0.1922, 0.1830, 0.1741, 0.1657, 0.1577, 0.1504, 0.1437, 0.1374, 0.1314,
+                      0.1257, 0.1203, 0.1150, 0.1099, 0.1050, 0.0889, 0.0729, 0.0541, 0.0415, 0.0329, 0.0220, 0.0158,
+                      0.0092])
+BOUNCE_W, BOUNCE_BDT = 0.35, 0.75
+# A contact without bounce is ODE's hard one as MuJoCo's step takes it: a damper that stops
+# the approach in one step (b dt = 1; past 1 it overshoots into a rebound of b dt - 1) and a
+# spring that undoes ERP of the depth a step (k dt^2 = ERP, up to 0.25: at X3D's default ERP
+# 0.8 the stiffer springs let a box on a 20 degree incline, mu 0.5, slide 0.16 m in 2 s,
+# against 0.4 mm at 0.25). Like ODE's, that correction leaves the body moving out at ERP
+# depth/dt: measured over landing phases at ERP 0.2, a rebound of 0.11 of the impact speed on
+# average (0.02 to 0.20; ODE's ERP times the fraction of a step's travel the body had sunk
+# when found). The same caps bound softness springs and dampers.
+HARD_W, HARD_BDT = 0.5, 1.0
+# MuJoCo's default impedance (0.9 to 0.95 over the first millimetre) leaves (1-d)/d of a resting
+# load on the spring: 0.1 mm for a body at rest at ERP 0.2, dt 1/240. A hard contact takes
+# 0.99: a tenth of that.
+HARD_SOLIMP = [0.99, 0.99, 0.001, 0.5, 2.0]
+
+
+def bounce_spring(e: float, dt: float, w_max: float = BOUNCE_W) -> tuple[float, float]:
+    """(stiffness, damping) per unit mass of a contact that rebounds with restitution e."""
+    zeta = float(np.interp(min(max(e, 0.0), 1.0), _BOUNCE_E[::-1], _BOUNCE_ZETA[::-1]))
+    w = min(w_max, BOUNCE_BDT / (2 * zeta)) if zeta > 0 else w_max
+    return (w / dt) ** 2, 2 * zeta * w / dt
 
 
 class MujocoSimulation:
@@ -41,7 +130,8 @@ class MujocoSimulation:
         spec.option.iterations = max(1, world.iterations)
         if world.prefer_accuracy:
             spec.option.integrator = mujoco.mjtIntegrator.mjINT_RK4
-        spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT  # collisions: the collision issue
+        if world.collisions is None:
+            spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
         self.free = np.zeros(len(b), dtype=bool)
         self.dt = dt
         # (joint name, target velocity, torque limit, servo gain)
@@ -71,6 +161,11 @@ class MujocoSimulation:
                 self._tree_joint(body, i, world.joints[world.parent_joint[i]])
         for k in world.loop_joints:
             self._loop(spec, world.joints[k], dt)
+        self.geometry_of = None  # MuJoCo geom id -> index into collisions.geometries (-1: none)
+        self.pair_mode = None
+        self.layered = False  # two pairs per geometry pair (the surface layer)
+        if world.collisions is not None:
+            self._collisions(spec, handles, world.collisions)
         for name, _, limit, gain in self.motors:
             a = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
             a.set_to_velocity(kv=gain)
@@ -79,6 +174,16 @@ class MujocoSimulation:
             a.ctrllimited = mujoco.mjtLimited.mjLIMITED_FALSE
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
+        if world.collisions is not None:
+            self.geometry_of = np.full(self.model.ngeom, -1, dtype=int)
+            for k, name in self.geom_names.items():
+                self.geometry_of[self.model.geom(name).id] = k
+            if self.conveyors:  # MuJoCo's surface velocity is in the geom's frame (meshes are re-posed)
+                mujoco.mj_kinematics(self.model, self.data)
+                for name in self.conveyors:
+                    gid = self.model.geom(name).id
+                    frame = self.data.geom_xmat[gid].reshape(3, 3)
+                    self.model.geom_surfacevel[gid, :3] = frame.T @ self.surface_velocity
         self.ids = np.array([self.model.body(f"b{i}").id for i in range(len(b))], dtype=int)
         self.roots = self.model.body_rootid[self.ids]
         # bodies are usually numbered in row order: read them as one slice (a view, no gather)
@@ -166,6 +271,8 @@ class MujocoSimulation:
         if angular and lo <= -_FULL_TURN and hi >= _FULL_TURN:
             return
         a, b = sorted((sign * lo, sign * hi))
+        if b - a < 1e-9:  # equal stops lock the joint; MuJoCo wants an open range
+            a, b = (a + b) / 2 - 5e-10, (a + b) / 2 + 5e-10
         jt.limited = mujoco.mjtLimited.mjLIMITED_TRUE
         jt.range = [a, b]
         jt.solref_limit = [max(2 * self.dt, self.dt / max(erp, 1e-9)), 1.0]
@@ -192,6 +299,196 @@ class MujocoSimulation:
             data = np.array(eq.data)
             data[:3] = local  # the anchor in body1's frame; the rest keeps MuJoCo's defaults
             eq.data = data
+
+    # -- collisions ---------------------------------------------------------
+    def _collisions(self, spec, handles, col: Collisions) -> None:
+        """A geom per Geometry (no mass: bodies keep the scene's inertia), and the pairs that
+        may touch: explicit pairs carrying the collection's contact parameters, or, past
+        PAIR_CAP pairs, contype/conaffinity bits with excludes for joined bodies."""
+        b, p = self.world.bodies, col.parameters
+        immovable = [g.body == STATIC or bool(b.fixed[g.body]) for g in col.geometries]
+        layers = 2 if p.surface_thickness > 0 and p.bounce <= 0 else 1  # see _layers
+        self.pair_mode = layers * _pair_count(col, immovable) <= PAIR_CAP
+        mu1, mu2 = (float(x) for x in p.friction)
+        self.frictional = max(mu1, mu2) > 0
+        if self.frictional:
+            spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
+            spec.option.noslip_iterations = NOSLIP_ITERATIONS
+        # the surface moves along ODE's friction directions of the upward normal
+        g = np.asarray(self.world.gravity, dtype=np.float64)
+        up = -g / np.linalg.norm(g) if np.linalg.norm(g) > 0 else np.array([0.0, 1.0, 0.0])
+        t1, t2 = friction_directions(up)
+        self.surface_velocity = p.surface_speed[0] * t1[0] + p.surface_speed[1] * t2[0]
+        moving_surface = bool(np.any(self.surface_velocity))
+        self.geom_names: dict[int, str] = {}
+        self.conveyors: list[str] = []
+        for k, geometry in enumerate(col.geometries):
+            parent = spec.worldbody if geometry.body == STATIC else handles[geometry.body]
+            geom = self._geom(spec, parent, geometry, k, immovable[k])
+            if geom is None:
+                continue
+            name = f"c{k}"
+            geom.name = name
+            geom.contype = geom.conaffinity = 0 if self.pair_mode else 1
+            # MuJoCo adds the two geoms' margins and gaps (a pair's are its own)
+            geom.margin, geom.gap = -p.surface_thickness / 2, p.surface_thickness / 2
+            geom.condim = 3 if self.frictional else 1
+            geom.friction = [mu1, 0.0, 0.0]
+            geom.solref = self._solref(0.0 if immovable[k] else 1.0 / b.mass[geometry.body], immovable[k])
+            if self._solimp() is not None:
+                geom.solimp = self._solimp()
+            self.geom_names[k] = name
+            if moving_surface and immovable[k]:
+                geom.surfacevel = [*self.surface_velocity, 0.0, 0.0, 0.0]  # made geom-local after compiling
+                self.conveyors.append(name)
+        if self.pair_mode:
+            self._pairs(spec, col, immovable, mu1, mu2)
+        else:
+            for lo, hi in sorted(col.excluded):
+                spec.add_exclude(bodyname1="world" if lo == STATIC else f"b{lo}", bodyname2=f"b{hi}")
+
+    def _solref(self, inverse_mass: float, static: bool = False) -> list[float]:
+        """The contact's solref for these contact parameters. inverse_mass: 1/m1 + 1/m2 of the
+        pair (ODE's softness spring is in newtons; MuJoCo's in accelerations)."""
+        p, dt, w = self.world.collisions.parameters, self.dt, self.world
+        soft = p.softness_erp is not None or p.softness_cfm is not None
+        bounce = p.bounce > 0
+        if not (soft or bounce):  # ODE's hard contact: approach stopped in a step, ERP of the depth undone a step
+            k = min(max(w.error_correction, 1e-6), HARD_W ** 2) / dt ** 2
+            return [-k, -HARD_BDT / dt]
+        if static and soft:  # bits mode: a static geom defers to the moving one (MuJoCo takes the stiffer)
+            return [-1e-12, -1e-12]
+        w_max = BOUNCE_W
+        if soft:
+            erp = p.softness_erp if p.softness_erp is not None else w.error_correction
+            cfm = p.softness_cfm if p.softness_cfm is not None else w.constant_force_mix
+            big = np.inf if cfm <= 0 else 1.0
+            k = big * max(erp, 0.0) / (dt * max(cfm, 1e-300)) * inverse_mass
+            c = big * max(1.0 - erp, 0.0) / max(cfm, 1e-300) * inverse_mass
+            if not bounce:
+                return [-max(min(k, (HARD_W / dt) ** 2), 1e-9), -max(min(c, HARD_BDT / dt), 1e-9)]
+            w_max = max(min(BOUNCE_W, np.sqrt(k) * dt), 1e-6)
+        k, c = bounce_spring(p.bounce, dt, w_max)
+        return [-k, -c]
+
+    def _pairs(self, spec, col: Collisions, immovable: list[bool], mu1: float, mu2: float) -> None:
+        b = self.world.bodies
+        groups: dict[int, list[int]] = {}
+        for k in self.geom_names:
+            groups.setdefault(col.geometries[k].body, []).append(k)
+        rows = sorted(groups)
+        # MuJoCo's first tangent is the normal's closest to world y, else z: along z for a
+        # horizontal floor, where ODE's first friction direction is along x
+        friction = [mu2, mu1, 0.0, 0.0, 0.0]
+        for i, r in enumerate(rows):
+            for s in rows[i + 1:]:
+                a, c = groups[r][0], groups[s][0]
+                if immovable[a] and immovable[c]:
+                    continue  # neither side can move: nothing to solve
+                if (min(r, s), max(r, s)) in col.excluded:
+                    continue
+                inverse = sum(0.0 if immovable[groups[x][0]] else 1.0 / b.mass[x] for x in (r, s))
+                layers = self._layers(self._solref(inverse), self._solimp())
+                for g1 in groups[r]:
+                    for g2 in groups[s]:
+                        for solref, solimp, margin, gap in layers:
+                            pair = spec.add_pair(geomname1=self.geom_names[g1], geomname2=self.geom_names[g2])
+                            pair.condim = 3 if self.frictional else 1
+                            pair.friction = friction
+                            pair.solref = solref
+                            pair.solreffriction = [-1e-9, -FRICTION_BDT / self.dt]
+                            pair.margin, pair.gap = margin, gap
+                            if solimp is not None:
+                                pair.solimp = solimp
+
+    def _solimp(self) -> list[float] | None:
+        """HARD_SOLIMP for a contact without bounce or softness (None: MuJoCo's default)."""
+        p = self.world.collisions.parameters
+        hard = p.bounce <= 0 and p.softness_erp is None and p.softness_cfm is None
+        return HARD_SOLIMP if hard else None
+
+    def _layers(self, solref: list[float], solimp: list[float] | None) -> list[tuple]:
+        """The pairs (solref, solimp, margin, gap) one geometry pair becomes. ODE's surface layer
+        L stops the approach at first touch but corrects depth only past L: with L > 0 a
+        contact without bounce is two pairs, a damper from touching (impedance 0.9999: a
+        resting load leaks through it at 1e-4 g / b, 4 micrometres a second at dt 1/240) and
+        the spring from depth L. A bouncing contact keeps one pair from touching: the layer
+        is not applied to it."""
+        thickness = self.world.collisions.parameters.surface_thickness
+        if thickness <= 0 or self.world.collisions.parameters.bounce > 0:
+            return [(solref, solimp, 0.0, 0.0)]
+        self.layered = True
+        k, c = -solref[0], -solref[1]
+        if solref[0] > 0:  # not reached: without bounce the solref is direct
+            raise AssertionError(solref)
+        return [([-1e-9, -c], [0.9999, 0.9999, 0.001, 0.5, 2.0], 0.0, 0.0),
+                ([-k, -1e-9], solimp, -thickness, 0.0)]
+
+    def _geom(self, spec, parent, g: Geometry, k: int, immovable: bool):
+        """A MuJoCo geom for one Geometry, or None where it has no volume to collide with."""
+        tiny = 1e-9
+        geom_type, size, quat, mesh = None, [tiny, 0.0, 0.0], np.asarray(g.orientation, dtype=np.float64), None
+        if g.kind == "box":
+            geom_type, size = mujoco.mjtGeom.mjGEOM_BOX, np.maximum(np.asarray(g.size) / 2, tiny)
+        elif g.kind == "sphere":
+            geom_type, size = mujoco.mjtGeom.mjGEOM_SPHERE, [max(g.size[0], tiny), 0.0, 0.0]
+        elif g.kind == "cylinder":
+            geom_type, size = mujoco.mjtGeom.mjGEOM_CYLINDER, [max(g.size[0], tiny), max(g.size[1] / 2, tiny), 0.0]
+            quat = R.multiply(quat, _Z_TO_Y)
+        elif g.kind == "cone":
+            r, h = g.size
+            angle = 2 * np.pi * np.arange(CONE_EDGES) / CONE_EDGES
+            base = np.stack([r * np.cos(angle), np.full(CONE_EDGES, -h / 2), r * np.sin(angle)], axis=1)
+            mesh = np.vstack([[0.0, h / 2, 0.0], base])
+        elif g.kind == "heightfield" and immovable:
+            return self._hfield(spec, parent, g, k)
+        else:  # a mesh, or a grid of points on a moving body: MuJoCo collides the convex hull
+            mesh = _hull_points(g)
+            if mesh is None:
+                return None
+        if mesh is not None:
+            asset = spec.add_mesh(name=f"mesh{k}")
+            asset.uservert = np.asarray(mesh, dtype=np.float64).ravel()
+            asset.inertia = mujoco.mjtMeshInertia.mjMESH_INERTIA_CONVEX
+            geom = parent.add_geom(type=mujoco.mjtGeom.mjGEOM_MESH, meshname=f"mesh{k}", pos=g.position, quat=quat)
+        else:
+            geom = parent.add_geom(type=geom_type, size=size, pos=g.position, quat=quat)
+        geom.density = 0.0
+        return geom
+
+    def _hfield(self, spec, parent, g: Geometry, k: int):
+        """An ElevationGrid as a MuJoCo height field: grid x along the field's x, grid z
+        along its -y (rows from the far z end), heights up its z."""
+        nx, nz = g.grid
+        points = np.asarray(g.vertices, dtype=np.float64)
+        heights = points[:, 1].reshape(nz, nx)
+        lo, hi = float(heights.min()), float(heights.max())
+        rx = (points[:, 0].max() - points[:, 0].min()) / 2
+        rz = (points[:, 2].max() - points[:, 2].min()) / 2
+        if rx <= 0 or rz <= 0:
+            return None
+        span = max(hi - lo, 1e-9)
+        field = spec.add_hfield(name=f"hfield{k}")
+        field.nrow, field.ncol = nz, nx
+        field.size = [rx, rz, span, max(0.1 * max(rx, rz), span)]  # a base below the lowest point
+        field.userdata = ((heights[::-1] - lo) / span).ravel().tolist()
+        centre = np.array([points[:, 0].min() + rx, lo, points[:, 2].min() + rz])
+        return parent.add_geom(type=mujoco.mjtGeom.mjGEOM_HFIELD, hfieldname=f"hfield{k}",
+                               pos=g.position + R.rotate(g.orientation, centre),
+                               quat=R.multiply(g.orientation, _Z_TO_Y))
+
+    def contacts(self) -> ContactPoints:
+        """The last step's contacts, as MuJoCo found them (normal from geom1 to geom2)."""
+        d = self.data
+        n = d.ncon
+        if self.geometry_of is None or n == 0:
+            return ContactPoints.none()
+        c = d.contact
+        keep = slice(0, n)
+        if self.layered:  # the layer's spring pairs repeat their dampers' contacts
+            keep = np.flatnonzero(c.includemargin[:n] > -1e-12)
+        return ContactPoints(c.pos[keep].copy(), c.frame[keep, :3].copy(), -c.dist[keep],
+                             self.geometry_of[c.geom1[keep]], self.geometry_of[c.geom2[keep]])
 
     # -- running ------------------------------------------------------------
     def step(self, n: int = 1) -> None:
@@ -245,6 +542,52 @@ class MujocoSimulation:
         d.qvel[:] = np.linalg.lstsq(jac, target, rcond=None)[0]
 
 
+def _pair_count(col: Collisions, immovable: list[bool]) -> int:
+    """How many geometry pairs may touch with at least one side able to move."""
+    counts: dict[int, list] = {}
+    for g, fixed in zip(col.geometries, immovable):
+        counts.setdefault(g.body, [0, fixed])[0] += 1
+    moving = [c for c, fixed in counts.values() if not fixed]
+    m, i = sum(moving), sum(c for c, fixed in counts.values() if fixed)
+    total = (m * m - sum(c * c for c in moving)) // 2 + m * i
+    for lo, hi in col.excluded:
+        if lo in counts and hi in counts and not (counts[lo][1] and counts[hi][1]):
+            total -= counts[lo][0] * counts[hi][0]
+    return total
+
+
+def _hull_points(g: Geometry) -> np.ndarray | None:
+    """The points whose convex hull MuJoCo collides for a mesh (or a grid on a moving body):
+    a flat set gets a slab 1 % of its size thick behind its faces (MuJoCo cannot hull a
+    plane); a set without area gets nothing, as ODE's trimesh touches nothing then."""
+    vertices = np.asarray(g.vertices, dtype=np.float64)
+    points = vertices[np.unique(g.triangles)] if g.triangles is not None else vertices
+    if len(points) < 3:
+        return None
+    centre = points.mean(axis=0)
+    _, s, vt = np.linalg.svd(points - centre, full_matrices=False)
+    if s[0] <= 0 or len(s) < 2 or s[1] <= 1e-9 * s[0]:
+        return None
+    if len(s) == 3 and s[2] > 1e-6 * s[0]:
+        return points
+    normal = vt[-1] if len(s) == 3 else np.cross(vt[0], vt[1])
+    facing = np.array([0.0, 1.0, 0.0])
+    if g.triangles is not None:  # the faces' side by their winding (ccw unless the geometry says not)
+        tri = vertices[g.triangles]
+        facing = R.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]).sum(axis=0)
+        try:
+            if not g.node.get("shape").get("geometry").get("ccw"):
+                facing = -facing
+        except (AttributeError, KeyError):
+            pass
+        if abs(facing @ normal) < 1e-12 * max(np.linalg.norm(facing), 1e-300):
+            facing = np.array([0.0, 1.0, 0.0])
+    if normal @ facing < 0:
+        normal = -normal
+    thickness = max(0.01 * float(np.linalg.norm(np.ptp(points, axis=0))), 1e-6)
+    return np.vstack([points, points - thickness * normal])
+
+
 class MujocoBackend(Backend):
     name = "mujoco"
     declared = {
@@ -261,9 +604,73 @@ class MujocoBackend(Backend):
                       "DoubleAxisHingeJoint.stop1Bounce"),
         **unsupported("limit softness is MuJoCo's solimp, not mapped from a CFM",
                       "DoubleAxisHingeJoint.stop1ConstantForceMix"),
-        **approximate("MuJoCo has no ERP/CFM: tree joints are exact (generalized coordinates) and loop "
-                      "constraints use solref=(2*dt, 1)",
+        **approximate("MuJoCo has no ERP/CFM: tree joints are exact (generalized coordinates), loop "
+                      "constraints use solref=(2*dt, 1), and contacts without softness or bounce a direct solref: "
+                      "damping 1/dt (the approach stops in a step) and stiffness ERP/dt^2 (ERP of the depth undone "
+                      "a step, ERP capped at 0.25, X3D's default 0.8 included: stiffer, MuJoCo's friction lets "
+                      "sticking bodies slide; like ODE's correction it leaves the body moving out at ERP depth/dt: "
+                      "a rebound of 0.02-0.20 of the impact speed at ERP 0.2), impedance 0.99; CFM is not mapped",
                       "RigidBodyCollection.errorCorrection", "RigidBodyCollection.constantForceMix"),
+        # collisions
+        **native("CollisionCollection", "CollidableShape.geometry.Box", "CollidableShape.geometry.Sphere",
+                 "CollidableShape.geometry.Cylinder", "CollisionCollection.appliedParameters", "CollisionSensor"),
+        **approximate("Coulomb's elliptic cone with the scene's mu on every pair, but MuJoCo's convex contact model "
+                      "pushes sliding contacts apart and lets sticking ones creep. Measured at dt 1/240: a box put "
+                      "down sliding at 3 m/s (mu 0.6) hops at up to 0.19 m/s and strays up to 0.11 m/s from v0 - "
+                      "mu g t; a box sliding down an incline keeps g (sin - mu cos) within 0.03 %; one sticking on a "
+                      "20 degree incline creeps 0.4 mm in 2 s, five stacked boxes under a 1 m/s^2 sideways load 0.6 "
+                      "mm in 10 s (11 mm at dt 1/60)",
+                      "CollisionCollection.frictionCoefficients"),
+        "CollisionCollection.slipFactors": Declared(
+            Support.NATIVE, "read only where appliedParameters has SLIP-1 or SLIP-2 (declared there)"),
+        **approximate(f"the convex hull of the apex and a {CONE_EDGES}-gon: radius 0.12 % short between its corners",
+                      "CollidableShape.geometry.Cone"),
+        **approximate("MuJoCo collides a mesh as its convex hull (exact for convex meshes; a concave one, static "
+                      "or moving, fills in); a flat mesh becomes a slab 1 % of its size thick behind its faces",
+                      "CollidableShape.geometry.IndexedFaceSet", "CollidableShape.geometry.IndexedTriangleSet",
+                      "CollidableShape.geometry.TriangleSet"),
+        **approximate("a grid on the static environment or a fixed body is a MuJoCo height field (each cell two "
+                      "triangles on MuJoCo's diagonal, which X3D leaves open); a grid on a moving body collides as "
+                      "the convex hull of its points",
+                      "CollidableShape.geometry.ElevationGrid"),
+        **approximate("MuJoCo has no restitution: a spring-damper contact whose damping ratio gives e from a table "
+                      "measured in MuJoCo (natural frequency 0.35/dt). Measured at dt 1/240, drops of 1.4-8.9 m/s, "
+                      "e from rebound heights: e 0.8 within -0.03..+0.035, e 0.5 within -0.08..+0.05, e 0.2 within "
+                      "-0.18..+0.04 (gravity during the soft contact costs low speeds most); the ball sinks about "
+                      "0.6-1.1 cm per m/s of impact while it bounces",
+                      "CollisionCollection.bounce", "CollisionCollection.appliedParameters.BOUNCE"),
+        **approximate("no threshold: impacts slower than minBounceSpeed rebound too (ODE stops them), rising at "
+                      "most e^2 minBounceSpeed^2 / 2g", "CollisionCollection.minBounceSpeed"),
+        **approximate("per-pair friction [mu2, mu1] in MuJoCo's contact frame, whose first tangent is world z for a "
+                      "horizontal contact (exact there: ODE's first direction is x); for other normals MuJoCo's "
+                      "tangents (world y or z projected) differ from ODE's",
+                      "CollisionCollection.appliedParameters.FRICTION_COEFFICIENT-2"),
+        **approximate("MuJoCo's geom surface velocity on static and fixed geoms: one world velocity along ODE's "
+                      "friction directions of the upward (against gravity) normal, projected on each contact's "
+                      "tangent plane (exact for horizontal conveyors; contacts between two moving bodies get none)",
+                      "CollisionCollection.surfaceSpeed", "CollisionCollection.appliedParameters.SPEED-1",
+                      "CollisionCollection.appliedParameters.SPEED-2"),
+        **approximate("ODE's spring k = ERP/(dt CFM) and damper (1-ERP)/CFM divided by the pair's reduced mass "
+                      "(translation only) as a direct solref, capped at MuJoCo's stable 0.5/dt natural frequency "
+                      "and 1/dt damping. MuJoCo's impedance (0.9-0.95) puts only the rest of a resting load on the "
+                      "spring: a body rests some 1/10 to 1/19 as deep as on ODE's spring (0.2 mm for ODE's 2 mm at "
+                      "ERP 0.2, CFM 0.01, 1 kg); with BOUNCE the spring only softens the bounce's",
+                      "CollisionCollection.softnessErrorCorrection", "CollisionCollection.softnessConstantForceMix",
+                      "CollisionCollection.appliedParameters.ERROR_REDUCTION",
+                      "CollisionCollection.appliedParameters.CONSTANT_FORCE"),
+        **approximate("as ODE's layer, two pairs per geometry pair: a damper from touching (the approach stops; "
+                      "MuJoCo's impedance lets a resting load sink through it at 1e-4 g dt, 4 micrometres a second "
+                      "at dt 1/240, where ODE's CFM sinks it at CFM m g) and the ERP spring from that depth. Not "
+                      "applied to bouncing contacts; past PAIR_CAP pairs a geom margin -thickness instead (bodies "
+                      "settle that deep)", "RigidBodyCollection.contactSurfaceThickness"),
+        **unsupported("ODE's force-dependent slip has no MuJoCo counterpart (solreffriction softens friction "
+                      "but keeps Coulomb's cone)", "CollisionCollection.appliedParameters.SLIP-1",
+                      "CollisionCollection.appliedParameters.SLIP-2"),
+        **unsupported("MuJoCo chooses each contact's tangent frame; no direction can be given",
+                      "CollisionCollection.appliedParameters.USER_FRICTION"),
+        **approximate("not applied: contacts undo depth at up to ERP depth/dt (ERP capped at 0.25) with no cap on "
+                      "that speed, so they differ from ODE's where it passes maxCorrectionSpeed (deep overlaps); no "
+                      "effect without a collider", "RigidBodyCollection.maxCorrectionSpeed"),
         **approximate("selects MuJoCo's RK4 integrator (the iterative solver is used either way)",
                       "RigidBodyCollection.preferAccuracy"),
         **unsupported("MuJoCo limits are soft constraints without a restitution coefficient",
