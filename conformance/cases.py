@@ -106,11 +106,27 @@ class TraceView:
 
     def __init__(self, rows: Sequence[Row]):
         groups: dict[tuple[str, str], tuple[list[float], list[list[float]]]] = {}
+        texts: dict[tuple[str, str], tuple[list[float], list[str]]] = {}
         for r in rows:
+            try:
+                values = [float(x) for x in r.value.split()]
+            except ValueError:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
+                t, s = texts.setdefault((r.node, r.field), ([], []))
+                t.append(r.time)
+                s.append(r.value)
+                continue
             t, v = groups.setdefault((r.node, r.field), ([], []))
             t.append(r.time)
-            v.append([float(x) for x in r.value.split()])
+            v.append(values)
         self._series = {k: (np.array(t), np.array(v, dtype=np.float64)) for k, (t, v) in groups.items()}
+        self._text = {k: (np.array(t), s) for k, (t, s) in texts.items()}
+
+    def text(self, node: str, fld: str) -> tuple[np.ndarray, list[str]]:
+        """(times (n,), values as written) of an output that is not numbers: SFBool, SFNode, MFString."""
+        try:
+            return self._text[(node, fld)]
+        except KeyError:
+            raise KeyError(f"the trace has no {node}.{fld} text rows") from None
 
     def keys(self) -> list[tuple[str, str]]:
         return list(self._series)
@@ -919,3 +935,557 @@ def select(names: Sequence[str] | None) -> list[Case]:
     if unknown:
         raise KeyError(f"unknown case(s) {', '.join(unknown)}; known: {', '.join(BY_NAME)}")
     return [BY_NAME[n] for n in names]
+
+
+# -- collisions ---------------------------------------------------------------------------
+# x3d_core/collision.py states what x3drbp reads: ODE's contacts. The argument below follows
+# ODE's contact step, which the other engines approximate (each declares how):
+# - a contact exists on a step that STARTS with the geometries overlapping, and is solved in that
+#   step together with gravity (the step's velocity is the contact's unknown): a body meets a
+#   surface at most one step late, and a resting body feels no unresisted step of gravity;
+# - its normal row targets max(ERP max(depth - contactSurfaceThickness, 0) / h, e v_in), the
+#   bounce e v_in only where the incoming speed v_in (at the step's start) exceeds minBounceSpeed;
+#   ERP is errorCorrection unless ERROR_REDUCTION applies;
+# - every row is softened by CFM (constantForceMix, 1e-4 in every scene: Bullet cannot set it):
+#   a row carrying a force f lets its velocity off target by CFM f (x3drbp's ODE reading, as in
+#   erp_cfm_spring), so a resting body sinks to CFM f h / ERP beyond the layer, a friction row
+#   holding a load f creeps at CFM f, and an impact impulse P yields CFM P / h of the bounce;
+# - friction is Coulomb's pyramid: |f_k| <= mu_k N along ODE's friction directions; each case
+#   moves bodies along one friction direction, where the pyramid and a cone agree.
+# Where a bound needs "one step of unresisted gravity", it is an engine that lets a body fall
+# one step before its contact acts (a contact found after the step, as Bullet's are): g h of
+# velocity and g h^2 of position. The contact loads are bounded by a whole interface's load on
+# one contact point (ODE shares it among up to 4 box corners: 4 times less).
+CFM_DEFAULT, ERP_DEFAULT = 1e-4, 0.8
+
+
+def _runs(series: np.ndarray) -> list[tuple[int, int]]:
+    """Maximal runs [i, j] (inclusive) of True in a boolean array."""
+    out, start = [], None
+    for i, flag in enumerate(series.tolist() + [False]):
+        if flag and start is None:
+            start = i
+        elif not flag and start is not None:
+            out.append((start, i - 1))
+            start = None
+    return out
+
+
+def flights(tp: np.ndarray, vy: np.ndarray, g: float) -> list[tuple[int, int]]:
+    """The ball's flights, in order: maximal runs of frames joined by free-fall intervals
+    (vertical velocity falling by exactly g per second: nothing touched the ball between the two
+    frames), as (first frame, last frame). Whatever is not free fall is contact: an impact, or
+    rest. The first flight is the drop from frame 0."""
+    free = np.abs(np.diff(vy) + g * np.diff(tp)) <= 1e-6 + ROUNDING * np.abs(vy[1:])
+    return [(i, j + 1) for i, j in _runs(free)]
+
+
+# bounce_apex.x3d: per ball (collection's bounce e, drop height h0 of its bottom above the floor)
+BA_G, BA_R, BA_M, BA_MIN, BA_ERP = G, 0.05, 0.01, 0.5, 0.1
+BA_BALLS = {"High02": (0.2, 1.0), "Low02": (0.2, 0.0637), "High05": (0.5, 1.0), "Low05": (0.5, 0.1019),
+            "High08": (0.8, 1.0), "Low08": (0.8, 0.0389)}
+
+
+@dataclass(frozen=True)
+class BounceSchedule:
+    """What a ball's bounces must be, and how well, at one step size."""
+    speeds: list[float]  # closed-form impact speeds v_k = e^k sqrt(2 g h0), k = 0, 1, ...
+    speed_errors: list[float]  # how far a first-order engine's impact speed may be from v_k
+    apexes: list[float]  # h_n = e^(2n) h0 after impact n-1 (n = 1 .. bounces)
+    apex_errors: list[float]
+    bounces: int  # impacts surely faster than minBounceSpeed (they bounce)
+    stops: bool  # impact `bounces` is surely slower than minBounceSpeed (it does not)
+    pop: float  # the highest apex the error correction can throw the ball to after that impact
+    times: list[float]  # closed-form impact times
+
+
+def bounce_schedule(e: float, h0: float, dt: float, g: float = BA_G, v_min: float = BA_MIN, mass: float = BA_M,
+                    erp: float = BA_ERP, cfm: float = CFM_DEFAULT, frame: float | None = None) -> BounceSchedule:
+    """Impact by impact, the closed form and its tolerance, carried from one bounce to the next.
+
+    Impact k. The closed-form speed is v_k; an engine's differs by S_k:
+    - finding the impact: a contact acts at the start of the first step that begins overlapping,
+      at most one step after the crossing (g h more speed), and a first-order scheme's fall lags
+      the parabola by at most g t h / 2, which moves the crossing by at most h/2 (v = g t): so
+      1.5 g h (a predictive contact, acting up to a step early, stays inside it);
+    - rebound: u_k = e v_k, less ODE's softness: the impulse P = m (1 + e) v (plus a step of
+      gravity) yields CFM P / h of it, gamma = CFM m / h: U_k = e S_k + gamma ((1 + e) v + g h);
+    - the ball leaves from up to (v + S) h inside the floor (a step's travel), so it is back at
+      the floor's top slower, by at most g (v + S) h / (u - U) (energy: u^2 - 2 g depth);
+    - so S_(k+1) = U_k + g (v_k + S_k) h / (u_k - U_k) + 1.5 g h.
+    Apex n (after impact k = n-1): z = depth + u^2 / (2 g), so it is off by at most the depth
+    (v + S) h, plus (2 u U + U^2) / (2 g) from the rebound speed, plus u h / 2 for the scheme's
+    lag over the rise (as above) and g h^2 for rounding of the lag's bound, plus g tau^2 / 8 for
+    reading the top between frames tau apart.
+    An impact is sure to bounce if v_k - S_k > minBounceSpeed, sure not to if v_k + S_k <
+    minBounceSpeed; else ambiguous, and nothing after it is predicted. After the first impact
+    sure not to bounce, only the error correction can throw the ball: depth at most (v + S) h,
+    so a speed at most ERP (v + S) + g h, and an apex at most that squared / 2 g (plus u h / 2).
+    """
+    h = dt
+    tau = frame if frame is not None else dt
+    gamma = cfm * mass / h
+    speeds, errors, apexes, apex_errors, times = [math.sqrt(2 * g * h0)], [1.5 * g * h], [], [], [math.sqrt(2 * h0 / g)]
+    while True:
+        v, s = speeds[-1], errors[-1]
+        if v - s > v_min:
+            u = e * v
+            big_u = e * s + gamma * ((1 + e) * (v + s) + g * h)
+            depth = (v + s) * h
+            apexes.append(u * u / (2 * g))
+            apex_errors.append(depth + (2 * u * big_u + big_u ** 2) / (2 * g) + (u + big_u) * h / 2 + g * h * h
+                               + g * tau * tau / 8)
+            speeds.append(u)
+            errors.append(big_u + g * depth / max(u - big_u, 1e-12) + 1.5 * g * h)
+            times.append(times[-1] + 2 * u / g)
+            continue
+        stops = v + s < v_min
+        throw = erp * (v + s) + g * h
+        pop = throw * throw / (2 * g) + throw * h / 2 + g * tau * tau / 8
+        return BounceSchedule(speeds, errors, apexes, apex_errors, len(apexes), stops, pop, times)
+
+
+BA_SETTINGS = Settings(2.5, 1 / 2000, 500.0)
+
+
+def _bounce_apex_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Per ball, from its flights (free-fall runs of frames, see flights()): the apex of its bottom
+    above the floor after bounce n against e^(2n) h0, within bounce_schedule()'s carried
+    tolerance, for each bounce the schedule is sure of and the run sees end 0.1 s before its end;
+    for a ball whose schedule ends on an impact sure to be slower than minBounceSpeed: no later
+    flight rises above the error correction's throw (bouncing has ended), and over the last
+    0.25 s the ball is at rest: |v| within one step of unresisted gravity, g h."""
+    tr, s = traces[0], settings[0]
+    out = []
+    for name, (e, h0) in BA_BALLS.items():
+        t, p = tr.series(name, "position")
+        _, v = tr.series(name, "linearVelocity")
+        tp = physics_time(t, s.dt)
+        z = p[:, 1] - BA_R
+        found = flights(tp, v[:, 1], BA_G)
+        sched = bounce_schedule(e, h0, s.dt, frame=1.0 / s.rate)
+        for n in range(1, sched.bounces + 1):
+            if sched.times[n] + 0.1 > s.duration:
+                break
+            apex = float(np.max(z[found[n][0]:found[n][1] + 1])) if n < len(found) else 0.0
+            out.append(Measure(f"{name} (e = {e:g}) apex after bounce {n} - e^{2 * n} h0",
+                               abs(apex - sched.apexes[n - 1]), sched.apex_errors[n - 1], "m"))
+        if sched.stops and sched.times[sched.bounces] + 0.1 < s.duration:
+            later = [float(np.max(z[i:j + 1])) for i, j in found[sched.bounces + 1:]]
+            out.append(Measure(f"{name} highest flight after impact {sched.bounces + 1} (slower than minBounceSpeed)",
+                               max(later + [0.0]), sched.pop, "m"))
+            end = tp >= tp[-1] - 0.25
+            out.append(Measure(f"{name} |linearVelocity| over the last 0.25 s (at rest)", _max_norm(v[end]),
+                               BA_G * s.dt + ROUNDING, "m/s"))
+    return out
+
+
+def _bounce_apex() -> Case:
+    return Case("bounce_apex", "bounce_apex.x3d",
+                "CollisionCollection bounce 0.2 / 0.5 / 0.8, minBounceSpeed 0.5: apex h_n = e^(2n) h0 while impacts "
+                "beat minBounceSpeed; the first slower impact ends the bouncing",
+                (BA_SETTINGS,), _bounce_apex_expect,
+                exercises=("CollisionCollection", "CollisionCollection.bounce", "CollisionCollection.minBounceSpeed",
+                           "CollisionCollection.appliedParameters.BOUNCE", "CollidableShape.geometry.Sphere",
+                           "CollidableShape.geometry.Box", "RigidBodyCollection.errorCorrection"))
+
+
+# incline.x3d: boxes (1 kg, 0.1 m thick) on inclines (0.2 m thick) turned about +z by theta; each
+# starts at rest 2 m up the slope from the centre of its incline's top face
+INC_MU, INC_M, INC_UP, INC_OFFSET = 0.5, 1.0, 2.0, 0.1 + 0.05
+INC_BOXES = {"Stuck": (math.radians(20.0), -1.0), "Slider": (math.radians(35.0), 1.0)}
+INC_FIT_FROM = 0.25  # s
+
+
+def incline_frame(theta: float, z: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Start position, downhill unit vector and slope normal of a box on an incline."""
+    uphill = np.array([math.cos(theta), math.sin(theta), 0.0])
+    normal = np.array([-math.sin(theta), math.cos(theta), 0.0])
+    return np.array([0.0, 0.0, z]) + INC_OFFSET * normal + INC_UP * uphill, -uphill, normal
+
+
+def fitted_acceleration(t: np.ndarray, s: np.ndarray) -> tuple[float, float]:
+    """Least-squares a of s = c0 + c1 t + a t^2/2, and how much a bounded velocity disturbance
+    moves it: a = sum w_i s_i; a velocity error eps(t) adds int_t0^t_i eps to s_i, so a moves by
+    int eps(t) W(t) dt, W(t) = sum over t_i > t of w_i: at most max|eps| int |W| dt (returned)."""
+    design = np.column_stack([np.ones_like(t), t - t[0], 0.5 * (t - t[0]) ** 2])
+    w = np.linalg.pinv(design)[2]
+    tail = np.cumsum(w[::-1])[::-1]  # tail[k] = sum_{i >= k} w_i
+    return float(w @ s), float(np.sum(np.abs(tail[1:]) * np.diff(t)))
+
+
+def _incline_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Stuck: |p - p0| over 2 s. Static friction holds it exactly in a hard-contact engine; ODE's
+    rows yield by CFM times their force: the friction rows creep at CFM m g sin(theta) (the whole
+    load on one row) and the normal rows sink to CFM m g cos(theta) h / ERP; a contact acting a step
+    late lets the box fall g h^2 once. Bound: CFM m g (sin T + cos h / ERP) + g h^2 (sin + cos).
+
+    Slider: a fitted to the distance down the slope over [0.25 s, 2 s] against
+    g (sin theta - mu cos theta). Under a constant acceleration every one-step scheme's positions
+    are an exact quadratic in t (semi-implicit Euler: a t^2/2 + a h t/2; the O(h) term is linear
+    and the fit's c1 takes it), so the fit is exact; what remains is the contact's departure from
+    its steady state: friction's impulse over any interval is mu times the normal impulse, which is
+    m g cos(theta) per second up to the change in the box's normal velocity (within g h when
+    contacts act at most a step late), and a step without contact adds g sin(theta) h of slide:
+    the velocity along the slope strays from the straight line by at most
+    eps = g h (2 mu cos theta + sin theta); fitted_acceleration turns that into the bound on a."""
+    tr, s = traces[0], settings[0]
+    out = []
+    h, T = s.dt, s.duration
+    for name, (theta, z) in INC_BOXES.items():
+        start, down, _ = incline_frame(theta, z)
+        t, p = tr.series(name, "position")
+        tp = physics_time(t, h)
+        sin, cos = math.sin(theta), math.cos(theta)
+        if math.tan(theta) <= INC_MU:
+            tol = CFM_DEFAULT * INC_M * G * (sin * T + cos * h / ERP_DEFAULT) + G * h * h * (sin + cos)
+            out.append(Measure(f"{name} (tan {math.degrees(theta):g} deg <= mu) |position - start|",
+                               _max_norm(p - start), tol + ROUNDING * (1 + float(np.linalg.norm(start))), "m"))
+            continue
+        a_exact = G * (sin - INC_MU * cos)
+        window = tp >= INC_FIT_FROM
+        a, spread = fitted_acceleration(tp[window], (p[window] - start) @ down)
+        eps = G * h * (2 * INC_MU * cos + sin)
+        out.append(Measure(f"{name} (tan {math.degrees(theta):g} deg > mu) fitted acceleration - g (sin - mu cos)",
+                           abs(a - a_exact), eps * spread + ROUNDING * (1 + a_exact), "m/s^2"))
+    return out
+
+
+def _incline() -> Case:
+    return Case("incline", "incline.x3d",
+                "CollisionCollection frictionCoefficients 0.5 on static inclines: at 20 degrees the box sticks; at 35 "
+                "it slides at g (sin - mu cos) = 1.6088 m/s^2",
+                (Settings(2.0, 1 / 240),), _incline_expect,
+                exercises=("CollisionCollection.frictionCoefficients", "CollidableShape.rotation",
+                           "CollidableShape.geometry.Box", "RigidBody.orientation"))
+
+
+# anisotropic_friction.x3d: boxes pushed at 3 m/s along ODE's two friction directions of an
+# upward normal (-x, +z)
+AF_MU, AF_V0 = (0.2, 0.6), 3.0
+AF_BOXES = {"Along1": (0, np.array([-1.0, 0.0, 0.0])), "Along2": (1, np.array([0.0, 0.0, 1.0]))}
+
+
+def _friction_velocity_expect(boxes: dict[str, tuple[float, float, float, np.ndarray]]) -> Expectation:
+    """Boxes (name -> mu, v0, target, direction) whose velocity along a friction direction changes
+    at mu g until it reaches its target (0 for a pushed box, the surface speed on a belt). Friction
+    is mu times the normal impulse, which over [0, t] is m g t up to the box's vertical momentum
+    (its vertical speed within g h, the contact acting at most a step late), and a first step
+    without contact loses mu g h of friction: |v - closed form| <= 2 mu g h (and the rate of a
+    row at its target: a velocity row is on it, or a step at mu g off it)."""
+    def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+        tr, s = traces[0], settings[0]
+        out = []
+        for name, (mu, v0, target, direction) in boxes.items():
+            t, v = tr.series(name, "linearVelocity")
+            tp = physics_time(t, s.dt)
+            gap = v0 - target
+            along = target + np.sign(gap) * np.maximum(abs(gap) - mu * G * tp, 0.0)
+            out.append(Measure(f"{name}.linearVelocity (mu = {mu:g} along {direction.tolist()})",
+                               _max_norm(v - np.outer(along, direction)),
+                               2 * mu * G * s.dt + ROUNDING * (1 + abs(v0) + abs(target)), "m/s"))
+        return out
+    return expect
+
+
+def _anisotropic() -> Case:
+    boxes = {name: (AF_MU[k], AF_V0, 0.0, d) for name, (k, d) in AF_BOXES.items()}
+    return Case("anisotropic_friction", "anisotropic_friction.x3d",
+                "frictionCoefficients 0.2 0.6 with FRICTION_COEFFICIENT-2: a box pushed along -x (ODE's first friction "
+                "direction) slows at mu1 g, one pushed along +z at mu2 g",
+                (Settings(2.0, 1 / 240),), _friction_velocity_expect(boxes),
+                exercises=("CollisionCollection.frictionCoefficients",
+                           "CollisionCollection.appliedParameters.FRICTION_COEFFICIENT-2", "RigidBody.linearVelocity"))
+
+
+# conveyor.x3d: the box ends moving at surfaceSpeed along ODE's first friction direction (-x)
+CV_MU, CV_SPEED = 0.5, 1.5
+
+
+def _conveyor() -> Case:
+    boxes = {"Parcel": (CV_MU, 0.0, CV_SPEED, np.array([-1.0, 0.0, 0.0]))}
+    return Case("conveyor", "conveyor.x3d",
+                "surfaceSpeed 1.5 0 with SPEED-1, mu 0.5, static belt: v = (-min(mu g t, 1.5), 0, 0) (ODE's motion1 "
+                "along its first friction direction, -x)",
+                (Settings(1.5, 1 / 240),), _friction_velocity_expect(boxes),
+                exercises=("CollisionCollection.surfaceSpeed", "CollisionCollection.appliedParameters.SPEED-1",
+                           "CollisionCollection.frictionCoefficients"))
+
+
+def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
+    """A CollisionSensor's contacts per frame time: position, contactNormal, depth (arrays) and
+    body1, body2, geometry1, geometry2 (names), from its contacts[i].FIELD rows."""
+    out: dict[float, list[dict]] = {}
+    for i in range(10_000):
+        try:
+            times, pos = tr.series(sensor, f"contacts[{i}].position")
+        except KeyError:
+            break
+        _, normal = tr.series(sensor, f"contacts[{i}].contactNormal")
+        _, depth = tr.series(sensor, f"contacts[{i}].depth")
+        names = {f: dict(zip(*tr.text(sensor, f"contacts[{i}].{f}")))
+                 for f in ("body1", "body2", "geometry1", "geometry2")}
+        for k, t in enumerate(times.tolist()):
+            c = {"position": pos[k], "contactNormal": normal[k], "depth": float(depth[k, 0])}
+            c.update({f: names[f].get(t) for f in names})
+            out.setdefault(t, []).append(c)
+    return out
+
+
+# resting_penetration.x3d: boxes (1 kg, 0.2 m tall) on a floor whose top is y = 0
+RP_LAYER, RP_M, RP_HALF = 0.01, 1.0, 0.1
+RP_BOXES = {"Sunk": (1.0, RP_LAYER), "Touching": (-1.0, 0.0)}  # x of the box, depth it starts at
+
+
+def _resting_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Depth of each box, from the sensor's contacts (every contact the box has, frames after the
+    first step) and from its height (0.1 - y, every frame).
+
+    Sunk starts at depth = layer, where ODE's error correction pushes nothing: it stays, sinking
+    only by the softness CFM m g h / ERP (the whole weight on one contact) and, in an engine whose
+    contact acts a step late, one step of fall g h^2: |depth - 0.01| within their sum.
+    Touching starts at depth 0: nothing pushes it in, but ODE's softness lets a resting body creep
+    in at CFM m g until it reaches the layer: |depth| <= CFM m g T + g h^2 over the run T (an engine
+    that makes the layer a target rather than an allowance pulls it 1 cm in and fails)."""
+    tr, s = traces[0], settings[0]
+    h = s.dt
+    contacts = sensor_contacts(tr, "Sensor")
+    out = []
+    for name, (x, start_depth) in RP_BOXES.items():
+        if start_depth > 0:
+            tol = CFM_DEFAULT * RP_M * G * h / ERP_DEFAULT + G * h * h
+        else:
+            tol = CFM_DEFAULT * RP_M * G * s.duration + G * h * h
+        tol += ROUNDING
+        _, p = tr.series(name, "position")
+        out.append(Measure(f"{name} depth from its height - {start_depth:g}",
+                           _max_norm((RP_HALF - p[:, 1]) - start_depth), tol, "m"))
+        times, _ = tr.series(name, "position")
+        worst, missing = 0.0, 0
+        for t, n in zip(times.tolist(), steps(times, h).tolist()):
+            if n < 1:
+                continue
+            mine = [c["depth"] for c in contacts.get(t, []) if (c["position"][0] > 0) == (x > 0)]
+            if not mine:
+                missing += 1
+                continue
+            worst = max(worst, max(abs(d - start_depth) for d in mine))
+        out.append(Measure(f"{name} CollisionSensor contact depth - {start_depth:g}",
+                           worst if not missing else math.inf, tol, "m"))
+    return out
+
+
+def _resting() -> Case:
+    return Case("resting_penetration", "resting_penetration.x3d",
+                "RigidBodyCollection contactSurfaceThickness 0.01: a box resting 1 cm into the floor stays there "
+                "(CollisionSensor depth 0.01); one resting on it stays at ~0",
+                (Settings(1.0, 1 / 240),), _resting_expect,
+                exercises=("RigidBodyCollection.contactSurfaceThickness", "CollisionSensor"))
+
+
+# box_stack.x3d: five 0.2 kg boxes, 0.2 m tall, 0.4 m wide; gravity (1, -9.81, 0)
+BS_N, BS_M, BS_HEIGHT, BS_WIDTH, BS_GRAVITY = 5, 0.2, 0.2, 0.4, np.array([1.0, -9.81, 0.0])
+
+
+def _stack_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Each box's |position - start| and rotation angle over 10 s. Interface i (i = 1 under the
+    bottom box) carries n_i = 6 - i boxes. Box j moves with every interface under it:
+    - vertically, each may let its boxes fall one step before acting (g h^2) and ODE's normal rows
+      sink to CFM n_i m g h / ERP;
+    - sideways, each may slip one step of the sideways load (a_x h^2), and ODE's friction rows,
+      holding n_i m a_x, creep at CFM n_i m a_x for the whole run T;
+    - tilting: uneven sinking of an interface's edges, at most twice its vertical bound over the
+      box's width.
+    A hard-contact engine holds the stack exactly (no load is near friction's limit: 0.10 < 0.3).
+    The bound assumes each step's contacts solved: an iterative solver stopped short of that lets
+    the stack walk (ODE 0.16's own dWorldQuickStep at the default 10 iterations: the top box
+    5.6 cm in 10 s, measured; its dWorldStep stays within 0.19 of the bound)."""
+    tr, s = traces[0], settings[0]
+    h, T = s.dt, s.duration
+    ax, gy = abs(float(BS_GRAVITY[0])), abs(float(BS_GRAVITY[1]))
+    out = []
+    vertical = sideways = tilt = 0.0
+    for j in range(1, BS_N + 1):
+        n = BS_N + 1 - j  # boxes on interface j
+        sink = gy * h * h + CFM_DEFAULT * n * BS_M * gy * h / ERP_DEFAULT
+        vertical += sink
+        sideways += ax * h * h + CFM_DEFAULT * n * BS_M * ax * T
+        tilt += 2 * sink / BS_WIDTH
+        start = np.array([0.0, BS_HEIGHT * (j - 0.5), 0.0])
+        _, p = tr.series(f"Box{j}", "position")
+        _, rot = tr.series(f"Box{j}", "orientation")
+        out.append(Measure(f"Box{j} |position - start|", _max_norm(p - start),
+                           vertical + sideways + ROUNDING * (1 + float(np.linalg.norm(start))), "m"))
+        out.append(Measure(f"Box{j} rotation angle", float(np.max(rotation_angle_between(
+            quaternions(rot), np.array([1.0, 0.0, 0.0, 0.0])))), tilt + ROUNDING_ANGLE, "rad"))
+    return out
+
+
+def _stack() -> Case:
+    return Case("box_stack", "box_stack.x3d",
+                "five boxes stacked, frictionCoefficients 0.3, gravity 1 -9.81 0: every box stays put for 10 s",
+                (Settings(10.0, 1 / 240),), _stack_expect,
+                exercises=("CollisionCollection.frictionCoefficients", "RigidBodyCollection.gravity",
+                           "CollidableShape.geometry.Box"))
+
+
+# collision_filtering.x3d: two 1 kg balls touching the floor; Ghost's shape is not in the collider
+CF_KEPT, CF_GHOST, CF_M = np.array([-0.5, 0.1, 0.0]), np.array([0.5, 0.1, 0.0]), 1.0
+
+
+def _filtering_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Ghost: the ballistic closed form (nothing touches it). Kept: at rest on the floor within one
+    step of unresisted fall (g h^2, g h) and ODE's softness (sinking to CFM m g h / ERP, at a speed
+    at most CFM m g)."""
+    tr, s = traces[0], settings[0]
+    h = s.dt
+    _, p = tr.series("Kept", "position")
+    _, v = tr.series("Kept", "linearVelocity")
+    kept = [Measure("Kept |position - start| (rests on the floor)", _max_norm(p - CF_KEPT),
+                    G * h * h + CFM_DEFAULT * CF_M * G * h / ERP_DEFAULT + ROUNDING, "m"),
+            Measure("Kept |linearVelocity|", _max_norm(v), G * h + CFM_DEFAULT * CF_M * G + ROUNDING, "m/s")]
+    ghost = ballistic("Ghost", CF_GHOST, (0, 0, 0), (0, -G, 0))(traces, settings)
+    return kept + [Measure(m.quantity + " (falls through the floor)", m.error, m.tolerance, m.unit) for m in ghost]
+
+
+def _filtering() -> Case:
+    return Case("collision_filtering", "collision_filtering.x3d",
+                "CollisionCollection collidables: a body whose shape is in the collider rests on the floor, one whose "
+                "shape is not falls through it",
+                (Settings(1.0, 1 / 240),), _filtering_expect,
+                exercises=("CollisionCollection", "CollidableShape.geometry.Sphere"))
+
+
+# sensor_geometry.x3d: Ball (0.2 kg, r 0.1) on Block (1 kg, 0.4 x 0.2 x 0.4) on the static Floor
+SG_BALL_M, SG_BLOCK_M, SG_R, SG_BLOCK_HALF, SG_WIDTH = 0.2, 1.0, 0.1, 0.1, 0.4
+SG_LOWER = {frozenset(("Floor", "BlockShape")): "Floor", frozenset(("BlockShape", "BallShape")): "BlockShape"}
+SG_BODY = {"Floor": "NULL", "BlockShape": "Block", "BallShape": "Ball"}
+
+
+def _sensor_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Every contact of every frame after the first step (the sensor reports the last step's).
+
+    Depth: the resting penetration (no surface layer): one step of unresisted fall g h^2 plus ODE's
+    softness CFM f h / ERP, f the largest load on a contact (ball and block on the floor).
+    Normal: (0, +-1, 0) by which geometry is lower; the block may tilt by uneven sinking of its
+    edges, at most twice the depth bound over its width, and its faces' normals with it.
+    Ball's contact position: (x, z) of the ball's centre (off by at most r times the tilt) and
+    y at the block's top face (Block's centre + 0.1), within the depth bound (engines put the
+    point on either surface or between them). Names: exact."""
+    tr, s = traces[0], settings[0]
+    h = s.dt
+    depth_tol = G * h * h + CFM_DEFAULT * (SG_BALL_M + SG_BLOCK_M) * G * h / ERP_DEFAULT + ROUNDING
+    tilt = 2 * depth_tol / SG_WIDTH
+    contacts = sensor_contacts(tr, "Sensor")
+    times, ball = tr.series("Ball", "position")
+    _, block = tr.series("Block", "position")
+    try:
+        active = dict(zip(*tr.text("Sensor", "isActive")))
+    except KeyError:  # no sensor output at all: inactive on every frame
+        active = {}
+    hits = {}
+    for k in range(100):
+        try:
+            for t, name in zip(*tr.text("Sensor", f"intersections[{k}]")):
+                hits.setdefault(t, set()).add(name)
+        except KeyError:
+            break
+    normal_err = depth_err = horizontal_err = vertical_err = 0.0
+    wrong_names = inactive = no_ball_contact = missing_hits = 0
+    for frame, (t, n) in enumerate(zip(times.tolist(), steps(times, h).tolist())):
+        if n < 1:
+            continue
+        inactive += active.get(t) != "true"
+        missing_hits += hits.get(t, set()) != set(SG_BODY)
+        ball_contacts = 0
+        for c in contacts.get(t, []):
+            g1, g2 = c["geometry1"], c["geometry2"]
+            lower = SG_LOWER.get(frozenset((g1, g2)))
+            if lower is None or g1 == g2:
+                wrong_names += 1
+                continue
+            wrong_names += (c["body1"], c["body2"]) != (SG_BODY[g1], SG_BODY[g2])
+            want = np.array([0.0, 1.0 if g1 == lower else -1.0, 0.0])
+            normal_err = max(normal_err, float(np.linalg.norm(c["contactNormal"] - want)))
+            depth_err = max(depth_err, abs(c["depth"]))
+            if lower == "BlockShape":
+                ball_contacts += 1
+                d = c["position"] - ball[frame]
+                horizontal_err = max(horizontal_err, math.hypot(d[0], d[2]))
+                vertical_err = max(vertical_err, abs(c["position"][1] - (block[frame][1] + SG_BLOCK_HALF)))
+        no_ball_contact += ball_contacts == 0
+    return [Measure("frames after the first step with isActive FALSE", inactive, 0),
+            Measure("frames whose intersections do not name Floor, BlockShape and BallShape", missing_hits, 0),
+            Measure("contacts whose geometry1/geometry2/body1/body2 are not a touching pair and its bodies",
+                    wrong_names, 0),
+            Measure("frames with no BallShape-BlockShape contact", no_ball_contact, 0),
+            Measure("contactNormal - (0, +-1, 0) from geometry1 towards geometry2 (worst contact)", normal_err,
+                    tilt + ROUNDING_ANGLE),
+            Measure("|depth| (worst contact)", depth_err, depth_tol, "m"),
+            Measure("ball contact position - ball centre, horizontally", horizontal_err, SG_R * tilt + ROUNDING, "m"),
+            Measure("ball contact position - block top face, vertically", vertical_err, depth_tol, "m")]
+
+
+def _sensor() -> Case:
+    return Case("sensor_geometry", "sensor_geometry.x3d",
+                "CollisionSensor contacts of a ball on a block on the floor: contactNormal (0, +-1, 0) from geometry1 "
+                "towards geometry2, bodies named, position under the ball's centre at the block's top, depth small",
+                (Settings(1.0, 1 / 240),), _sensor_expect,
+                exercises=("CollisionSensor", "CollidableShape.geometry.Sphere", "CollidableShape.geometry.Box"))
+
+
+# newtons_cradle.x3d: balls 0.1 kg, r 0.05, I 1e-4, 0.5 m below pivots 0.104 m apart
+NC_M, NC_R, NC_I, NC_L, NC_GAP, NC_BALLS, NC_THETA0 = 0.1, 0.05, 1e-4, 0.5, 0.004, 5, math.radians(30.0)
+
+
+def _cradle_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Ball1's impact speed v: its speed on the frame before Ball2 first moves (a frame after every
+    step: the velocity the impact step starts from, which ODE's bounce reflects). Then
+    max |v(Ball5)| / v against 1, and the speed left in Ball1 .. Ball4 just after Ball5 leaves
+    (5 steps after its fastest frame) against 0.
+
+    Soft contacts. Each impact is binary (the gap outlasts a step's travel) between equal
+    effective masses m' = m + I/L^2 (a hinged ball moving tangentially at the bottom); elastic, it
+    hands the whole velocity on. ODE's contact row yields by CFM times its force: the row targets
+    the relative speed v and gets (v - gamma v)/(1 + gamma), gamma = CFM (m'/2) / h (reduced
+    mass), which leaves v / (1 + gamma) to the struck ball and gamma v / (1 + gamma) to the
+    striker. After four impacts Ball5 has v / (1 + gamma)^4 (gamma = 5.0e-3 at dt = 1 ms: 2%),
+    and each striker keeps at most gamma v.
+    Gravity. Each ball strikes up to x = gap + v h past its lowest point, where gravity's
+    tangential pull g x / L has slowed it for x / v: together at most 4 g x^2 / (L v) (1.8e-3 v).
+    The line of centres and the velocity tilt by x / L or less (cosines within 1.1e-4 of 1)."""
+    tr, s = traces[0], settings[0]
+    h = s.dt
+    speed = {k: np.linalg.norm(tr.series(f"Ball{k}", "linearVelocity")[1], axis=1) for k in range(1, NC_BALLS + 1)}
+    m_eff = NC_M + NC_I / NC_L ** 2
+    gamma = CFM_DEFAULT * 0.5 * m_eff / h
+    moved = np.flatnonzero(speed[2] > 1e-3)
+    names = ("Ball5 max speed / Ball1 impact speed - 1", "Ball1 .. Ball4 speed after Ball5 leaves / Ball1 impact speed")
+    v_est = math.sqrt(2 * G * NC_L * (1 - math.cos(NC_THETA0)) * NC_M * NC_L ** 2 / (NC_M * NC_L ** 2 + NC_I))
+    x = NC_GAP + v_est * h
+    drag = 4 * G * x * x / (NC_L * v_est * v_est) + 2 * x / NC_L
+    tol_pass = 1 - (1 + gamma) ** -(NC_BALLS - 1) + drag
+    tol_left = gamma + drag
+    if not moved.size or moved[0] == 0:
+        return [Measure(names[0], math.inf, tol_pass), Measure(names[1], math.inf, tol_left)]
+    v = float(speed[1][moved[0] - 1])
+    fastest = int(np.argmax(speed[5]))
+    after = min(fastest + 5, len(speed[5]) - 1)
+    left = max(float(speed[k][after]) for k in range(1, NC_BALLS))
+    return [Measure(names[0], abs(float(speed[5][fastest]) / v - 1), tol_pass),
+            Measure(names[1], left / v, tol_left)]
+
+
+def _cradle() -> Case:
+    return Case("newtons_cradle", "newtons_cradle.x3d",
+                "CollisionCollection bounce 1, minBounceSpeed 0: five hinged balls, 4 mm apart; Ball5 leaves with "
+                "Ball1's impact speed (less ODE's contact softness, 2%), Ball1 .. Ball4 stop",
+                (Settings(0.6, 1 / 1000, None),), _cradle_expect,
+                exercises=("CollisionCollection.bounce", "CollisionCollection.minBounceSpeed",
+                           "CollidableShape.geometry.Sphere", "SingleAxisHingeJoint"))
+
+
+COLLISION_CASES: tuple[Case, ...] = (_bounce_apex(), _incline(), _anisotropic(), _conveyor(), _resting(), _stack(),
+                                     _filtering(), _sensor(), _cradle())
+CASES = CASES + COLLISION_CASES
+BY_NAME.update({c.name: c for c in COLLISION_CASES})
