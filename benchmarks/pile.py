@@ -182,8 +182,9 @@ def _frames(duration: float) -> tuple[int, int]:
 
 def native_mujoco(duration: float, contacts: bool = False) -> np.ndarray:
     """As backends/mujoco.py builds it (its collision code as of this writing): a free body
-    per body with its inertia explicit, a massless geom each, the floor a geom on the
-    world body; 200 bodies make 20100 possible pairs, past the backend's PAIR_CAP of 20000,
+    per body with its inertia explicit, a massless geom each, the floor and walls geoms on
+    the world body; 200 bodies and 5 static boxes make 20900 possible pairs, past the
+    backend's PAIR_CAP of 20000,
     so geoms collide through MuJoCo's default contype/conaffinity broad phase (the backend's
     explicit pairs, with their softer friction rows, are not used). Friction: condim 3 on
     the elliptic cone with 30 no-slip iterations; contacts without bounce or softness get the
@@ -243,10 +244,11 @@ def native_mujoco(duration: float, contacts: bool = False) -> np.ndarray:
 
 def native_bullet(duration: float, contacts: bool = False) -> np.ndarray:
     """As backends/bullet.py builds it: each body a linkless multibody with its collision
-    shape as the base's, mass and inertia set explicitly; the floor a massless multibody
-    created after them; the solver's iterations, ERP (contacts too), no split impulse,
-    pyramid friction, each object's friction sqrt(mu) (pybullet multiplies two objects'),
-    restitution 0, no rolling or spinning friction, contactProcessingThreshold 1e-4."""
+    shape as the base's, mass and inertia set explicitly; the floor and each wall a
+    massless multibody created after them; the solver's iterations, ERP (contacts too), no
+    split impulse, pyramid friction, each object's friction sqrt(mu) (pybullet multiplies
+    two objects'), restitution 0, no rolling or spinning friction, contactProcessingThreshold
+    1e-4. (Two collision shapes shared by all bodies, where the backend makes one a body.)"""
     import pybullet as p
     c = p.connect(p.DIRECT)
     p.setGravity(0, -GRAVITY, 0, physicsClientId=c)
@@ -290,9 +292,9 @@ def native_bullet(duration: float, contacts: bool = False) -> np.ndarray:
 
 def native_dart(duration: float, contacts: bool = False) -> np.ndarray:
     """As backends/dart.py builds it: DART's Bullet collision detector, a free-joint
-    skeleton per body with its inertia set, sleeping off, the floor a shape on an immobile
-    welded skeleton added last, every shape friction mu (DART takes the smaller of two)
-    and restitution 0."""
+    skeleton per body with its inertia set, sleeping off, the floor and walls shapes on an
+    immobile welded skeleton added last, every shape friction mu (DART takes the smaller
+    of two) and restitution 0; DART's default solver (Dantzig's LCP)."""
     import dartpy as dart
     world = dart.simulation.World()
     world.setTimeStep(DT)
@@ -327,9 +329,9 @@ def native_dart(duration: float, contacts: bool = False) -> np.ndarray:
         collide(node, shape, f"shape{k}")
         world.addSkeleton(skeleton)
         nodes.append(node)
-    # the floor last, as the backend's static shape comes last: DART's Bullet detector orders each
-    # contact's two objects by when they were added, and the pair's order turns the friction
-    # pyramid (a floor added first put a pile 1 cm lower after 1 s: a real difference)
+    # the static shapes last, as the backend's come last: DART's Bullet detector orders each
+    # contact's two objects by when they were added, and that order turns the friction pyramid
+    # (measured with the floor added first: the pile's mean height 1 cm off after 1 s)
     ground = dart.dynamics.Skeleton("ground")
     _, ground_node = ground.createWeldJointAndBodyNodePair(None)
     ground.setMobile(False)
