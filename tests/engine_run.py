@@ -15,16 +15,22 @@ G = 9.81
 Series = dict[tuple[str, str], list[tuple[float, np.ndarray]]]
 
 
-def run_x3d(tmp_path, body: str, duration: float = 1.0, frame_rate: float = 60, dt: float = DT,
-            times: np.ndarray | None = None, *, backend) -> Series:
-    """Run the scene (X3D XML text of the Scene's content) and return its trace as
-    (node, field) -> [(time, value)], values parsed with float()."""
+def scene_worlds(tmp_path, body: str) -> list:
+    """The worlds of a scene given as the X3D XML text of its Scene's content (which must
+    load without errors)."""
     p = tmp_path / "s.x3d"
     p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n"
                  f"{body}\n</Scene></X3D>\n")
     scene = load(str(p))
     assert not scene.errors, [str(e) for e in scene.errors]
-    trace = run(worlds(scene), backend, RunSettings(duration, dt, frame_rate), times)
+    return worlds(scene)
+
+
+def run_x3d(tmp_path, body: str, duration: float = 1.0, frame_rate: float = 60, dt: float = DT,
+            times: np.ndarray | None = None, *, backend) -> Series:
+    """Run the scene (X3D XML text of the Scene's content) and return its trace as
+    (node, field) -> [(time, value)], values parsed with float()."""
+    trace = run(scene_worlds(tmp_path, body), backend, RunSettings(duration, dt, frame_rate), times)
     series: Series = {}
     for r in trace.rows:
         series.setdefault((r.node, r.field), []).append((r.time, _value(r.value)))

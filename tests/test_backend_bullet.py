@@ -12,11 +12,9 @@ pytest.importorskip("pybullet")
 
 from backends import base  # noqa: E402
 from backends.bullet import BACKEND  # noqa: E402
-from engine_run import DT, G, last, run_x3d, times, values  # noqa: E402
+from engine_run import DT, G, last, run_x3d, scene_worlds, times, values  # noqa: E402
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
-from x3d_core.load import load  # noqa: E402
-from x3d_core.world import worlds  # noqa: E402
 
 
 def simulate(tmp_path, body: str, *args, **kwargs):
@@ -228,34 +226,26 @@ def test_hinge2_motor_is_a_bounded_velocity_constraint(tmp_path, wheel_is_body1)
 
 
 def test_suspension_is_refused(tmp_path):
-    p = tmp_path / "s.x3d"
-    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>"
-                 "<RigidBodyCollection><RigidBody DEF='A' fixed='true'/><RigidBody DEF='B' position='1 0 0'/>"
-                 "<DoubleAxisHingeJoint suspensionForce='0.01'><RigidBody USE='A' containerField='body1'/>"
-                 "<RigidBody USE='B' containerField='body2'/></DoubleAxisHingeJoint></RigidBodyCollection>"
-                 "</Scene></X3D>")
+    scene_text = ("<RigidBodyCollection><RigidBody DEF='A' fixed='true'/><RigidBody DEF='B' position='1 0 0'/>"
+                  "<DoubleAxisHingeJoint suspensionForce='0.01'><RigidBody USE='A' containerField='body1'/>"
+                  "<RigidBody USE='B' containerField='body2'/></DoubleAxisHingeJoint></RigidBodyCollection>")
     assert BACKEND.support("DoubleAxisHingeJoint.suspensionForce").support is base.Support.UNSUPPORTED
     with pytest.raises(Unsupported, match="suspensionForce"):
-        BACKEND.build(worlds(load(str(p)))[0], DT)
+        BACKEND.build(scene_worlds(tmp_path, scene_text)[0], DT)
 
 
 def test_hinge_closing_a_loop_is_refused(tmp_path):
-    p = tmp_path / "s.x3d"
-    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>"
-                 "<RigidBodyCollection><RigidBody DEF='A' position='0 -1 0'/>"
-                 "<SingleAxisHingeJoint><RigidBody USE='A' containerField='body1'/></SingleAxisHingeJoint>"
-                 "<SingleAxisHingeJoint anchorPoint='1 0 0'><RigidBody USE='A' containerField='body1'/>"
-                 "</SingleAxisHingeJoint></RigidBodyCollection></Scene></X3D>")
+    scene_text = ("<RigidBodyCollection><RigidBody DEF='A' position='0 -1 0'/>"
+                  "<SingleAxisHingeJoint><RigidBody USE='A' containerField='body1'/></SingleAxisHingeJoint>"
+                  "<SingleAxisHingeJoint anchorPoint='1 0 0'><RigidBody USE='A' containerField='body1'/>"
+                  "</SingleAxisHingeJoint></RigidBodyCollection>")
     with pytest.raises(Unsupported, match="closes a loop"):
-        BACKEND.build(worlds(load(str(p)))[0], DT)
+        BACKEND.build(scene_worlds(tmp_path, scene_text)[0], DT)
 
 
 def test_every_simulation_has_its_own_client(tmp_path):
     import pybullet
-    p = tmp_path / "s.x3d"
-    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>"
-                 f"{pendulum(0.5)}</Scene></X3D>")
-    world = worlds(load(str(p)))[0]
+    world = scene_worlds(tmp_path, pendulum(0.5))[0]
     a, b = BACKEND.build(world, DT), BACKEND.build(world, DT)
     a.step(100)
     assert b.state().position == pytest.approx(world.bodies.position, abs=1e-12)

@@ -13,11 +13,9 @@ pytest.importorskip("dartpy")
 
 from backends import base  # noqa: E402
 from backends.dart import BACKEND  # noqa: E402
-from engine_run import DT, G, first, last, run_x3d, same_rotation, times, values  # noqa: E402
+from engine_run import DT, G, first, last, run_x3d, same_rotation, scene_worlds, times, values  # noqa: E402
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
-from x3d_core.load import load  # noqa: E402
-from x3d_core.world import worlds  # noqa: E402
 
 
 def simulate(tmp_path, body: str, *args, **kwargs):
@@ -124,10 +122,8 @@ def test_loads_set_during_a_run_reach_the_bodies(tmp_path):
 def test_sleeping_is_off(tmp_path):
     # DART's deactivation is on by default (bodies under 1 cm/s for 0.5 s may be put to
     # sleep); X3D bodies sleep only where autoDisable says so
-    p = tmp_path / "s.x3d"
-    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>"
-                 "<RigidBodyCollection><RigidBody/></RigidBodyCollection></Scene></X3D>\n")
-    assert not BACKEND.build(worlds(load(str(p)))[0], DT).dart_world.getDeactivationOptions().mEnabled
+    world = scene_worlds(tmp_path, "<RigidBodyCollection><RigidBody/></RigidBodyCollection>")[0]
+    assert not BACKEND.build(world, DT).dart_world.getDeactivationOptions().mEnabled
     s = simulate(tmp_path, "<RigidBodyCollection gravity='0 0 0'><RigidBody DEF='B' linearVelocity='0.001 0 0'/>"
                            "</RigidBodyCollection>", duration=2.0)
     assert last(s, "B", "position")[0] == pytest.approx(0.002, abs=1e-12)

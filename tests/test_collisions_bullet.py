@@ -16,11 +16,9 @@ import pytest
 pytest.importorskip("pybullet")
 
 from backends.bullet import BACKEND  # noqa: E402
-from engine_run import DT, G  # noqa: E402
+from engine_run import DT, G, scene_worlds  # noqa: E402
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.collision import ContactPoints  # noqa: E402
-from x3d_core.load import load  # noqa: E402
-from x3d_core.world import worlds  # noqa: E402
 
 FLOOR = ("<Group><CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape containerField='shape'>"
          "<Box size='20 1 20'/></Shape></CollidableShape></Group>")
@@ -28,12 +26,7 @@ FLOOR = ("<Group><CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape cont
 
 def build(tmp_path, body: str, dt: float = DT):
     """The scene's first world and its pybullet simulation."""
-    path = tmp_path / "c.x3d"
-    path.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n"
-                    f"{body}\n</Scene></X3D>\n")
-    scene = load(str(path))
-    assert not scene.errors, [str(e) for e in scene.errors]
-    world = worlds(scene)[0]
+    world = scene_worlds(tmp_path, body)[0]
     return world, BACKEND.build(world, dt)
 
 

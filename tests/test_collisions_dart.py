@@ -15,9 +15,7 @@ pytest.importorskip("dartpy")
 
 from backends import base  # noqa: E402
 from backends.dart import BACKEND, _grid_triangles  # noqa: E402
-from engine_run import DT, G, last, run_x3d, values  # noqa: E402
-from x3d_core.load import load  # noqa: E402
-from x3d_core.world import worlds  # noqa: E402
+from engine_run import DT, G, last, run_x3d, scene_worlds, values  # noqa: E402
 
 
 def simulate(tmp_path, body: str, *args, **kwargs):
@@ -25,12 +23,7 @@ def simulate(tmp_path, body: str, *args, **kwargs):
 
 
 def build(tmp_path, body: str, dt: float = DT):
-    p = tmp_path / "c.x3d"
-    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n"
-                 f"{body}\n</Scene></X3D>\n")
-    scene = load(str(p))
-    assert not scene.errors, [str(e) for e in scene.errors]
-    world = worlds(scene)[0]
+    world = scene_worlds(tmp_path, body)[0]
     return world, BACKEND.build(world, dt)
 
 

@@ -13,21 +13,14 @@ pytest.importorskip("mujoco")
 
 import backends.mujoco as mj  # noqa: E402
 from backends.mujoco import BACKEND  # noqa: E402
-from engine_run import DT, G  # noqa: E402
+from engine_run import DT, G, scene_worlds  # noqa: E402
 from x3d_core.collision import friction_directions  # noqa: E402
-from x3d_core.load import load  # noqa: E402
-from x3d_core.world import worlds  # noqa: E402
 
 FLOOR = "<CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape><Box size='20 1 20'/></Shape></CollidableShape>"
 
 
 def world(tmp_path, body: str):
-    p = tmp_path / "s.x3d"
-    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n"
-                 f"{body}\n</Scene></X3D>\n")
-    scene = load(str(p))
-    assert not scene.errors, [str(e) for e in scene.errors]
-    return worlds(scene)[0]
+    return scene_worlds(tmp_path, body)[0]
 
 
 def body(name: str, position: str, shape: str, extra: str = "") -> str:
