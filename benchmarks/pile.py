@@ -49,14 +49,11 @@ from __future__ import annotations
 
 import argparse
 import cProfile
-import gc
 import io
 import os
 import pstats
 import sys
 import tempfile
-import time
-import tracemalloc
 
 import numpy as np
 
@@ -68,6 +65,8 @@ from x3d_core.engine import Unsupported  # noqa: E402
 from x3d_core.evaluator import RunSettings, run  # noqa: E402
 from x3d_core.load import load  # noqa: E402
 from x3d_core.world import worlds  # noqa: E402
+
+from measure import peak_mb, timed  # noqa: E402  (benchmarks/measure.py, beside this script)
 
 DT = 1 / 240
 FRAME_RATE = 60
@@ -377,25 +376,8 @@ def refusal(name: str, backend: base.Backend, path: str) -> str | None:
     return f"{name} refuses {', '.join(refused)}" if refused else None
 
 
-def timed(fn, repeat: int):
-    """The best time of repeat calls, and the last call's result."""
-    times, result = [], None
-    for _ in range(repeat):
-        result = None
-        gc.collect()
-        t = time.perf_counter()
-        result = fn()
-        times.append(time.perf_counter() - t)
-    return min(times), result
 
 
-def peak_mb(fn) -> float:
-    gc.collect()
-    tracemalloc.start()
-    fn()
-    peak = tracemalloc.get_traced_memory()[1]
-    tracemalloc.stop()
-    return peak / 2 ** 20
 
 
 def profile(fn, top: int = 15) -> str:

@@ -18,12 +18,9 @@ SAME for the comparison to be of the same physics (the exit status is 1 where it
 from __future__ import annotations
 
 import argparse
-import gc
 import os
 import sys
 import tempfile
-import time
-import tracemalloc
 
 import numpy as np
 
@@ -33,6 +30,8 @@ from backends import base  # noqa: E402
 from x3d_core.evaluator import RunSettings, run  # noqa: E402
 from x3d_core.load import load  # noqa: E402
 from x3d_core.world import worlds  # noqa: E402
+
+from measure import peak_mb, timed  # noqa: E402  (benchmarks/measure.py, beside this script)
 
 DT = 1 / 240
 FRAME_RATE = 60
@@ -248,23 +247,8 @@ def final_positions(trace) -> np.ndarray:
     return np.asarray(last.values)[keep]
 
 
-def best(fn, repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        gc.collect()
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return min(times)
 
 
-def peak_mb(fn) -> float:
-    gc.collect()
-    tracemalloc.start()
-    fn()
-    peak = tracemalloc.get_traced_memory()[1]
-    tracemalloc.stop()
-    return peak / 2**20
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -294,14 +278,13 @@ def main(argv: list[str] | None = None) -> int:
 
             def theirs():
                 return native(scene, args.duration)
-            t_native = best(theirs, args.repeat)
-            t_ours = best(ours, args.repeat)
-            trace = ours()
+            t_native, native_positions = timed(theirs, args.repeat)
+            t_ours, trace = timed(ours, args.repeat)
             # the same physics on both sides: the final positions agree
-            diff = float(np.abs(final_positions(trace) - theirs()).max())
+            diff = float(np.abs(final_positions(trace) - native_positions).max())
             differ |= not diff <= SAME
             out = os.path.join(folder, f"{scene}-{name}.csv")
-            t_write = best(lambda: trace.write(out), 1)
+            t_write = timed(lambda: trace.write(out), 1)[0]
             print(f"| {scene} | {name} {backend.version()} | {t_native:.3f} | {t_ours:.3f} | "
                   f"{t_ours / t_native:.2f}x | {t_write:.3f} | {peak_mb(theirs):.1f} | {peak_mb(ours):.1f} | "
                   f"{diff:.1e}{'' if diff <= SAME else ' (NOT the same)'} |", flush=True)
