@@ -193,7 +193,7 @@ class _Sensors:
         self.geometry_names = [g.name for g in c.geometries]
         self.body_names = [world.bodies.names[g.body] if g.body != STATIC else "NULL" for g in c.geometries]
         p = c.parameters
-        self.applied = sorted(p.applied)
+        self.applied = F.format_xml(F.FIELD_TYPES["MFString"], sorted(p.applied))
         self.constant = [("bounce", "SFFloat", p.bounce), ("minBounceSpeed", "SFFloat", p.min_bounce_speed),
                          ("frictionCoefficients", "SFVec2f", p.friction), ("slipCoefficients", "SFVec2f", p.slip),
                          ("surfaceSpeed", "SFVec2f", p.surface_speed),
@@ -225,8 +225,7 @@ class _Sensors:
                 trace.add_text(t, name, field + "geometry1", self.geometry_names[g1])
                 trace.add_text(t, name, field + "geometry2", self.geometry_names[g2])
                 trace.add(t, name, field + "frictionDirection", "SFVec3f", directions[i])
-                trace.add_text(t, name, field + "appliedParameters",
-                               F.format_xml(F.FIELD_TYPES["MFString"], self.applied))
+                trace.add_text(t, name, field + "appliedParameters", self.applied)
                 for fname, ftype, value in self.constant:
                     trace.add(t, name, field + fname, ftype, value)
             for i, g in enumerate(seen):
