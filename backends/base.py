@@ -20,7 +20,7 @@ from enum import Enum
 from x3d_core.engine import Simulation
 from x3d_core.world import World
 
-ENGINES = ("bullet", "mujoco", "dart")
+ENGINES = ("bullet", "mujoco", "dart", "ode")
 
 
 class Support(Enum):
@@ -66,6 +66,11 @@ EVALUATOR: dict[str, Declared] = native(
     "RigidBody.autoDisable", "RigidBody.disableLinearSpeed", "RigidBody.disableAngularSpeed", "RigidBody.disableTime",
     "RigidBodyCollection.autoDisable", "RigidBodyCollection.disableLinearSpeed",
     "RigidBodyCollection.disableAngularSpeed", "RigidBodyCollection.disableTime") | approximate(
+    "contacts routed from a CollisionSensor act in the steps that find them (each step collides with the "
+    "sensor's collider), not a frame later as a browser's events deliver them; the two agree at a frame's "
+    "first step", "RigidBodyCollection.set_contacts.fromSensor") | unsupported(
+    "contacts routed from a sensor whose collider is not the collection's own: x3drbp gives a collection one "
+    "collision set", "RigidBodyCollection.set_contacts.fromOtherCollider") | approximate(
     "the exponential map turns the body about its whole angular velocity, not split along this axis as ODE's "
     "finite rotation axis does; the two differ only for fast spin about the axis with a slow tumble",
     "RigidBody.finiteRotationAxis") | approximate(

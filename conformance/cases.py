@@ -1356,6 +1356,14 @@ def _filtering() -> Case:
                 exercises=("CollisionCollection", "CollidableShape.geometry.Sphere"))
 
 
+def _routed_contacts() -> Case:
+    return Case("routed_contacts", "routed_contacts.x3d",
+                "CollisionSensor contacts ROUTEd to set_contacts: the body whose shape the sensor watches rests on "
+                "the floor, the other falls through it",
+                (Settings(1.0, 1 / 240),), _filtering_expect,
+                exercises=("RigidBodyCollection.set_contacts.fromSensor", "CollisionSensor"))
+
+
 # sensor_geometry.x3d: Ball (0.2 kg, r 0.1) on Block (1 kg, 0.4 x 0.2 x 0.4) on the static Floor
 SG_BALL_M, SG_BLOCK_M, SG_R, SG_BLOCK_HALF, SG_WIDTH = 0.2, 1.0, 0.1, 0.1, 0.4
 SG_LOWER = {frozenset(("Floor", "BlockShape")): "Floor", frozenset(("BlockShape", "BallShape")): "BlockShape"}
@@ -1486,6 +1494,6 @@ def _cradle() -> Case:
 
 
 COLLISION_CASES: tuple[Case, ...] = (_bounce_apex(), _incline(), _anisotropic(), _conveyor(), _resting(), _stack(),
-                                     _filtering(), _sensor(), _cradle())
+                                     _filtering(), _routed_contacts(), _sensor(), _cradle())
 CASES = CASES + COLLISION_CASES
 BY_NAME.update({c.name: c for c in COLLISION_CASES})

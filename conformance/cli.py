@@ -40,7 +40,7 @@ def _check(args: argparse.Namespace) -> int:
             failed += 1
             continue
         if not args.quiet:
-            print(f"{path}: ok ({scene.encoding}, X3D {scene.version}, {len(scene.warnings)} warnings)")
+            print(f"{path}: ok ({scene.encoding}, X3D {scene.version}, {len(scene.warnings)} warning{'' if len(scene.warnings) == 1 else 's'})")
             for line in summarize(scene).lines():
                 print(f"  {line}")
             print(f"  features: {' '.join(features(scene)) or 'none'}")

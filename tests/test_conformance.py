@@ -461,6 +461,8 @@ COLLISION_MUTATIONS = [
     ("collision_filtering", "<CollidableShape USE='KeptShape'/>", ""),  # the collider's collidables emptied
     ("collision_filtering", "<CollidableShape USE='KeptShape'/>",
      "<CollidableShape USE='KeptShape'/><CollidableShape USE='GhostShape'/>"),  # every body collides
+    ("routed_contacts", "<ROUTE fromNode='Sensor' fromField='contacts' toNode='World' toField='set_contacts'/>",
+     ""),  # nothing collides
     ("sensor_geometry", "<Sphere radius='0.1'/>", "<Sphere/>"),
     ("sensor_geometry", "<CollisionCollection USE='Contacts' containerField='collider'/>", ""),
     ("newtons_cradle", " bounce='1'", ""),

@@ -5,9 +5,11 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
+from backends import base
 from conftest import CORPUS, ROOT, SCENES
 from x3d_core.analysis import summarize
 from x3d_core.load import load
@@ -41,6 +43,15 @@ EXPECTED = {
 }
 
 needs_corpus = pytest.mark.skipif(not os.path.isdir(CORPUS), reason=f"no corpus at {CORPUS}")
+
+# Scenes whose motion a ROUTE from a Script or an input device drives: refused on every
+# backend by naming the routed input (x3drbp runs no Scripts). Every other scene runs,
+# except where a backend declares a feature it uses unsupported.
+SCRIPTED = {"xj3d/combined__cannon.x3dv", "xj3d/combined__toy_car.x3dv", "xj3d/physics__ball_bounce.x3dv",
+            "xj3d/physics__bounce_trimesh.x3dv", "xj3d/physics__double_hinge_joint.x3dv",
+            "xj3d/physics__motor_joint.x3dv", "xj3d/physics__moving_body.x3dv", "xj3d/physics__slider_joint.x3dv"}
+RUN_SECONDS = 5
+BACKENDS = [n for n, b in base.available().items() if not isinstance(b, str)]
 
 
 @needs_corpus
@@ -84,3 +95,43 @@ def test_round_trip_gives_an_equal_model(path, writer, ext, tmp_path):
     assert differences(a, b) == []
     # and writing again gives the same bytes: the writer is deterministic and stable
     assert writer(b) == out.read_bytes()
+
+
+@pytest.fixture(scope="module")
+def corpus_runs(tmp_path_factory):
+    """Every corpus scene for 5 simulated seconds on every installed backend, through the CLI,
+    two at a time: (scene, backend) -> (exit status, stderr, the trace's last time or None)."""
+    folder = tmp_path_factory.mktemp("corpus_runs")
+
+    def one(pair):
+        name, backend = pair
+        out = folder / f"{name.replace('/', '_')}.{backend}.csv"
+        r = subprocess.run([sys.executable, "-m", "conformance.cli", "run", os.path.join(CORPUS, name),
+                            "--backend", backend, "--duration", str(RUN_SECONDS), "--trace", str(out)],
+                           cwd=ROOT, capture_output=True, text=True, timeout=300)
+        last = max(float(line.split(",", 1)[0]) for line in out.read_text().splitlines()[1:]) if out.exists() else None
+        return pair, (r.returncode, r.stderr, last)
+
+    with ThreadPoolExecutor(max_workers=max(2, os.cpu_count() or 1)) as pool:
+        return dict(pool.map(one, [(n, b) for n in EXPECTED for b in BACKENDS]))
+
+
+@needs_corpus
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("name", sorted(EXPECTED))
+def test_corpus_scene_runs_five_seconds_or_names_what_it_lacks(name, backend, corpus_runs):
+    status, stderr, last = corpus_runs[(name, backend)]
+    assert "Traceback" not in stderr and "blew up" not in stderr, stderr
+    refused = [line.split(f"unsupported by {backend}: ", 1)[1].split(":", 1)[0]
+               for line in stderr.splitlines() if f"unsupported by {backend}: " in line]
+    if status == 0:
+        assert name not in SCRIPTED, "a scene its Scripts drive ran as if they were not there"
+        assert last == pytest.approx(RUN_SECONDS) and not refused
+        return
+    assert status == 3 and refused, stderr
+    table = base.load(backend)
+    assert all(table.support(f).support is base.Support.UNSUPPORTED for f in refused), refused
+    if name in SCRIPTED:
+        assert any(f.endswith(".routed") for f in refused), refused
+    else:  # nothing routed: only what this backend itself declares it cannot do
+        assert not any(f.endswith(".routed") for f in refused), refused

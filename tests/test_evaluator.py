@@ -230,3 +230,38 @@ def test_collision_plan_follows_the_collider_spaces_and_offsets(tmp_path):
     assert not c.may_touch(geoms["A"], geoms["InSpace"])  # joined by the ball joint
     assert c.may_touch(geoms["A"], geoms["Bounded"])
     assert c.parameters.bounce == 0 and c.parameters.friction.tolist() == [0, 0]  # X3D's defaults: BOUNCE, no friction
+
+
+def _routed_contacts_scene(tmp_path, own_collider: str, route: bool):
+    return scene(tmp_path, f"""
+<Group><CollidableShape DEF='BallShape'><Shape containerField='shape'><Sphere radius='0.5'/></Shape></CollidableShape>
+  <CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape containerField='shape'><Box size='4 1 4'/></Shape>
+  </CollidableShape></Group>
+<CollisionSensor DEF='Sensor'><CollisionCollection DEF='Watched' containerField='collider' bounce='0.4'>
+  <CollidableShape USE='BallShape'/><CollidableShape USE='Floor'/></CollisionCollection></CollisionSensor>
+<RigidBodyCollection DEF='Bodies'><RigidBody DEF='Ball' position='0 1 0'>
+  <CollidableShape USE='BallShape' containerField='geometry'/></RigidBody>{own_collider}</RigidBodyCollection>
+{"<ROUTE fromNode='Sensor' fromField='contacts' toNode='Bodies' toField='set_contacts'/>" if route else ""}""")
+
+
+def test_contacts_routed_from_a_sensor_collide_with_its_collider(tmp_path):
+    from x3d_core.analysis import run_features
+    s = _routed_contacts_scene(tmp_path, "", route=True)
+    (w,) = worlds(s)
+    assert w.collisions.collider.def_name == "Watched"  # the sensor's collection, with its parameters
+    assert w.collisions.parameters.bounce == 0.4 and [n for n, _ in w.collisions.sensors] == ["Sensor"]
+    assert {"RigidBodyCollection.set_contacts.fromSensor", "CollisionCollection.bounce"} <= set(run_features(s))
+    routed_into_own = _routed_contacts_scene(tmp_path, "<CollisionCollection USE='Watched' containerField='collider'/>",
+                                             route=True)
+    assert "RigidBodyCollection.set_contacts.fromSensor" in run_features(routed_into_own)  # its own contacts again
+
+
+def test_without_the_route_or_from_another_collider_nothing_new_collides(tmp_path):
+    from x3d_core.analysis import run_features
+    s = _routed_contacts_scene(tmp_path, "", route=False)
+    assert worlds(s)[0].collisions is None
+    assert not [f for f in run_features(s) if f.startswith(("Collision", "Collidable"))]
+    other = _routed_contacts_scene(tmp_path, "<CollisionCollection DEF='Own' containerField='collider'>"
+                                             "<CollidableShape USE='BallShape'/></CollisionCollection>", route=True)
+    assert worlds(other)[0].collisions.collider.def_name == "Own"
+    assert "RigidBodyCollection.set_contacts.fromOtherCollider" in run_features(other)  # refused: one set each

@@ -17,6 +17,7 @@ import numpy as np
 
 from . import fields as F
 from .applied import applied
+from .collision import collider, foreign_contacts
 from .model import Scene
 
 RBP_TYPES = ("RigidBodyCollection", "RigidBody", "BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint",
@@ -117,7 +118,13 @@ def features(scene: Scene) -> list[str]:
         if n.spec.is_a("X3DRigidJointNode") and n.get("forceOutput") != ["NONE"]:
             out.add(f"{t}.forceOutput")
     for r in scene.routes:  # inputs that change during a run
-        if r.to_node.type_name in RBP_TYPES:
+        if r.to_node.type_name not in RBP_TYPES:
+            continue
+        if r.to_field == "set_contacts" and r.from_node.type_name == "CollisionSensor" and r.from_field == "contacts":
+            foreign = foreign_contacts(r.to_node, scene.routes)
+            out.add("RigidBodyCollection.set_contacts.fromOtherCollider" if foreign
+                    else "RigidBodyCollection.set_contacts.fromSensor")
+        else:
             out.add(f"{r.to_node.type_name}.{r.to_field}.routed")
     return sorted(out)
 
@@ -129,9 +136,10 @@ COLLISION_FEATURES = ("CollisionCollection", "CollisionSpace", "CollisionSensor"
 
 def run_features(scene: Scene) -> list[str]:
     """The features a run of the scene needs. Collision geometry and contact settings count
-    only where some enabled RigidBodyCollection has a collider (otherwise nothing collides);
-    a Contact node counts never by itself: only set_contacts, which only a ROUTE can feed
-    (and a routed input is refused by name), gives it an effect."""
-    colliding = any(c.get("collider") is not None for c in scene.of_type("RigidBodyCollection") if c.get("enabled"))
+    only where some enabled RigidBodyCollection has a collider, its own or the one its
+    routed contacts come from (otherwise nothing collides); a Contact node counts never by
+    itself: only set_contacts gives it an effect, and its route is counted."""
+    colliding = any(collider(c, scene.routes) is not None
+                    for c in scene.of_type("RigidBodyCollection") if c.get("enabled"))
     return [f for f in features(scene)
             if not f.startswith("Contact") and (colliding or not f.startswith(COLLISION_FEATURES))]

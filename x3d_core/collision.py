@@ -16,6 +16,15 @@ The rules (clause 37.4), as x3drbp reads them:
   of two bodies joined by a joint (ODE's usual rule, and Xj3D's).
 - Contact parameters come from the CollisionCollection; appliedParameters decides which
   apply (either spelling), as ODE's contact mode bits do.
+- A RigidBodyCollection with no collider still collides where a CollisionSensor's
+  contacts are ROUTEd straight into its set_contacts (Xj3D's and Cobweb's own examples
+  do this): those contacts are the sensor's collider's, with its parameters, so the
+  sensor's collider acts as the collection's. A browser applies them a frame late, in
+  the steps of the next frame; here each step finds them itself, from the same state at
+  a frame's first step. Routed into a collection whose own collider is the same, they
+  are the contacts it has already. Contacts from a collider other than the collection's
+  own, or from two colliders, are refused (analysis names the feature): x3drbp gives a
+  collection one collision set.
 """
 
 from __future__ import annotations
@@ -26,7 +35,7 @@ import numpy as np
 
 from . import rotation as R
 from .applied import applied
-from .model import Node
+from .model import Node, Route
 from .world import STATIC, World
 
 KINDS = ("box", "sphere", "cylinder", "cone", "mesh", "heightfield")
@@ -130,10 +139,39 @@ def parameters(collection: Node, thickness: float) -> ContactParameters:
         surface_thickness=thickness, applied=on)
 
 
-def plan(world: World, names: dict[int, str]) -> Collisions | None:
-    """The world's collision set, or None where the collection has no (enabled) collider."""
-    collider = world.node.get("collider")
-    if collider is None or not collider.get("enabled"):
+def routed_colliders(collection: Node, routes: list[Route]) -> list[Node | None]:
+    """The colliders of the enabled CollisionSensors whose contacts are routed straight into
+    the collection's set_contacts, once each (None for a sensor watching nothing)."""
+    out: list[Node | None] = []
+    for r in routes:
+        if (r.to_node is collection and r.to_field == "set_contacts" and r.from_field == "contacts"
+                and r.from_node.type_name == "CollisionSensor" and r.from_node.get("enabled")):
+            c = r.from_node.get("collider")
+            if all(c is not o for o in out):
+                out.append(c)
+    return out
+
+
+def collider(collection: Node, routes: list[Route]) -> Node | None:
+    """The CollisionCollection whose contacts act on a RigidBodyCollection: its collider, else
+    the one collider of the sensors routed into its set_contacts (module docstring)."""
+    own = collection.get("collider")
+    if own is not None:
+        return own
+    watched = [c for c in routed_colliders(collection, routes) if c is not None]
+    return watched[0] if len(watched) == 1 else None
+
+
+def foreign_contacts(collection: Node, routes: list[Route]) -> bool:
+    """Whether contacts routed into set_contacts come from a collider other than collider()."""
+    chosen = collider(collection, routes)
+    return any(c is not None and c is not chosen for c in routed_colliders(collection, routes))
+
+
+def plan(world: World, names: dict[int, str], routes: list[Route]) -> Collisions | None:
+    """The world's collision set, or None where nothing collides in it."""
+    collider_node = collider(world.node, routes)
+    if collider_node is None or not collider_node.get("enabled"):
         return None
     owner: dict[int, int] = {}  # top-level collidable -> body row
     for row, body in enumerate(world.bodies.nodes):
@@ -159,13 +197,13 @@ def plan(world: World, names: dict[int, str]) -> Collisions | None:
             pose = (np.zeros(3), R.IDENTITY.copy())
         _shapes(node, row, pose, names, out)
 
-    for node in collider.get("collidables"):
+    for node in collider_node.get("collidables"):
         collidable(node)
     excluded = set()
     for j in world.joints:
         if j.body1 != j.body2:
             excluded.add((min(j.body1, j.body2), max(j.body1, j.body2)))
-    return Collisions(out, excluded, parameters(collider, world.contact_surface_thickness), collider)
+    return Collisions(out, excluded, parameters(collider_node, world.contact_surface_thickness), collider_node)
 
 
 def _shapes(node: Node, row: int, pose: tuple[np.ndarray, np.ndarray], names: dict[int, str],

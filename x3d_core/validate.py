@@ -95,6 +95,9 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
             if canonical(v) is None:
                 err(node, "appliedParameters", f"{v!r} is not an applied parameter; allowed: "
                                                f"{', '.join(CANONICAL)} (or with '_' for '-')")
+    for sensor in groups.get("CollisionSensor", []):
+        if sensor.get("collider") is None:
+            warn(sensor, "collider", "no collider: the sensor watches nothing and never reports a contact")
     scene.diagnostics.extend(out)
 
 

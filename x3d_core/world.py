@@ -123,7 +123,7 @@ def worlds(scene: Scene) -> list[World]:
     out = [_world(c, names) for c in scene.of_type("RigidBodyCollection") if c.get("enabled")]
     sensors = [s for s in scene.of_type("CollisionSensor") if s.get("enabled")]
     for w in out:
-        w.collisions = plan(w, names)
+        w.collisions = plan(w, names, scene.routes)
         if w.collisions is not None:
             w.collisions.sensors = [(names[id(s)], s) for s in sensors if s.get("collider") is w.collisions.collider]
     return out
