@@ -1,0 +1,542 @@
+"""ODE backend (the system's libode through backends/ode_lib.py): the engine the spec's parameters come from.
+
+Every body is an ODE body and every joint an ODE joint between two bodies (or a body
+and the static environment, ODE's NULL body), so loops need nothing special. ODE puts a
+body's frame at its centre of mass: a body starts at its X3D origin plus the turned
+centerOfMass, and state() takes that offset back off; its geometries are offset from
+the centre of mass by the same amount. A fixed body is no ODE body: its joints attach
+to the static environment and its geometries are placed in the world.
+
+ODE facts this relies on (Debian's libode8, ODE 0.16.2, double precision; measured in
+tests/test_backend_ode.py and tests/test_collisions_ode.py): dJointAttach(j, 0, b)
+swaps the ends and marks the joint reversed, so a hinge's or a slider's angle, rate
+and stops still measure body1 relative to body2 (x3d_core's convention, which is ODE's);
+hinge2 reads axis 1 in body1 and axis 2 in body2 and ODE aborts the process when one is
+attached to a single body, so a kinematic body at rest stands in for the static end; force and torque accumulators are cleared
+after each step (loads are written into them before every one); dBodyGet* return
+pointers into the body, read in bulk through one numpy view (ode_lib.Window); the
+quick-step solver runs dWorldSetQuickStepNumIterations sweeps, dWorldStep is the
+direct (Dantzig) solver; both integrate semi-implicit Euler, with the rotation as
+ODE's finite rotation mode says.
+
+Collisions (where world.collisions is not None): one ODE geom per geometry, in no space.
+The broad phase is numpy's: moving geoms as bounding spheres, static ones as their
+ODE AABBs, pairs kept where x3d_core's may_touch allows (tested once, at build); each
+step then runs dCollide over the overlapping pairs in index order (the lower index as
+ODE's geom 1), so contacts come in the same order every run. Measured against
+dSpaceCollide with a ctypes callback: a Python call per candidate pair either way, and
+this one tests no pair twice nor any static pair. ODE's contact normal points from geom
+2 into geom 1: turned round for ContactPoints. Every contact gets one dContact surface,
+the collection's parameters as ODE's own mode bits (appliedParameters is ODE's mode
+word), with dContactApprox1 so that mu is Coulomb's coefficient (without it ODE reads
+mu as a force bound in newtons).
+"""
+
+from __future__ import annotations
+
+import ctypes
+
+import numpy as np
+
+from x3d_core import rotation as R
+from x3d_core.collision import Collisions, ContactPoints, ContactParameters, Geometry
+from x3d_core.engine import BlewUp, Unsupported
+from x3d_core.world import STATIC, Joint, State, World
+
+from . import ode_lib as ode
+from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
+
+lib = ode.lib
+_FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
+_Z_TO_Y = R.from_axis_angle(np.array([1.0, 0.0, 0.0, -np.pi / 2]))  # ODE's cylinder axis z, turned to X3D's y
+_CONE_SIDES = 64  # a cone is the convex hull of a 64-gon and its apex
+_PER_PAIR = 16  # the most contacts dCollide returns for one pair of geoms
+_SLACK = 1e-9  # m: bounding volumes this close count as overlapping
+
+
+def _cone(radius: float, height: float) -> tuple[np.ndarray, np.ndarray, list[list[int]]]:
+    """X3D's cone (axis y, apex at +height/2) as ODE's convex: points, planes (n, d with
+    n.x = d, outward) and faces (point indices, counter-clockwise seen from outside)."""
+    a = 2 * np.pi * np.arange(_CONE_SIDES) / _CONE_SIDES
+    rim = np.stack([radius * np.cos(a), np.full(_CONE_SIDES, -height / 2), radius * np.sin(a)], axis=1)
+    apex = np.array([0.0, height / 2, 0.0])
+    points = np.vstack([rim, apex])
+    faces = [list(range(_CONE_SIDES))]  # the base, seen from below: counter-clockwise in x, z
+    for k in range(_CONE_SIDES):
+        faces.append([_CONE_SIDES, (k + 1) % _CONE_SIDES, k])
+    planes = []
+    for f in faces:
+        p0, p1, p2 = points[f[0]], points[f[1]], points[f[2]]
+        n = np.cross(p1 - p0, p2 - p0)
+        n /= np.linalg.norm(n)
+        planes.append([*n, n @ p0])
+    return points, np.array(planes), faces
+
+
+class _Shape:
+    """One geometry's ODE geom and what must outlive it (the arrays ODE reads from)."""
+
+    def __init__(self, g: Geometry):
+        self.keep: list[object] = []
+        self.data = None  # trimesh or heightfield data to destroy with the geom, and how
+        self.free_data = None
+        self.shift = np.zeros(3)  # the ODE geom's origin in the X3D geometry's frame
+        self.turn = R.IDENTITY.copy()  # the ODE geom's orientation in the X3D geometry's frame
+        if g.kind == "box":
+            size = np.maximum(np.asarray(g.size, dtype=np.float64), 1e-9)
+            self.id = lib.dCreateBox(None, *size)
+            self.radius = float(np.linalg.norm(size)) / 2
+        elif g.kind == "sphere":
+            self.id = lib.dCreateSphere(None, float(g.size[0]))
+            self.radius = float(g.size[0])
+        elif g.kind == "cylinder":
+            r, h = float(g.size[0]), float(g.size[1])
+            self.id = lib.dCreateCylinder(None, r, h)
+            self.turn = _Z_TO_Y
+            self.radius = float(np.hypot(r, h / 2))
+        elif g.kind == "cone":
+            points, planes, faces = _cone(float(g.size[0]), float(g.size[1]))
+            polygons = (ctypes.c_uint * sum(len(f) + 1 for f in faces))(*[x for f in faces for x in (len(f), *f)])
+            p, q = ode.array(planes), ode.array(points)
+            self.keep = [p, q, polygons]
+            self.id = lib.dCreateConvex(None, p, len(planes), q, len(points), polygons)
+            self.radius = float(np.linalg.norm(points, axis=1).max())
+        elif g.kind == "mesh":
+            self._trimesh(np.asarray(g.vertices, dtype=np.float64), np.asarray(g.triangles, dtype=np.int32))
+        elif g.kind == "heightfield":
+            self._heightfield(g)
+        else:
+            raise Unsupported(f"{g.name}: no ODE geom for a {g.kind}")
+
+    def _trimesh(self, vertices: np.ndarray, triangles: np.ndarray) -> None:
+        """ODE keeps pointers to the vertex and index arrays (they must outlive the geom)."""
+        v = np.ascontiguousarray(vertices)
+        t = np.ascontiguousarray(triangles, dtype=np.int32)
+        self.data, self.free_data = lib.dGeomTriMeshDataCreate(), lib.dGeomTriMeshDataDestroy
+        lib.dGeomTriMeshDataBuildDouble(self.data, v.ctypes.data, 3 * 8, len(v), t.ctypes.data, t.size, 3 * 4)
+        self.keep = [v, t]
+        self.id = lib.dCreateTriMesh(None, self.data, None, None, None)
+        self.radius = float(np.linalg.norm(v, axis=1).max()) if len(v) else 0.0
+
+    def _heightfield(self, g: Geometry) -> None:
+        """ODE's heightfield is centred on its origin, x across its width and z across its depth,
+        heights row by row along x (X3D's order): the grid's corner is shifted to X3D's origin.
+        It is solid below, down to its lowest point less its own largest extent."""
+        nx, nz = g.grid
+        v = g.vertices
+        width, depth = float(v[nx - 1, 0] - v[0, 0]), float(v[-1, 2] - v[0, 2])
+        heights = v[:, 1]
+        self.data, self.free_data = lib.dGeomHeightfieldDataCreate(), lib.dGeomHeightfieldDataDestroy
+        lib.dGeomHeightfieldDataBuildDouble(self.data, ode.array(heights), 1, width, depth, nx, nz, 1.0, 0.0,
+                                            max(width, depth), 0)
+        self.id = lib.dCreateHeightfield(None, self.data, 1)
+        self.shift = np.array([width / 2, 0.0, depth / 2])
+        self.radius = float(np.linalg.norm(v - [width / 2, 0.0, depth / 2], axis=1).max())
+
+    def destroy(self) -> None:
+        lib.dGeomDestroy(self.id)
+        if self.data is not None:
+            self.free_data(self.data)
+
+
+def _surface(p: ContactParameters) -> np.ndarray:
+    """One dContact with the collection's surface: appliedParameters as ODE's mode bits."""
+    c = np.zeros(1, dtype=ode.CONTACT)
+    on = p.applied
+    mode = ode.CONTACT_APPROX1
+    c["mu"] = p.friction[0]
+    if "FRICTION_COEFFICIENT-2" in on:
+        mode |= ode.CONTACT_MU2
+        c["mu2"] = p.friction[1]
+    if "BOUNCE" in on:
+        mode |= ode.CONTACT_BOUNCE
+        c["bounce"], c["bounce_vel"] = p.bounce, p.min_bounce_speed
+    if p.softness_erp is not None:
+        mode |= ode.CONTACT_SOFT_ERP
+        c["soft_erp"] = p.softness_erp
+    if p.softness_cfm is not None:
+        mode |= ode.CONTACT_SOFT_CFM
+        c["soft_cfm"] = p.softness_cfm
+    for k, bit in enumerate((ode.CONTACT_MOTION1, ode.CONTACT_MOTION2)):
+        if f"SPEED-{k + 1}" in on:
+            mode |= bit
+            c[f"motion{k + 1}"] = p.surface_speed[k]
+    for k, bit in enumerate((ode.CONTACT_SLIP1, ode.CONTACT_SLIP2)):
+        if f"SLIP-{k + 1}" in on:
+            mode |= bit
+            c[f"slip{k + 1}"] = p.slip[k]
+    c["mode"] = mode
+    return c
+
+
+class _Contacts:
+    """The world's geoms and, each step, their contact joints (see the module's docstring)."""
+
+    def __init__(self, sim: OdeSimulation, c: Collisions):
+        self.sim = sim
+        b = sim.world.bodies
+        self.shapes = [_Shape(g) for g in c.geometries]
+        n = len(self.shapes)
+        self.ids = [s.id for s in self.shapes]
+        moving = np.array([g.body != STATIC and not b.fixed[g.body] for g in c.geometries], dtype=bool)
+        self.body_handle = [sim.handles[g.body] if m else None for g, m in zip(c.geometries, moving)]
+        offsets = np.zeros((n, 3))
+        for k, (g, s) in enumerate(zip(c.geometries, self.shapes)):
+            q = R.multiply(g.orientation, s.turn)
+            origin = g.position + R.rotate(g.orientation, s.shift)  # in the body frame (the world for STATIC)
+            if moving[k]:
+                lib.dGeomSetBody(s.id, sim.handles[g.body])
+                offsets[k] = origin - b.com[g.body]  # ODE's body frame is at the centre of mass
+                lib.dGeomSetOffsetPosition(s.id, *offsets[k])
+                lib.dGeomSetOffsetQuaternion(s.id, ode.array(q))
+            else:
+                if g.body != STATIC:  # a fixed body's geometry, placed where the body is
+                    origin = b.position[g.body] + R.rotate(b.orientation[g.body], origin)
+                    q = R.multiply(b.orientation[g.body], q)
+                lib.dGeomSetPosition(s.id, *origin)
+                lib.dGeomSetQuaternion(s.id, ode.array(q))
+        # broad phase: moving geoms' bounding spheres, static ones' AABBs (min, max)
+        self.moving = np.flatnonzero(moving)
+        self.fixed = np.flatnonzero(~moving)
+        self.radius = np.array([s.radius for s in self.shapes])[self.moving]
+        self.offset = offsets[self.moving]
+        self.row = sim.slot[[c.geometries[k].body for k in self.moving]]  # each moving geom's ODE body
+        box = (ctypes.c_double * 6)()
+        aabb = np.zeros((len(self.fixed), 6))
+        for n_, k in enumerate(self.fixed):
+            lib.dGeomGetAABB(self.ids[k], box)
+            aabb[n_] = box[:]
+        self.low, self.high = aabb[:, 0::2] - _SLACK, aabb[:, 1::2] + _SLACK
+        allowed = np.zeros((n, n), dtype=bool)
+        for i in range(n):
+            for j in range(i + 1, n):
+                allowed[i, j] = c.may_touch(c.geometries[i], c.geometries[j])
+        self.allowed = allowed
+        # pairs of two unmoving geoms touch nothing, but a sensor reports their contacts
+        self.static_pairs = [(int(i), int(j)) for i in self.fixed for j in self.fixed
+                             if i < j and allowed[i, j]] if c.sensors else []
+        self.template = _surface(c.parameters)
+        self.buffer = np.zeros(0, dtype=ode.CONTACT)
+        self._grow(256)
+        self.group = lib.dJointGroupCreate(0)
+        self.count = 0
+        self.first = np.zeros(0, dtype=int)
+        self.second = np.zeros(0, dtype=int)
+
+    def _grow(self, capacity: int) -> None:
+        """A contact buffer with room for capacity contacts, the surface already in every slot."""
+        old = self.buffer
+        self.buffer = np.repeat(self.template, capacity)
+        self.buffer[:len(old)] = old
+        self.address = self.buffer.ctypes.data
+
+    def pairs(self, centres: np.ndarray) -> list[tuple[int, int]]:
+        """The allowed pairs whose bounding volumes overlap, lower index first, in index order."""
+        out = []
+        m, r = self.moving, self.radius
+        if len(m) > 1:
+            d = centres[:, None, :] - centres[None, :, :]
+            near = np.einsum("ijk,ijk->ij", d, d) <= (r[:, None] + r[None, :] + _SLACK) ** 2
+            i, j = np.nonzero(np.triu(near, 1))
+            out.append(np.stack([m[i], m[j]], axis=1))
+        if len(m) and len(self.fixed):
+            gap = np.maximum(self.low[None] - centres[:, None], 0) + np.maximum(centres[:, None] - self.high[None], 0)
+            i, j = np.nonzero(np.einsum("ijk,ijk->ij", gap, gap) <= r[:, None] ** 2)
+            out.append(np.stack([m[i], self.fixed[j]], axis=1))
+        if not out:
+            return list(self.static_pairs)
+        both = np.concatenate(out)
+        both.sort(axis=1)
+        both = both[self.allowed[both[:, 0], both[:, 1]]]
+        both = both[np.lexsort((both[:, 1], both[:, 0]))]
+        return self.static_pairs + [tuple(p) for p in both.tolist()]
+
+    def collide(self, position: np.ndarray, orientation: np.ndarray) -> None:
+        """This step's contacts as contact joints (last step's joints go first)."""
+        lib.dJointGroupEmpty(self.group)
+        centres = position[self.row] + R.rotate(orientation[self.row], self.offset)
+        ids, found = self.ids, 0
+        first, second, counts = [], [], []
+        for i, j in self.pairs(centres):
+            if len(self.buffer) - found < _PER_PAIR:
+                self._grow(2 * len(self.buffer))
+            k = lib.dCollide(ids[i], ids[j], _PER_PAIR, self.address + found * 248 + ode.GEOM_OFFSET, 248)
+            if k:
+                found += k
+                first.append(i)
+                second.append(j)
+                counts.append(k)
+        self.count = found
+        self.first = np.repeat(np.array(first, dtype=int), counts)
+        self.second = np.repeat(np.array(second, dtype=int), counts)
+        world, group, handle = self.sim.ode_world, self.group, self.body_handle
+        for n, (i, j) in enumerate(zip(self.first.tolist(), self.second.tolist())):
+            b1, b2 = handle[i], handle[j]
+            if b1 is None and b2 is None:
+                continue  # two unmoving geoms: reported, nothing to push
+            joint = lib.dJointCreateContact(world, group, self.address + n * 248)
+            lib.dJointAttach(joint, b1, b2)
+
+    def points(self) -> ContactPoints:
+        c = self.buffer[:self.count]
+        return ContactPoints(c["pos"][:, :3].copy(), -c["normal"][:, :3], c["depth"].copy(), self.first.copy(),
+                             self.second.copy())
+
+    def destroy(self) -> None:
+        lib.dJointGroupDestroy(self.group)
+        for s in self.shapes:
+            s.destroy()
+
+
+class OdeSimulation:
+    def __init__(self, world: World, dt: float):
+        lib.dAllocateODEDataForThread(ode.ALLOCATE_ALL)  # per thread that steps or collides
+        lib.dRandSetSeed(0)  # quick-step reorders its rows with ODE's one global generator: same seed, same run
+        self.world, self.dt = world, dt
+        b = world.bodies
+        w = self.ode_world = lib.dWorldCreate()
+        lib.dWorldSetGravity(w, *world.gravity)
+        lib.dWorldSetERP(w, world.error_correction)
+        lib.dWorldSetCFM(w, world.constant_force_mix)
+        lib.dWorldSetQuickStepNumIterations(w, max(0, world.iterations))
+        if world.max_correction_speed >= 0:  # -1: no cap (ODE's default, dInfinity)
+            lib.dWorldSetContactMaxCorrectingVel(w, world.max_correction_speed)
+        lib.dWorldSetContactSurfaceLayer(w, world.contact_surface_thickness)
+        self.stepper = lib.dWorldStep if world.prefer_accuracy else lib.dWorldQuickStep
+        self.rows = np.flatnonzero(~b.fixed)  # the bodies ODE moves, in world.bodies order
+        self.slot = np.full(len(b) + 1, -1, dtype=int)  # body row -> index in self.rows (row -1: none)
+        self.slot[self.rows] = np.arange(len(self.rows))
+        self.handles: dict[int, int | None] = {STATIC: None}
+        self.kinematic: int | None = None
+        for i in range(len(b)):
+            self.handles[i] = self._body(i) if not b.fixed[i] else None
+        for j in world.joints:
+            self._joint(j)
+        self.contacts_ = _Contacts(self, world.collisions) if world.collisions is not None else None
+        self._windows()
+        self.com = b.com[self.rows]
+        self.shifted = bool(np.any(self.com))
+        self.start = State.initial(b)
+        self.start.linear_velocity[b.fixed] = 0.0
+        self.start.angular_velocity[b.fixed] = 0.0
+        self.set_loads(b.forces, b.torques)
+
+    # -- building -----------------------------------------------------------
+    def _body(self, i: int) -> int:
+        b = self.world.bodies
+        m, inertia = float(b.mass[i]), b.inertia[i]
+        if not m > 0 or not np.all(np.linalg.eigvalsh(inertia) > 0):
+            raise Unsupported(f"RigidBody {b.names[i]}: ODE needs a positive mass and a positive definite inertia "
+                              f"(mass {m:g}, inertia {inertia.ravel().tolist()})")
+        body = lib.dBodyCreate(self.ode_world)
+        mass = (ctypes.c_double * ode.MASS_REALS)()
+        lib.dMassSetParameters(mass, m, 0.0, 0.0, 0.0, inertia[0, 0], inertia[1, 1], inertia[2, 2],
+                               inertia[0, 1], inertia[0, 2], inertia[1, 2])
+        lib.dBodySetMass(body, mass)
+        q = b.orientation[i]
+        lib.dBodySetPosition(body, *(b.position[i] + R.rotate(q, b.com[i])))
+        lib.dBodySetQuaternion(body, ode.array(q))
+        lib.dBodySetLinearVel(body, *b.linear_velocity[i])
+        lib.dBodySetAngularVel(body, *b.angular_velocity[i])
+        lib.dBodySetGravityMode(body, int(b.use_gravity[i]))
+        if b.finite_rotation[i]:
+            lib.dBodySetFiniteRotationMode(body, 1)
+            lib.dBodySetFiniteRotationAxis(body, *b.finite_rotation_axis[i])
+        return body
+
+    def _joint(self, j: Joint) -> None:
+        if j.type == "MotorJoint" or j.body1 == j.body2:
+            return  # a motor is loads (the evaluator's); a body joined to itself moves freely
+        w, p = self.ode_world, j.params
+        b1, b2 = self.handles[j.body1], self.handles[j.body2]
+        create = {"BallJoint": lib.dJointCreateBall, "SingleAxisHingeJoint": lib.dJointCreateHinge,
+                  "SliderJoint": lib.dJointCreateSlider, "UniversalJoint": lib.dJointCreateUniversal,
+                  "DoubleAxisHingeJoint": lib.dJointCreateHinge2}.get(j.type)
+        if create is None:
+            raise Unsupported(f"{j.type} {j.name}: not built by the ode backend")
+        used = {"SingleAxisHingeJoint": 1, "SliderJoint": 1, "UniversalJoint": 2, "DoubleAxisHingeJoint": 2}
+        axes = j.axes[:used.get(j.type, 0)]
+        if np.any(np.linalg.norm(axes, axis=1) == 0):
+            raise Unsupported(f"{j.type} {j.name}: a zero axis (ODE cannot normalise it)")
+        if len(axes) == 2 and np.linalg.norm(np.cross(axes[0], axes[1])) < 1e-9:
+            raise Unsupported(f"{j.type} {j.name}: axis1 and axis2 are parallel (ODE needs them apart)")
+        if j.type == "DoubleAxisHingeJoint":  # ODE aborts on a hinge2 with one body: a kinematic one stands in
+            b1, b2 = (self._anchor() if b is None else b for b in (b1, b2))
+        joint = create(w, None)
+        lib.dJointAttach(joint, b1, b2)
+        a = j.anchor
+        if j.type == "BallJoint":
+            lib.dJointSetBallAnchor(joint, *a)
+        elif j.type == "SingleAxisHingeJoint":
+            lib.dJointSetHingeAnchor(joint, *a)
+            lib.dJointSetHingeAxis(joint, *axes[0])
+            self._stops(lib.dJointSetHingeParam, joint, 0, p["minAngle"], p["maxAngle"], p["stopBounce"],
+                        p["stopErrorCorrection"], angular=True)
+        elif j.type == "SliderJoint":
+            lib.dJointSetSliderAxis(joint, *axes[0])
+            lo, hi = sorted((p["minSeparation"], p["maxSeparation"]))
+            self._stops(lib.dJointSetSliderParam, joint, 0, lo, hi, p["stopBounce"], p["stopErrorCorrection"],
+                        angular=False)
+        elif j.type == "UniversalJoint":
+            lib.dJointSetUniversalAnchor(joint, *a)
+            lib.dJointSetUniversalAxis1(joint, *axes[0])
+            lib.dJointSetUniversalAxis2(joint, *axes[1])
+        else:
+            self._hinge2(joint, j)
+
+    def _anchor(self) -> int:
+        """A kinematic ODE body at the origin, at rest: the static environment for joints that need a body."""
+        if self.kinematic is None:
+            self.kinematic = lib.dBodyCreate(self.ode_world)
+            lib.dBodySetKinematic(self.kinematic)
+        return self.kinematic
+
+    @staticmethod
+    def _stops(setter, joint: int, group: int, lo: float, hi: float, bounce: float, erp: float,
+               angular: bool) -> bool:
+        """A joint's stops with their bounce and ERP (none for a hinge free all round)."""
+        if angular and lo <= -_FULL_TURN and hi >= _FULL_TURN:
+            return False
+        if angular:
+            lo, hi = max(lo, -np.pi), min(hi, np.pi)
+        setter(joint, group + ode.LO_STOP, lo)
+        setter(joint, group + ode.HI_STOP, hi)
+        setter(joint, group + ode.BOUNCE, bounce)
+        setter(joint, group + ode.STOP_ERP, erp)
+        return True
+
+    def _hinge2(self, joint: int, j: Joint) -> None:
+        """ODE's hinge2 as X3D's DoubleAxisHingeJoint: stops on axis 1, suspension along it, two motors."""
+        p, put = j.params, lib.dJointSetHinge2Param
+        lib.dJointSetHinge2Anchor(joint, *j.anchor)
+        lib.dJointSetHinge2Axes(joint, ode.array(j.axes[0]), ode.array(j.axes[1]))
+        if self._stops(put, joint, 0, p["minAngle1"], p["maxAngle1"], p["stop1Bounce"], p["stop1ErrorCorrection"],
+                       angular=True):
+            put(joint, ode.STOP_CFM, p["stop1ConstantForceMix"])
+        put(joint, ode.SUSPENSION_ERP, p["suspensionErrorCorrection"])
+        put(joint, ode.SUSPENSION_CFM, p["suspensionForce"])
+        for k in (1, 2):
+            group = (k - 1) * ode.PARAM_GROUP
+            put(joint, group + ode.VEL, p[f"desiredAngularVelocity{k}"])
+            put(joint, group + ode.FMAX, p[f"maxTorque{k}"])
+
+    def _windows(self) -> None:
+        """Index arrays into one view of ODE's memory for every moving body's fields."""
+        fields = {"position": (lib.dBodyGetPosition, 3), "orientation": (lib.dBodyGetQuaternion, 4),
+                  "linear": (lib.dBodyGetLinearVel, 3), "angular": (lib.dBodyGetAngularVel, 3),
+                  "force": (lib.dBodyGetForce, 3), "torque": (lib.dBodyGetTorque, 3)}
+        handles = [self.handles[int(i)] for i in self.rows]
+        where = {name: [ode.address(get(h)) for h in handles] for name, (get, _) in fields.items()}
+        if not handles:
+            self.window, self.at = None, {}
+            return
+        self.window = ode.Window([a for v in where.values() for a in v], 4)
+        self.at = {name: self.window.index(where[name], width) for name, (_, width) in fields.items()}
+
+    # -- running ------------------------------------------------------------
+    def step(self, n: int = 1) -> None:
+        w, dt, stepper, c = self.ode_world, self.dt, self.stepper, self.contacts_
+        memory = self.window.memory if self.window is not None else None
+        for _ in range(n):
+            if self.loaded:  # ODE clears its accumulators after every step
+                memory[self.at["force"]] = self.forces
+                memory[self.at["torque"]] = self.torques
+            if c is not None:
+                c.collide(*self._poses())
+            if not stepper(w, dt):
+                raise BlewUp("ODE's step failed (out of memory for its solver)")
+
+    def _poses(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every moving body's centre of mass and orientation, as ODE holds them."""
+        if self.window is None:
+            return np.zeros((0, 3)), np.zeros((0, 4))
+        memory = self.window.memory
+        return memory[self.at["position"]], memory[self.at["orientation"]]
+
+    def state(self) -> State:
+        s = self.start
+        out = State(s.position.copy(), s.orientation.copy(), s.linear_velocity.copy(), s.angular_velocity.copy())
+        if self.window is None:
+            return out
+        memory, rows = self.window.memory, self.rows
+        com, q = self._poses()
+        out.position[rows] = com - R.rotate(q, self.com) if self.shifted else com
+        out.orientation[rows] = q
+        out.linear_velocity[rows] = memory[self.at["linear"]]
+        out.angular_velocity[rows] = memory[self.at["angular"]]
+        return out
+
+    def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
+        """Written where dBodySetLinearVel and dBodySetAngularVel write (the centre of mass's, world frame)."""
+        if self.window is not None:
+            self.window.memory[self.at["linear"]] = linear[self.rows]
+            self.window.memory[self.at["angular"]] = angular[self.rows]
+
+    def set_loads(self, forces: np.ndarray, torques: np.ndarray) -> None:
+        self.forces = np.array(forces, dtype=np.float64)[self.rows]
+        self.torques = np.array(torques, dtype=np.float64)[self.rows]
+        self.loaded = bool(self.forces.any() or self.torques.any())
+
+    def contacts(self) -> ContactPoints:
+        return self.contacts_.points() if self.contacts_ is not None else ContactPoints.none()
+
+    def close(self) -> None:
+        """Free ODE's world, its bodies and joints, and the geoms."""
+        if self.ode_world:
+            if self.contacts_ is not None:
+                self.contacts_.destroy()
+            lib.dWorldDestroy(self.ode_world)
+            self.ode_world = None
+
+    def __del__(self) -> None:
+        self.close()
+
+
+class OdeBackend(Backend):
+    name = "ode"
+    declared = {
+        **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBodyCollection.errorCorrection",
+                 "RigidBodyCollection.constantForceMix", "RigidBodyCollection.iterations",
+                 "RigidBodyCollection.preferAccuracy", "RigidBodyCollection.maxCorrectionSpeed",
+                 "RigidBodyCollection.contactSurfaceThickness",
+                 "SingleAxisHingeJoint.stopBounce", "SingleAxisHingeJoint.stopErrorCorrection",
+                 "SliderJoint.stopBounce", "SliderJoint.stopErrorCorrection",
+                 "DoubleAxisHingeJoint", "DoubleAxisHingeJoint.anchorPoint", "DoubleAxisHingeJoint.axis1",
+                 "DoubleAxisHingeJoint.axis2", "DoubleAxisHingeJoint.limits", "DoubleAxisHingeJoint.minAngle1",
+                 "DoubleAxisHingeJoint.maxAngle1", "DoubleAxisHingeJoint.stop1Bounce",
+                 "DoubleAxisHingeJoint.stop1ErrorCorrection", "DoubleAxisHingeJoint.stop1ConstantForceMix",
+                 "DoubleAxisHingeJoint.suspensionForce", "DoubleAxisHingeJoint.suspensionErrorCorrection",
+                 "DoubleAxisHingeJoint.desiredAngularVelocity1", "DoubleAxisHingeJoint.desiredAngularVelocity2",
+                 "DoubleAxisHingeJoint.maxTorque1", "DoubleAxisHingeJoint.maxTorque2",
+                 # collisions: ODE's own geoms, colliders and contact joints
+                 "CollisionCollection", "CollisionCollection.appliedParameters", "CollisionSensor",
+                 "CollidableShape.geometry.Box", "CollidableShape.geometry.Sphere",
+                 "CollidableShape.geometry.Cylinder", "CollisionCollection.bounce",
+                 "CollisionCollection.minBounceSpeed", "CollisionCollection.frictionCoefficients",
+                 "CollisionCollection.slipFactors", "CollisionCollection.surfaceSpeed",
+                 "CollisionCollection.softnessErrorCorrection", "CollisionCollection.softnessConstantForceMix",
+                 *(f"CollisionCollection.appliedParameters.{p}" for p in (
+                     "BOUNCE", "FRICTION_COEFFICIENT-2", "ERROR_REDUCTION", "CONSTANT_FORCE", "SPEED-1", "SPEED-2",
+                     "SLIP-1", "SLIP-2"))),
+        **approximate(f"ODE 0.16 has no cone: the convex hull of a {_CONE_SIDES}-gon and the apex (radius 0.12% "
+                      "short between its corners)", "CollidableShape.geometry.Cone"),
+        **approximate("ODE's trimesh, static or moving (ODE collides moving trimeshes with every shape): a surface "
+                      "without volume, so a body moving more than its own thickness in a step passes through",
+                      "CollidableShape.geometry.IndexedFaceSet", "CollidableShape.geometry.IndexedTriangleSet",
+                      "CollidableShape.geometry.TriangleSet"),
+        **approximate("ODE's heightfield: each cell split along ODE's own diagonal (X3D leaves it open), solid "
+                      "below down to its lowest point less its largest extent",
+                      "CollidableShape.geometry.ElevationGrid"),
+        **unsupported("a CollisionCollection has no frictionDirection field (only a Contact node, which only "
+                      "set_contacts could feed, has one): there is no direction to give ODE's dContactFDir1",
+                      "CollisionCollection.appliedParameters.USER_FRICTION"),
+    }
+
+    def version(self) -> str:
+        return ode.version()
+
+    def build(self, world: World, dt: float) -> OdeSimulation:
+        return OdeSimulation(world, dt)
+
+
+BACKEND = OdeBackend()
