@@ -53,6 +53,25 @@ KNOWN_FAILURES: dict[tuple[str, str], str] = {
                                    "softness = 1.8e-4 m)",
     ("newtons_cradle", "mujoco"): "declared (restitution as a spring-damper): the strikers keep 3.3% of the "
                                   "impact speed (bound 2.7%); Ball5 leaves within 0.4% of it",
+    # ODE itself: preferAccuracy FALSE is its quick-step solver, whose 10 sweeps (iterations' default) leave
+    # joint rows unconverged; each of these but ball_chain and double_pendulum_energy passes with dWorldStep
+    ("pendulum_period", "ode"): "quick-step, 10 iterations: Bob.period 0.00303 s off (tolerance 0.00239); "
+                                "dWorldStep gives 0.01 of the tolerance",
+    ("hinge_limits", "ode"): "quick-step, 10 iterations: the arm passes minAngle by 0.228 rad (tolerance 0.0141) and "
+                             "bounces off the stop, ending 0.535 rad from it (100 sweeps: 0.054 rad past; dWorldStep "
+                             "holds it within 3.2e-4 rad)",
+    ("hinge_bounce", "ode"): "quick-step, 10 iterations: angleRate after the impact 2.09 rad/s off -0.5 x the speed "
+                             "before (tolerance 0.0424), the impact 0.499 rad past minAngle; dWorldStep passes (0.028)",
+    ("erp_cfm_spring", "ode"): "quick-step, 10 iterations: the sag misses m g/k by 5.0e-9 m (tolerances 2.0e-9, "
+                               "2.4e-9 m), short of the spring's equilibrium; dWorldStep gives it to 2e-16 m",
+    ("box_stack", "ode"): "quick-step, 10 iterations: the stack shears under the sideways load, Box5 0.96 m from its "
+                          "start after 10 s (bound 4.0 mm); dWorldStep holds every box within 0.7 mm",
+    ("ball_chain", "ode"): "ODE's joints carry the scene's CFM 1e-4 (X3D's default) and correct drift by ERP 0.8 a "
+                           "step: anchors 4.0e-4 m apart (tolerance 3.63e-4), quick-step and dWorldStep alike",
+    ("double_pendulum_energy", "ode"): "ODE's joints carry the scene's CFM 1e-4 (X3D's default): the first step "
+                                       "gives w 9% and 45% off h q''(0) (Upper 3.97e-4, Lower 2.38e-3 rad/s; "
+                                       "tolerance 2e-7); with CFM 0 and dWorldStep it is exact to 1e-11. Energy "
+                                       "passes (0.0071 J, bound 0.571 J)",
 }
 
 
