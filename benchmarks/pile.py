@@ -359,15 +359,14 @@ NATIVE = {"mujoco": native_mujoco, "bullet": native_bullet, "dart": native_dart}
 def positions(trace) -> np.ndarray:
     """Every recorded frame's body positions (frames, n, 3), the t = 0 record left out, so
     that row k is the state at the end of frame k + 1 on both sides."""
-    frames = [np.asarray(b.values) for b in trace.blocks if b.field == "position"]
+    frames = [np.asarray(b.values) for b in trace.blocks_of("position")]
     return np.array(frames[1:])
 
 
 def contact_counts(trace) -> float:
     """The mean number of contacts a frame in a trace with a CollisionSensor."""
-    active = [b for b in trace.blocks if b.field == "isActive"]
-    depths = sum(1 for b in trace.blocks if b.field.endswith(".depth"))
-    return depths / max(len(active), 1)
+    frames = len(trace.blocks_of("isActive"))
+    return sum(t.count for t in trace.tables_of("contacts")) / max(frames, 1)
 
 
 def refusal(name: str, backend: base.Backend, path: str) -> str | None:

@@ -242,7 +242,7 @@ NATIVE = {"mujoco": native_mujoco, "bullet": native_bullet, "dart": native_dart}
 def final_positions(trace) -> np.ndarray:
     """The moving bodies' positions at the trace's last frame, in the scene's order (the
     chain's fixed base left out)."""
-    last = [b for b in trace.blocks if b.field == "position"][-1]
+    last = trace.blocks_of("position")[-1]
     keep = [k for k, name in enumerate(last.nodes) if name != "Base"]
     return np.asarray(last.values)[keep]
 

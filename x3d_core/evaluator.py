@@ -19,7 +19,7 @@ from . import fields as F
 from .collision import ContactPoints, friction_directions
 from .engine import BlewUp, Engine, Simulation
 from .joint_outputs import JointOutputs
-from .trace import Trace
+from .trace import Column, Trace
 from .world import STATIC, State, World
 
 # A frame end that lands within this fraction of a step of a step boundary counts as
@@ -185,51 +185,50 @@ class _Sensors:
     """CollisionSensor outputs from the engine's contact points, in the spec's terms: per
     contact a Contact node (position, contactNormal from body1 towards body2, depth, the
     bodies and collidables, the first friction direction and the collection's applied
-    parameters), the collidables in contact as intersections, and isActive."""
+    parameters), the collidables in contact as intersections, and isActive. Recorded as
+    columns (Trace.add_table): a frame costs a few array operations however many contacts."""
 
     def __init__(self, world: World):
         c = world.collisions
         self.names = [n for n, _ in c.sensors]
-        self.geometry_names = [g.name for g in c.geometries]
-        self.body_names = [world.bodies.names[g.body] if g.body != STATIC else "NULL" for g in c.geometries]
+        self.geometry_names = np.array([g.name for g in c.geometries], dtype=object)
+        self.body_names = np.array([world.bodies.names[g.body] if g.body != STATIC else "NULL"
+                                    for g in c.geometries], dtype=object)
         p = c.parameters
-        self.applied = F.format_xml(F.FIELD_TYPES["MFString"], sorted(p.applied))
-        self.constant = [("bounce", "SFFloat", p.bounce), ("minBounceSpeed", "SFFloat", p.min_bounce_speed),
-                         ("frictionCoefficients", "SFVec2f", p.friction), ("slipCoefficients", "SFVec2f", p.slip),
-                         ("surfaceSpeed", "SFVec2f", p.surface_speed),
-                         ("softnessErrorCorrection", "SFFloat", p.softness_erp if p.softness_erp is not None
-                          else c.collider.get("softnessErrorCorrection")),
-                         ("softnessConstantForceMix", "SFFloat", p.softness_cfm if p.softness_cfm is not None
-                          else c.collider.get("softnessConstantForceMix"))]
+        f = F.FIELD_TYPES
+        self.constant = [
+            Column("appliedParameters", None, F.format_xml(f["MFString"], sorted(p.applied)), True),
+            *(Column(name, f[ftype], value, True) for name, ftype, value in (
+                ("bounce", "SFFloat", p.bounce), ("minBounceSpeed", "SFFloat", p.min_bounce_speed),
+                ("frictionCoefficients", "SFVec2f", p.friction), ("slipCoefficients", "SFVec2f", p.slip),
+                ("surfaceSpeed", "SFVec2f", p.surface_speed),
+                ("softnessErrorCorrection", "SFFloat", p.softness_erp if p.softness_erp is not None
+                 else c.collider.get("softnessErrorCorrection")),
+                ("softnessConstantForceMix", "SFFloat", p.softness_cfm if p.softness_cfm is not None
+                 else c.collider.get("softnessConstantForceMix"))))]
 
     def __bool__(self) -> bool:
         return bool(self.names)
 
     def record(self, trace: Trace, t: float, pts: ContactPoints) -> None:
         k = len(pts.depth)
-        directions = friction_directions(pts.normal)[0] if k else np.zeros((0, 3))
-        seen: dict[int, None] = {}
-        for g1, g2 in zip(pts.geometry1.tolist(), pts.geometry2.tolist()):
-            seen.setdefault(g1)
-            seen.setdefault(g2)
+        f = F.FIELD_TYPES
+        g1, g2 = pts.geometry1, pts.geometry2
+        contacts = [Column("position", f["SFVec3f"], pts.position), Column("contactNormal", f["SFVec3f"], pts.normal),
+                    Column("depth", f["SFFloat"], pts.depth),
+                    Column("body1", None, self.body_names[g1]), Column("body2", None, self.body_names[g2]),
+                    Column("geometry1", None, self.geometry_names[g1]),
+                    Column("geometry2", None, self.geometry_names[g2]),
+                    Column("frictionDirection", f["SFVec3f"], friction_directions(pts.normal)[0] if k else pts.normal),
+                    *self.constant]
+        # the collidables in contact, each once, in the order the contacts first name them
+        both = np.column_stack([g1, g2]).ravel()
+        unique, first = np.unique(both, return_index=True)
+        touching = [Column("", None, self.geometry_names[unique[np.argsort(first)]])]
         for name in self.names:
             trace.add(t, name, "isActive", "SFBool", k > 0)
-            for i in range(k):
-                g1, g2 = int(pts.geometry1[i]), int(pts.geometry2[i])
-                field = f"contacts[{i}]."
-                trace.add(t, name, field + "position", "SFVec3f", pts.position[i])
-                trace.add(t, name, field + "contactNormal", "SFVec3f", pts.normal[i])
-                trace.add(t, name, field + "depth", "SFFloat", pts.depth[i])
-                trace.add_text(t, name, field + "body1", self.body_names[g1])
-                trace.add_text(t, name, field + "body2", self.body_names[g2])
-                trace.add_text(t, name, field + "geometry1", self.geometry_names[g1])
-                trace.add_text(t, name, field + "geometry2", self.geometry_names[g2])
-                trace.add(t, name, field + "frictionDirection", "SFVec3f", directions[i])
-                trace.add_text(t, name, field + "appliedParameters", self.applied)
-                for fname, ftype, value in self.constant:
-                    trace.add(t, name, field + fname, ftype, value)
-            for i, g in enumerate(seen):
-                trace.add_text(t, name, f"intersections[{i}]", self.geometry_names[g])
+            trace.add_table(t, name, "contacts", k, contacts)
+            trace.add_table(t, name, "intersections", len(unique), touching)
 
 
 class _Recorder:

@@ -40,11 +40,43 @@ class _Block(NamedTuple):
     convert: Callable[[np.ndarray], np.ndarray] | None = None  # applied when written (quaternions -> SFRotation)
 
 
+class Column(NamedTuple):
+    """One field of every record of a _Table: a row per record, or one value for all."""
+    field: str  # "" for records that are values themselves (intersections[i])
+    ftype: F.FieldType | None  # None: values hold the text itself
+    values: Any  # (k, ...) array, or the one value every record has where constant
+    constant: bool = False
+
+
+class _Table(NamedTuple):
+    """k indexed records of one node at one time, as columns (a CollisionSensor's
+    contacts[i].FIELD): a frame with many contacts costs a few array references, and its
+    rows are made only when the trace is written."""
+    time: float
+    node: str
+    name: str  # "contacts": rows are named contacts[i].FIELD
+    count: int
+    columns: list[Column]
+
+    def rows(self) -> list[Row]:
+        texts = []
+        for c in self.columns:
+            if c.constant:
+                one = c.values if c.ftype is None else F.format_xml(c.ftype, np.asarray(c.values).tolist())
+                texts.append([one] * self.count)
+            else:
+                texts.append(list(c.values) if c.ftype is None
+                             else [F.format_xml(c.ftype, v) for v in np.asarray(c.values).tolist()])
+        fields = [f".{c.field}" if c.field else "" for c in self.columns]
+        return [Row(self.time, self.node, f"{self.name}[{i}]{f}", t[i])
+                for i in range(self.count) for f, t in zip(fields, texts)]
+
+
 class Trace:
     """Events in the order they happened."""
 
     def __init__(self) -> None:
-        self.blocks: list[_Block] = []
+        self.blocks: list[_Block | _Table] = []
 
     def add(self, time: float, node: str, field: str, ftype: str, value: Any) -> None:
         self.add_many(time, [node], field, ftype, np.asarray(value, dtype=np.float64)[None])
@@ -58,16 +90,30 @@ class Trace:
         """A value already in its trace text (a node's name for an SFNode output, say)."""
         self.blocks.append(_Block(time, [node], field, None, np.array([value], dtype=object)))
 
+    def add_table(self, time: float, node: str, name: str, count: int, columns: list[Column]) -> None:
+        """count indexed records of node (rows NAME[i].FIELD, one per record and column)."""
+        if count:
+            self.blocks.append(_Table(time, node, name, count, columns))
+
+    def blocks_of(self, field: str) -> list[_Block]:
+        """The blocks of one field in time order, values still arrays (for bulk readers)."""
+        return [b for b in self.blocks if isinstance(b, _Block) and b.field == field]
+
+    def tables_of(self, name: str) -> list[_Table]:
+        return [b for b in self.blocks if isinstance(b, _Table) and b.name == name]
+
     @property
     def rows(self) -> list[Row]:
         out = []
         for b in self.blocks:
-            if b.ftype is None:
+            if isinstance(b, _Table):
+                out.extend(b.rows())
+            elif b.ftype is None:
                 out.append(Row(b.time, b.nodes[0], b.field, b.values[0]))
-                continue
-            values = b.convert(b.values) if b.convert is not None else b.values
-            for node, value in zip(b.nodes, values.tolist()):
-                out.append(Row(b.time, node, b.field, F.format_xml(b.ftype, value)))
+            else:
+                values = b.convert(b.values) if b.convert is not None else b.values
+                for node, value in zip(b.nodes, values.tolist()):
+                    out.append(Row(b.time, node, b.field, F.format_xml(b.ftype, value)))
         return out
 
     def text(self) -> str:
