@@ -265,3 +265,19 @@ def test_without_the_route_or_from_another_collider_nothing_new_collides(tmp_pat
                                              "<CollidableShape USE='BallShape'/></CollisionCollection>", route=True)
     assert worlds(other)[0].collisions.collider.def_name == "Own"
     assert "RigidBodyCollection.set_contacts.fromOtherCollider" in run_features(other)  # refused: one set each
+
+
+def test_a_table_of_records_becomes_rows_per_record_then_field(tmp_path):
+    from x3d_core import fields as F
+    from x3d_core.trace import Column
+    t = Trace()
+    t.add_table(0.5, "S", "contacts", 2, [Column("depth", F.FIELD_TYPES["SFFloat"], np.array([0.25, 1e-17])),
+                                          Column("body1", None, np.array(["A", "NULL"], dtype=object)),
+                                          Column("bounce", F.FIELD_TYPES["SFFloat"], 0.5, True)])
+    t.add_table(0.5, "S", "intersections", 1, [Column("", None, np.array(["G"], dtype=object))])
+    t.add_table(0.5, "S", "contacts", 0, [])  # no contacts: no rows
+    assert [(r.field, r.value) for r in t.rows] == [
+        ("contacts[0].depth", "0.25"), ("contacts[0].body1", "A"), ("contacts[0].bounce", "0.5"),
+        ("contacts[1].depth", "1e-17"), ("contacts[1].body1", "NULL"), ("contacts[1].bounce", "0.5"),
+        ("intersections[0]", "G")]
+    assert [b.count for b in t.tables_of("contacts")] == [2]
