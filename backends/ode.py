@@ -290,6 +290,7 @@ class _Contacts:
 
 class OdeSimulation:
     def __init__(self, world: World, dt: float):
+        self.contacts_: _Contacts | None = None
         lib.dAllocateODEDataForThread(ode.ALLOCATE_ALL)  # per thread that steps or collides
         lib.dRandSetSeed(0)  # quick-step reorders its rows with ODE's one global generator: same seed, same run
         self.world, self.dt = world, dt
@@ -308,11 +309,16 @@ class OdeSimulation:
         self.slot[self.rows] = np.arange(len(self.rows))
         self.handles: dict[int, int | None] = {STATIC: None}
         self.kinematic: int | None = None
-        for i in range(len(b)):
-            self.handles[i] = self._body(i) if not b.fixed[i] else None
-        for j in world.joints:
-            self._joint(j)
-        self.contacts_ = _Contacts(self, world.collisions) if world.collisions is not None else None
+        try:
+            for i in range(len(b)):
+                self.handles[i] = self._body(i) if not b.fixed[i] else None
+            for j in world.joints:
+                self._joint(j)
+            if world.collisions is not None:
+                self.contacts_ = _Contacts(self, world.collisions)
+        except Unsupported:
+            self.close()
+            raise
         self._windows()
         self.com = b.com[self.rows]
         self.shifted = bool(np.any(self.com))
@@ -355,13 +361,18 @@ class OdeSimulation:
         if create is None:
             raise Unsupported(f"{j.type} {j.name}: not built by the ode backend")
         used = {"SingleAxisHingeJoint": 1, "SliderJoint": 1, "UniversalJoint": 2, "DoubleAxisHingeJoint": 2}
-        axes = j.axes[:used.get(j.type, 0)]
-        if np.any(np.linalg.norm(axes, axis=1) == 0):
+        given = j.axes[:used.get(j.type, 0)]
+        if np.any(np.linalg.norm(given, axis=1) == 0):
             raise Unsupported(f"{j.type} {j.name}: a zero axis (ODE cannot normalise it)")
-        if len(axes) == 2 and np.linalg.norm(np.cross(axes[0], axes[1])) < 1e-9:
+        if len(given) == 2 and np.linalg.norm(np.cross(given[0], given[1])) < 1e-9:
             raise Unsupported(f"{j.type} {j.name}: axis1 and axis2 are parallel (ODE needs them apart)")
         if j.type == "DoubleAxisHingeJoint":  # ODE aborts on a hinge2 with one body: a kinematic one stands in
             b1, b2 = (self._anchor() if b is None else b for b in (b1, b2))
+        axes = j.axes.copy()
+        if b1 is None and j.type in ("SingleAxisHingeJoint", "SliderJoint"):
+            # ODE's reversed attach measures the moving body against the static one: attach it as
+            # body1 about the opposite axis, whose angle and separation are X3D's body1-relative ones
+            b1, b2, axes = b2, None, -axes
         joint = create(w, None)
         lib.dJointAttach(joint, b1, b2)
         a = j.anchor
@@ -382,7 +393,7 @@ class OdeSimulation:
             lib.dJointSetUniversalAxis1(joint, *axes[0])
             lib.dJointSetUniversalAxis2(joint, *axes[1])
         else:
-            self._hinge2(joint, j)
+            self._hinge2(joint, j, axes)
 
     def _anchor(self) -> int:
         """A kinematic ODE body at the origin, at rest: the static environment for joints that need a body."""
@@ -405,11 +416,11 @@ class OdeSimulation:
         setter(joint, group + ode.STOP_ERP, erp)
         return True
 
-    def _hinge2(self, joint: int, j: Joint) -> None:
+    def _hinge2(self, joint: int, j: Joint, axes: np.ndarray) -> None:
         """ODE's hinge2 as X3D's DoubleAxisHingeJoint: stops on axis 1, suspension along it, two motors."""
         p, put = j.params, lib.dJointSetHinge2Param
         lib.dJointSetHinge2Anchor(joint, *j.anchor)
-        lib.dJointSetHinge2Axes(joint, ode.array(j.axes[0]), ode.array(j.axes[1]))
+        lib.dJointSetHinge2Axes(joint, ode.array(axes[0]), ode.array(axes[1]))
         if self._stops(put, joint, 0, p["minAngle1"], p["maxAngle1"], p["stop1Bounce"], p["stop1ErrorCorrection"],
                        angular=True):
             put(joint, ode.STOP_CFM, p["stop1ConstantForceMix"])
