@@ -12,7 +12,7 @@ the scene files carry every digit of the numbers they use, and the table's last 
 is the largest difference between the two sides' final positions, which must be within
 SAME for the comparison to be of the same physics (the exit status is 1 where it is not).
 
-    python benchmarks/run_overhead.py [--duration 10] [--repeat 3] [--backends mujoco,bullet,dart]
+    python benchmarks/run_overhead.py [--duration 10] [--repeat 3] [--backends mujoco,bullet,dart,ode]
 """
 
 from __future__ import annotations
@@ -236,7 +236,50 @@ def native_dart(scene: str, duration: float) -> np.ndarray:
     return np.array([tf[:3, 3] for tf, _, _ in frames[-1]])
 
 
-NATIVE = {"mujoco": native_mujoco, "bullet": native_bullet, "dart": native_dart}
+def native_ode(scene: str, duration: float) -> np.ndarray:
+    import ctypes
+
+    from backends.ode_lib import MASS_REALS, lib  # the ctypes binding of the system's libode
+    lib.dAllocateODEDataForThread(0xFFFFFFFF)
+    lib.dRandSetSeed(0)
+    world = lib.dWorldCreate()
+    lib.dWorldSetGravity(world, 0, -9.81, 0)
+    lib.dWorldSetERP(world, 0.8)  # X3D's defaults for errorCorrection and constantForceMix
+    lib.dWorldSetCFM(world, 1e-4)
+    lib.dWorldSetQuickStepNumIterations(world, 10)
+    mass = (ctypes.c_double * MASS_REALS)()
+    lib.dMassSetParameters(mass, MASS, 0, 0, 0, *MOMENTS, 0, 0, 0)
+    bodies = []
+    if scene == "chain":
+        for k in range(LINKS):
+            body = lib.dBodyCreate(world)
+            lib.dBodySetMass(body, mass)
+            lib.dBodySetPosition(body, *(DIRECTION * (0.35 * k + 0.175)))
+            hinge = lib.dJointCreateHinge(world, None)
+            lib.dJointAttach(hinge, body, bodies[-1] if bodies else None)  # the first link on the world
+            lib.dJointSetHingeAnchor(hinge, *(DIRECTION * 0.35 * k))
+            lib.dJointSetHingeAxis(hinge, 0, 0, -1)  # the child turns about +z relative to its parent
+            bodies.append(body)
+    else:
+        for position, v, w in box_draws():
+            body = lib.dBodyCreate(world)
+            lib.dBodySetMass(body, mass)
+            lib.dBodySetPosition(body, *position)
+            lib.dBodySetLinearVel(body, *v)
+            lib.dBodySetAngularVel(body, *w)
+            bodies.append(body)
+    steps_per_frame = round(1 / (FRAME_RATE * DT))
+    frames = []
+    for _ in range(round(duration * FRAME_RATE)):
+        for _ in range(steps_per_frame):
+            lib.dWorldQuickStep(world, DT)
+        frames.append([(lib.dBodyGetPosition(b)[:3], lib.dBodyGetQuaternion(b)[:4], lib.dBodyGetLinearVel(b)[:3],
+                        lib.dBodyGetAngularVel(b)[:3]) for b in bodies])
+    lib.dWorldDestroy(world)
+    return np.array([f[0] for f in frames[-1]])
+
+
+NATIVE = {"mujoco": native_mujoco, "bullet": native_bullet, "dart": native_dart, "ode": native_ode}
 
 
 def final_positions(trace) -> np.ndarray:
