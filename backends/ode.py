@@ -23,9 +23,9 @@ Collisions (where world.collisions is not None): one ODE geom per geometry, in n
 The broad phase is numpy's: moving geoms as bounding spheres, static ones as their
 ODE AABBs, pairs kept where x3d_core's may_touch allows (tested once, at build); each
 step then runs dCollide over the overlapping pairs in index order (the lower index as
-ODE's geom 1), so contacts come in the same order every run. Measured against
-dSpaceCollide with a ctypes callback: a Python call per candidate pair either way, and
-this one tests no pair twice nor any static pair. ODE's contact normal points from geom
+ODE's geom 1), so contacts come in the same order every run; it needs no Python
+callback from C per candidate pair, as dSpaceCollide would (not measured against it),
+and never tests two unmoving geoms unless a sensor reports them. ODE's contact normal points from geom
 2 into geom 1: turned round for ContactPoints. Every contact gets one dContact surface,
 the collection's parameters as ODE's own mode bits (appliedParameters is ODE's mode
 word), with dContactApprox1 so that mu is Coulomb's coefficient (without it ODE reads
