@@ -506,7 +506,7 @@ class OdeSimulation:
 class OdeBackend(Backend):
     name = "ode"
     declared = {
-        **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBodyCollection.errorCorrection",
+        **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBody.finiteRotationAxis", "RigidBodyCollection.errorCorrection",
                  "RigidBodyCollection.constantForceMix", "RigidBodyCollection.iterations",
                  "RigidBodyCollection.preferAccuracy", "RigidBodyCollection.maxCorrectionSpeed",
                  "RigidBodyCollection.contactSurfaceThickness",
