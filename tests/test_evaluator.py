@@ -281,3 +281,7 @@ def test_a_table_of_records_becomes_rows_per_record_then_field(tmp_path):
         ("contacts[1].depth", "1e-17"), ("contacts[1].body1", "NULL"), ("contacts[1].bounce", "0.5"),
         ("intersections[0]", "G")]
     assert [b.count for b in t.tables_of("contacts")] == [2]
+    t.add_text(0.5, "S", "contacts[0].appliedParameters", '"BOUNCE" "SLIP-1"')  # quotes: CSV-quoted
+    t.add_text(0.5, "S, odd", "x", "a\nb")
+    t.write(str(tmp_path / "t.csv"))
+    assert read_trace(str(tmp_path / "t.csv")) == t.rows

@@ -8,11 +8,10 @@ A trace is written whole or not at all: to a temporary name, then renamed.
 from __future__ import annotations
 
 import csv
-import io
 import os
 import tempfile
 from dataclasses import dataclass
-from typing import Any, Callable, NamedTuple
+from typing import Any, Callable, Iterator, NamedTuple
 
 import numpy as np
 
@@ -58,7 +57,7 @@ class _Table(NamedTuple):
     count: int
     columns: list[Column]
 
-    def rows(self) -> list[Row]:
+    def events(self) -> Iterator[tuple[float, str, str, str]]:
         texts = []
         for c in self.columns:
             if c.constant:
@@ -68,8 +67,9 @@ class _Table(NamedTuple):
                 texts.append(list(c.values) if c.ftype is None
                              else [F.format_xml(c.ftype, v) for v in np.asarray(c.values).tolist()])
         fields = [f".{c.field}" if c.field else "" for c in self.columns]
-        return [Row(self.time, self.node, f"{self.name}[{i}]{f}", t[i])
-                for i in range(self.count) for f, t in zip(fields, texts)]
+        for i in range(self.count):
+            for f, t in zip(fields, texts):
+                yield self.time, self.node, f"{self.name}[{i}]{f}", t[i]
 
 
 class Trace:
@@ -102,26 +102,35 @@ class Trace:
     def tables_of(self, name: str) -> list[_Table]:
         return [b for b in self.blocks if isinstance(b, _Table) and b.name == name]
 
-    @property
-    def rows(self) -> list[Row]:
-        out = []
+    def events(self) -> Iterator[tuple[float, str, str, str]]:
+        """(time, node, field, value text) in order: the rows, made only now."""
         for b in self.blocks:
             if isinstance(b, _Table):
-                out.extend(b.rows())
+                yield from b.events()
             elif b.ftype is None:
-                out.append(Row(b.time, b.nodes[0], b.field, b.values[0]))
+                yield b.time, b.nodes[0], b.field, b.values[0]
             else:
                 values = b.convert(b.values) if b.convert is not None else b.values
+                ftype, time, field = b.ftype, b.time, b.field
                 for node, value in zip(b.nodes, values.tolist()):
-                    out.append(Row(b.time, node, b.field, F.format_xml(b.ftype, value)))
-        return out
+                    yield time, node, field, F.format_xml(ftype, value)
+
+    @property
+    def rows(self) -> list[Row]:
+        return [Row(*e) for e in self.events()]
 
     def text(self) -> str:
-        buf = io.StringIO()
-        w = csv.writer(buf, lineterminator="\n")
-        w.writerow(HEADER)
-        w.writerows((F._num(r.time), r.node, r.field, r.value) for r in self.rows)
-        return buf.getvalue()
+        """The CSV, quoted as the csv module quotes (only what holds a comma, quote or
+        line break), written without it: a trace can hold millions of rows."""
+        lines = [",".join(HEADER)]
+        times: dict[float, str] = {}
+        for t, node, field, value in self.events():
+            when = times.get(t)
+            if when is None:
+                when = times[t] = F._num(t)
+            lines.append(f"{when},{_quoted(node)},{_quoted(field)},{_quoted(value)}")
+        lines.append("")
+        return "\n".join(lines)
 
     def write(self, path: str) -> None:
         folder = os.path.dirname(os.path.abspath(path))
@@ -133,6 +142,12 @@ class Trace:
         except BaseException:
             os.unlink(tmp)
             raise
+
+
+def _quoted(text: str) -> str:
+    if "," in text or '"' in text or "\n" in text or "\r" in text:
+        return '"' + text.replace('"', '""') + '"'
+    return text
 
 
 def read_trace(path: str) -> list[Row]:
