@@ -20,7 +20,7 @@ from enum import Enum
 from x3d_core.engine import Simulation
 from x3d_core.world import World
 
-ENGINES = ("bullet", "mujoco", "dart", "ode")
+ENGINES = ("bullet", "mujoco", "dart", "ode", "pymunk")
 
 
 class Support(Enum):

@@ -37,6 +37,13 @@ def run_x3d(tmp_path, body: str, duration: float = 1.0, frame_rate: float = 60, 
     return series
 
 
+def shape(geometry: str, name: str = "", extra: str = "", container: str = "") -> str:
+    """A CollidableShape around one geometry (X3D XML text)."""
+    d = f" DEF='{name}'" if name else ""
+    c = f" containerField='{container}'" if container else ""
+    return f"<CollidableShape{d}{c} {extra}><Shape containerField='shape'>{geometry}</Shape></CollidableShape>"
+
+
 def _value(text: str):
     """Numbers as an array; anything else (true, a node's name) as the text itself."""
     try:
