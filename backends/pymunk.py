@@ -1,6 +1,7 @@
 """pymunk backend (Chipmunk2D): planar worlds only, a fourth opinion on 2D scenes.
 
-x3d_core.planar decides whether a world stays in one plane z = c and gives its shapes'
+x3d_core.planar decides whether each body stays in its plane z = c (parallel planes
+allowed: shapes that can never meet across them are kept apart) and gives its shapes'
 sections; a world that does not is refused (x3d_core.engine.Unsupported, naming the
 body or joint, the field and its value). Each moving body is a pymunk body with the
 mass, the moment of inertia about z, and the centre of mass in its frame; fixed bodies
@@ -71,12 +72,15 @@ class _Contacts:
     """The shapes of world.collisions and the callbacks that give each contact x3d_core's
     parameters and filtering."""
 
-    def __init__(self, sim: PymunkSimulation, c: Collisions, sections: list[planar.Section]):
+    def __init__(self, sim: PymunkSimulation, c: Collisions, found: planar.Planar):
         self.sim, self.collisions = sim, c
         p = c.parameters
         self.index: dict[pymunk.Shape, int] = {}
+        self.contact_z = found.contact_z
         mu, e = float(np.sqrt(p.friction[0])), float(np.sqrt(p.bounce))
-        for k, (g, s) in enumerate(zip(c.geometries, sections)):
+        for k, (g, s) in enumerate(zip(c.geometries, found.sections)):
+            if s is None:  # a static shape clear of every plane: it touches nothing
+                continue
             body = sim.body_of(g.body)
             if s.vertices is None:
                 shape = pymunk.Circle(body, s.radius, tuple(body.world_to_local(tuple(s.centre))))
@@ -90,6 +94,8 @@ class _Contacts:
         n = len(c.geometries)
         self.allowed = np.array([[c.may_touch(a, b) for b in c.geometries] for a in c.geometries],
                                 dtype=bool).reshape(n, n)
+        for i, j in found.apart:  # shapes in parallel planes that never meet in 3D
+            self.allowed[i, j] = self.allowed[j, i] = False
         self.speed = float(p.surface_speed[0])
         self.min_bounce = p.min_bounce_speed if p.bounce > 0 else 0.0
         moving = [sim.body_of(g.body) is not sim.space.static_body for g in c.geometries]
@@ -138,15 +144,16 @@ class _Contacts:
             return ContactPoints.none()
         a = np.array(rows)
         k = len(a)
-        z = np.full(k, self.sim.plane)
+        i, j = a[:, 5].astype(int), a[:, 6].astype(int)
+        z = np.where(np.isnan(self.contact_z[i]), self.contact_z[j], self.contact_z[i])  # the moving shape's plane
         return ContactPoints(np.column_stack([a[:, 0], a[:, 1], z]), np.column_stack([a[:, 2:4], np.zeros(k)]),
-                             a[:, 4].copy(), a[:, 5].astype(int), a[:, 6].astype(int))
+                             a[:, 4].copy(), i, j)
 
 
 class PymunkSimulation:
     def __init__(self, world: World, dt: float):
         found = planar.analyse(world)  # NotPlanar (an Unsupported) names what leaves the plane
-        self.world, self.dt, self.plane = world, dt, found.z
+        self.world, self.dt = world, dt
         b = world.bodies
         space = self.space = pymunk.Space()
         space.gravity = tuple(world.gravity[:2])
@@ -171,7 +178,7 @@ class PymunkSimulation:
             p = world.collisions.parameters
             space.collision_slop = world.contact_surface_thickness
             space.collision_bias = _bias(p.softness_erp if p.softness_erp is not None else world.error_correction, dt)
-            self.contacts_ = _Contacts(self, world.collisions, found.sections)
+            self.contacts_ = _Contacts(self, world.collisions, found)
         self._listing()
         self.weightless = (~b.use_gravity[self.rows])[:, None] * b.mass[self.rows, None] * world.gravity[:2]
         self.set_loads(b.forces, b.torques)

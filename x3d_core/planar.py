@@ -1,20 +1,23 @@
 """Whether a world moves in one plane, and the sections of its shapes by that plane.
 
 A planar engine (backends/pymunk.py) can run a world exactly only where nothing can
-leave the plane, so this analysis proves it from the start state or refuses, naming
-the body or joint, the field and its value. The plane is z = c with its normal +z:
-a 2D engine's own plane, into which a scene drawn in the X3D default view (x right,
-y up, gravity -y) already falls. c is the z of the first moving body's centre of mass;
-every other one must share it. Scenes planar in another plane are refused (turning
-them into z = c is a change of frame this module does not make).
+leave its plane, so this analysis proves it from the start state or refuses, naming
+the body or joint, the field and its value. The planes are z = c with normal +z: a 2D
+engine's own plane, into which a scene drawn in the X3D default view (x right, y up,
+gravity -y) already falls. Each moving body keeps to the plane through its centre of
+mass; bodies may sit in parallel planes (a row of balls side by side in z, each
+bouncing on one floor), and the 2D engine then keeps apart any two shapes that can
+never touch in 3D. Scenes planar in another plane are refused (turning them into z = c
+is a change of frame this module does not make).
 
-A world is planar when every moving body's centre of mass lies on the plane, its
-velocity and force lie in it, its angular velocity and torque lie along z, its
+A world is planar when every moving body's velocity and force lie in its plane, its angular velocity and torque lie along z, its
 orientation turns about z, and its inertia has no product of inertia with z (so that
 spin about z makes no torque out of the plane); gravity lies in the plane; hinges turn
-about z, sliders slide in the plane, ball joints sit on the plane (their force then
-acts at the plane and makes no tipping torque), a universal joint has one axis along z
-and the other in the plane (the out-of-plane freedom is never excited: a pivot); motor
+about z, sliders slide in the plane (both hold every tipping torque, so they may join
+bodies in different planes), ball joints sit on the plane of each body they join
+(their force then acts at the plane and makes no tipping torque), a universal joint
+has one axis along z and the other in the plane (the out-of-plane freedom is never
+excited: a pivot) and sits on the planes as a ball joint does; motor
 torques act about z; surface speed acts only along the first friction direction (for
 a normal in the plane ODE's second direction is z). A DoubleAxisHingeJoint is refused
 by the backend's table (its suspension and second hinge act out of the plane).
@@ -27,10 +30,13 @@ rectangle, a triangle). For two convex shapes symmetric about the plane the clos
 points lie in it (the midpoints of a closest pair and its mirror image are as close),
 and such a shape's section is its widest, so against a prism the plane's section is
 where they are closest too. And the contact forces must not tip a body: a moving
-body's shapes are centred on the plane (symmetric about it, so are their contact
-patches), and a static prism is centred on it too or reaches past the plane on both
-sides by at least the moving shapes' largest half-extent along z (a floor wider than
-what stands on it). Meshes and elevation grids are refused.
+body's shapes are centred on its plane (symmetric about it, so are their contact
+patches), and a static prism is centred on each plane too or reaches past it on both
+sides by at least the largest half-extent along z of the moving shapes in that plane
+(a floor wider than what stands on it). Two shapes whose extents along z can never
+meet (moving shapes in planes farther apart than their half-extents, a static shape
+clear of a plane's moving shapes) are kept apart; any other pair across planes could
+touch out of the plane and is refused. Meshes and elevation grids are refused.
 """
 
 from __future__ import annotations
@@ -59,8 +65,10 @@ class Section:
 
 @dataclass
 class Planar:
-    z: float  # the plane z = z
-    sections: list[Section]  # one per world.collisions.geometries (empty without collisions)
+    planes: np.ndarray  # (n,) each body's plane z = c (NaN for a fixed body)
+    sections: list[Section | None]  # per world.collisions.geometries; None: touches nothing
+    apart: set[tuple[int, int]]  # geometry pairs (low, high) that can never touch in 3D
+    contact_z: np.ndarray  # per geometry, the plane its contacts lie in (NaN for a static one)
 
 
 class NotPlanar(Unsupported):
@@ -81,18 +89,17 @@ def _along_z(v: np.ndarray) -> bool:
 
 
 def analyse(world: World) -> Planar:
-    """The plane the world moves in and its shapes' sections; NotPlanar otherwise."""
+    """The plane each body moves in and its shapes' sections; NotPlanar otherwise."""
     b = world.bodies
     moving = np.flatnonzero(~b.fixed)
     com = b.position + R.rotate(b.orientation, b.com)
-    z = float(com[moving[0], 2]) if len(moving) else 0.0
+    planes = np.where(b.fixed, np.nan, com[:, 2])
     reasons: list[str] = []
     if abs(world.gravity[2]) > TOLERANCE:
         reasons.append(f"RigidBodyCollection {world.name} gravity ({_text(world.gravity)}) leaves the plane")
     for i in moving:
         name = f"RigidBody {b.names[i]}"
-        checks = (("centre of mass", com[i], abs(com[i, 2] - z) > TOLERANCE, f"is off the plane z = {z:g}"),
-                  ("orientation", R.to_axis_angle(b.orientation[i]), not _along_z(b.orientation[i, 1:]),
+        checks = (("orientation", R.to_axis_angle(b.orientation[i]), not _along_z(b.orientation[i, 1:]),
                    "does not turn about z"),
                   ("linearVelocity", b.linear_velocity[i], abs(b.linear_velocity[i, 2]) > TOLERANCE,
                    "leaves the plane"),
@@ -102,37 +109,41 @@ def analyse(world: World) -> Planar:
                   ("inertia", b.inertia[i], np.abs(b.inertia[i, :2, 2]).max() > TOLERANCE * np.abs(b.inertia[i]).max(),
                    "couples spin about z out of the plane (products of inertia with z)"))
         reasons.extend(f"{name} {field} ({_text(v)}) {why}" for field, v, bad, why in checks if bad)
-    reasons.extend(_joints(world, z))
-    found: list[Section] = []
+    reasons.extend(_joints(world, planes))
+    found: list[Section | None] = []
+    apart: set[tuple[int, int]] = set()
+    contact_z = np.zeros(0)
     if world.collisions is not None:
         speed = world.collisions.parameters.surface_speed
         if abs(speed[1]) > TOLERANCE:
             reasons.append(f"CollisionCollection surfaceSpeed ({_text(speed)}): SPEED-2 drives along z, ODE's "
                            "second friction direction for normals in the plane")
-        found, bad = sections(world, z)
+        found, apart, contact_z, bad = sections(world, planes)
         reasons.extend(bad)
     if reasons:
         raise NotPlanar(reasons)
-    return Planar(z, found)
+    return Planar(planes, found, apart, contact_z)
 
 
-def _joints(world: World, z: float) -> list[str]:
+def _joints(world: World, planes: np.ndarray) -> list[str]:
     out = []
     for j in world.joints:
         if j.body1 == j.body2 or j.body1 == j.body2 == STATIC:  # joins nothing that moves
             continue
         name = f"{j.type} {j.name}"
+        off = [float(planes[r]) for r in (j.body1, j.body2) if r != STATIC and abs(j.anchor[2] - planes[r]) > TOLERANCE]
+        where = f"anchorPoint ({_text(j.anchor)}) is off the plane z = {off[0]:g}" if off else ""
         if j.type == "SingleAxisHingeJoint" and not _along_z(j.axes[0]):
             out.append(f"{name} axis ({_text(j.axes[0])}) is not along z")
         elif j.type == "SliderJoint" and abs(j.axes[0, 2]) > TOLERANCE:
             out.append(f"{name} axis ({_text(j.axes[0])}) leaves the plane")
-        elif j.type == "BallJoint" and abs(j.anchor[2] - z) > TOLERANCE:
-            out.append(f"{name} anchorPoint ({_text(j.anchor)}) is off the plane z = {z:g}")
+        elif j.type == "BallJoint" and off:
+            out.append(f"{name} {where}")
         elif j.type == "UniversalJoint" and not universal_pivot(j.axes[:2]):
             out.append(f"{name} axis1 ({_text(j.axes[0])}), axis2 ({_text(j.axes[1])}): neither is along z with "
                        "the other in the plane")
-        elif j.type == "UniversalJoint" and abs(j.anchor[2] - z) > TOLERANCE:
-            out.append(f"{name} anchorPoint ({_text(j.anchor)}) is off the plane z = {z:g}")
+        elif j.type == "UniversalJoint" and off:
+            out.append(f"{name} {where}")
         elif j.type == "MotorJoint":
             n = int(j.params.get("enabledAxes", 0))
             for k in range(n):
@@ -165,22 +176,47 @@ def _pose(g: Geometry, world: World) -> tuple[np.ndarray, np.ndarray]:
     return b.position[g.body] + R.rotate(q, g.position), R.matrix(R.multiply(q, g.orientation))
 
 
-def sections(world: World, z: float) -> tuple[list[Section], list[str]]:
-    """Each geometry's section by the plane z at the start (world coordinates), and the
-    reasons why some are not exact (module docstring)."""
-    b = world.bodies
-    poses = [_pose(g, world) for g in world.collisions.geometries]
-    moving = [g.body != STATIC and not b.fixed[g.body] for g in world.collisions.geometries]
-    reach = max((_half_extent(g, m) for g, (_, m), mv in zip(world.collisions.geometries, poses, moving) if mv),
-                default=0.0)
-    out, reasons = [], []
-    for g, (centre, m), mv in zip(world.collisions.geometries, poses, moving):
-        s = _section(g, centre, m, z, None if mv else reach)
+def sections(world: World, planes: np.ndarray) -> tuple[list[Section | None], set[tuple[int, int]], np.ndarray,
+                                                        list[str]]:
+    """Each geometry's section (world coordinates, at the start), the pairs kept apart, the
+    plane of each geometry's contacts, and the reasons why some section or pair is not
+    exact (module docstring)."""
+    c = world.collisions
+    geoms = c.geometries
+    poses = [_pose(g, world) for g in geoms]
+    moving = np.array([g.body != STATIC and not world.bodies.fixed[g.body] for g in geoms], dtype=bool)
+    half = np.array([_half_extent(g, m) for g, (_, m) in zip(geoms, poses)])
+    centre_z = np.array([centre[2] for centre, _ in poses])
+    contact_z = np.array([planes[g.body] if mv else np.nan for g, mv in zip(geoms, moving)])
+    levels = np.unique(planes[~np.isnan(planes)])
+    reach = {float(p): float(half[moving & (contact_z == p)].max(initial=0.0)) for p in levels}
+    out: list[Section | None] = []
+    apart: set[tuple[int, int]] = set()
+    reasons: list[str] = []
+    for k, (g, (centre, m)) in enumerate(zip(geoms, poses)):
+        if moving[k] or g.kind in ("mesh", "heightfield"):
+            s = _section(g, centre, m, contact_z[k], None)
+        else:  # a static shape: exact in every plane it can reach, apart from the others
+            s = None
+            for p, r in reach.items():
+                if centre_z[k] - half[k] >= p + r - TOLERANCE or centre_z[k] + half[k] <= p - r + TOLERANCE:
+                    apart.update((min(k, i), max(k, i)) for i in np.flatnonzero(moving & (contact_z == p)))
+                    continue
+                s = _section(g, centre, m, p, r)
+                if isinstance(s, str):
+                    break
         if isinstance(s, str):
             reasons.append(f"CollidableShape {g.name} ({g.kind}) {s}")
+        out.append(s)
+    for a, b in zip(*np.nonzero(np.triu(moving[:, None] & moving[None, :], 1))):
+        if contact_z[a] == contact_z[b] or not c.may_touch(geoms[a], geoms[b]):
+            continue
+        if abs(contact_z[a] - contact_z[b]) >= half[a] + half[b] - TOLERANCE:
+            apart.add((int(a), int(b)))
         else:
-            out.append(s)
-    return out, reasons
+            reasons.append(f"CollidableShape {geoms[a].name} (plane z = {contact_z[a]:g}) and {geoms[b].name} "
+                           f"(plane z = {contact_z[b]:g}) can touch out of the plane")
+    return out, apart, contact_z, reasons
 
 
 def _section(g: Geometry, centre: np.ndarray, m: np.ndarray, z: float, reach: float | None) -> Section | str:
