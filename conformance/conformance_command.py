@@ -19,6 +19,9 @@ import math
 import os
 import sys
 
+from reports.text import escape as _escape
+from reports.text import num as _num
+
 from . import cases as C
 from . import runner
 
@@ -38,14 +41,6 @@ def _dt_label(dt: float) -> str:
     return f"1/{round(inv)}" if abs(inv - round(inv)) < 1e-6 * inv else f"{dt:g}"
 
 
-def _num(x: float | None) -> str:
-    if x is None:
-        return "-"
-    if not math.isfinite(x):
-        return str(x)
-    return "0" if x == 0 else f"{x:.3g}"
-
-
 def _cell(r: runner.Result) -> str:
     if r.verdict == runner.PASS:
         w = r.worst()
@@ -54,10 +49,6 @@ def _cell(r: runner.Result) -> str:
         w = r.worst()
         return f"**fail** ({w.ratio:.3g}x)" if w is not None and math.isfinite(w.ratio) else "**fail**"
     return r.verdict
-
-
-def _escape(text: str) -> str:
-    return text.replace("|", "\\|").replace("\n", " ")
 
 
 def markdown(results: list[runner.Result], cases: list[C.Case], backends: list[str],

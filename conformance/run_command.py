@@ -3,29 +3,42 @@
 from __future__ import annotations
 
 import argparse
+import json
 import sys
+import time
 
 from backends import base
 from x3d_core.analysis import run_features
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.evaluator import RunSettings, run
 from x3d_core.load import load
-from x3d_core.model import LoadError
+from x3d_core.model import LoadError, Scene
 from x3d_core.world import worlds
 
 EXIT_OK, EXIT_ERROR, EXIT_UNSUPPORTED = 0, 1, 3
 
 
-def cmd_run(args: argparse.Namespace) -> int:
+def load_scene(path: str) -> Scene | None:
+    """The scene, or None after printing why it does not load to stderr: one line per
+    error, never a traceback (commands that run a scene exit 1 then)."""
     try:
-        scene = load(args.scene)
+        scene = load(path)
     except LoadError as e:
         for d in e.diagnostics:
             print(d, file=sys.stderr)
-        return EXIT_ERROR
-    if scene.errors:
-        for d in scene.errors:
-            print(d, file=sys.stderr)
+        return None
+    except Exception as e:  # a bug of ours, never the file's fault: still one line
+        print(f"{path}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it",
+              file=sys.stderr)
+        return None
+    for d in scene.errors:
+        print(d, file=sys.stderr)
+    return None if scene.errors else scene
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    scene = load_scene(args.scene)
+    if scene is None:
         return EXIT_ERROR
     try:
         backend = base.load(args.backend)
@@ -45,7 +58,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         return EXIT_UNSUPPORTED
     settings = RunSettings(duration=args.duration, dt=args.dt, frame_rate=args.frame_rate)
     try:
+        started = time.perf_counter()
         trace = run(worlds(scene), backend, settings)
+        simulation_s = time.perf_counter() - started
     except Unsupported as e:
         print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
         return EXIT_UNSUPPORTED
@@ -59,6 +74,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         trace.write(args.trace)
     else:
         sys.stdout.write(trace.text())
+    if args.timing:
+        with open(args.timing, "w", encoding="utf-8") as f:
+            json.dump({"simulation_wall_s": simulation_s}, f)
     return EXIT_OK
 
 
@@ -74,14 +92,22 @@ def cmd_backends(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def add_run_settings(p: argparse.ArgumentParser) -> None:
+    """--duration, --dt, --frame-rate: how a scene is run (`x3drbp run` and the commands that run it)."""
+    p.add_argument("--duration", type=float, default=1.0, help="simulated seconds (default 1)")
+    p.add_argument("--dt", type=float, default=1.0 / 240.0, help="physics step in seconds (default 1/240)")
+    p.add_argument("--frame-rate", type=float, default=60.0, help="frames per second (default 60)")
+
+
 def add_commands(sub) -> None:
     r = sub.add_parser("run", help="run a scene on one backend and write its event trace")
     r.add_argument("scene")
     r.add_argument("--backend", required=True, help=f"one of {', '.join(base.ENGINES)}")
-    r.add_argument("--duration", type=float, default=1.0, help="simulated seconds (default 1)")
-    r.add_argument("--dt", type=float, default=1.0 / 240.0, help="physics step in seconds (default 1/240)")
-    r.add_argument("--frame-rate", type=float, default=60.0, help="frames per second (default 60)")
+    add_run_settings(r)
     r.add_argument("--trace", help="write the trace CSV here (default: standard output)")
+    r.add_argument("--timing", metavar="FILE", help="write the simulation's wall time (plan, engine build, "
+                   "steps, state readback; not the load or the trace writing) to FILE as JSON "
+                   "{\"simulation_wall_s\": S}")
     r.set_defaults(func=cmd_run)
     b = sub.add_parser("backends", help="list the backends, their engine versions and declared features")
     b.add_argument("--features", action="store_true", help="print each backend's feature table")

@@ -32,6 +32,7 @@ import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 from x3d_core.trace import read_trace
 
@@ -42,6 +43,7 @@ PASS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR = (
 VERDICTS = (PASS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR)
 DEFAULT_TIMEOUT = 60.0
 EXIT_UNSUPPORTED = 3  # conformance.run_command
+T = TypeVar("T")  # what run_many's jobs return
 
 
 @dataclass
@@ -115,10 +117,11 @@ def classify(returncode: int | None, stderr: str, timed_out: bool = False, timeo
 
 
 def run_child(scene: str, backend: str, settings: Settings, trace: str,
-              timeout: float = DEFAULT_TIMEOUT) -> Outcome:
-    """`x3drbp run` in its own process (and process group), killed after `timeout` seconds."""
+              timeout: float = DEFAULT_TIMEOUT, extra: Sequence[str] = ()) -> Outcome:
+    """`x3drbp run` (with the `extra` options) in its own process (and process group),
+    killed after `timeout` seconds."""
     cmd = [sys.executable, "-m", "conformance.cli", "run", scene, "--backend", backend, *settings.args(),
-           "--trace", trace]
+           "--trace", trace, *extra]
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     try:
         proc = subprocess.Popen(cmd, cwd=root, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
@@ -189,7 +192,7 @@ def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
     return result
 
 
-def run_many(jobs: Sequence[Callable[[], Result]], workers: int | None = None) -> list[Result]:
+def run_many(jobs: Sequence[Callable[[], T]], workers: int | None = None) -> list[T]:
     """Run independent jobs in parallel (results in the jobs' order)."""
     workers = max(1, min(workers or os.cpu_count() or 1, len(jobs) or 1))
     with ThreadPoolExecutor(max_workers=workers) as pool:
