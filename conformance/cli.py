@@ -10,6 +10,7 @@ from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.paths import scene_files
 
+from .compare_command import add_command as add_compare
 from .conformance_command import add_command as add_conformance
 from .run_command import add_commands
 
@@ -57,6 +58,7 @@ def main(argv: list[str] | None = None) -> int:
     check.add_argument("-q", "--quiet", action="store_true", help="print errors only")
     check.set_defaults(func=_check)
     add_commands(sub)
+    add_compare(sub)
     add_conformance(sub)
     args = parser.parse_args(argv)
     try:

@@ -1,0 +1,110 @@
+"""`x3drbp compare`: one scene on several backends, and where and how far their runs part.
+
+    x3drbp compare SCENE [--backends LIST] [--duration S] [--dt S] [--frame-rate HZ]
+                   [--threshold KIND=VALUE] [--json OUT.json] [--timeout S] [--jobs N]
+
+Runs the scene on each backend, each in its own child process with a time limit (a
+crash, timeout, blow-up or refusal is that backend's verdict), then compares every pair
+that ran: body position (m) and orientation (rad) divergence per frame and over the run,
+the first frame a body passes the threshold and the bodies over it, the joint outputs
+both runs hold (conformance/compare.py says how each is measured), and each run's
+real-time factor. Prints the tables; --json writes all of it, the per-frame series too.
+
+Exit status: 0 when at least one pair was compared, whatever the divergences (they are
+results); 1 when nothing could be compared: the scene does not load (each error one
+line), or fewer than two backends ran (the verdicts say why); 2 on bad usage: an unknown
+backend, fewer than two backends named (or installed), a threshold or setting that is
+not a positive number.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+from reports.compare_text import render
+
+from . import runner
+from .cases import Settings
+from .compare import DEFAULT_THRESHOLDS, UNITS, Comparison, compare_all
+from .compare_runs import run_backends
+from .conformance_command import _names
+from .run_command import add_run_settings, load_scene
+
+EXIT_OK, EXIT_NOTHING_COMPARED, EXIT_USAGE = 0, 1, 2
+
+
+def _thresholds(values: list[str] | None) -> dict[str, float]:
+    """KIND=VALUE items over the defaults; ValueError naming what is wrong."""
+    out = dict(DEFAULT_THRESHOLDS)
+    for item in _names(values):
+        kind, _, text = item.partition("=")
+        if kind not in out:
+            raise ValueError(f"unknown threshold {kind!r}; known: {', '.join(out)}")
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"threshold {kind} must be a positive number of {UNITS[kind]}, not {text!r}")
+        out[kind] = value
+    return out
+
+
+def _usage(message: str) -> int:
+    print(f"x3drbp compare: {message}", file=sys.stderr)
+    return EXIT_USAGE
+
+
+def cmd_compare(args: argparse.Namespace) -> int:
+    try:
+        thresholds = _thresholds(args.threshold)
+    except ValueError as e:
+        return _usage(str(e))
+    for name in ("duration", "dt", "frame_rate", "timeout"):
+        value = getattr(args, name)
+        if not (math.isfinite(value) and value > 0):
+            return _usage(f"--{name.replace('_', '-')} must be a positive number, not {value:g}")
+    if load_scene(args.scene) is None:
+        return EXIT_NOTHING_COMPARED
+    info = runner.backend_table(args.timeout)
+    backends = _names(args.backends) or [n for n, i in info.items() if i.usable]
+    unknown = [b for b in backends if b not in info]
+    if unknown:
+        return _usage(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}")
+    if len(backends) < 2:
+        return _usage(f"needs two backends or more to compare, got {', '.join(backends) or 'none'}")
+    settings = Settings(args.duration, args.dt, args.frame_rate)
+    runs = run_backends(args.scene, backends, settings, info, args.timeout, args.jobs)
+    result = Comparison(args.scene, args.duration, args.dt, args.frame_rate, thresholds,
+                        [r for r, _ in runs], compare_all(runs, thresholds))
+    sys.stdout.write(render(result))
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as f:
+            json.dump(result.to_json(), f, indent=1)
+            f.write("\n")
+    if not result.pairs:
+        print("x3drbp compare: fewer than two backends ran: nothing compared", file=sys.stderr)
+        return EXIT_NOTHING_COMPARED
+    return EXIT_OK
+
+
+def add_command(sub) -> None:
+    p = sub.add_parser("compare", help="run a scene on several backends and measure where their runs part",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("scene")
+    p.add_argument("--backends", action="append", metavar="LIST",
+                   help="backends to run, comma-separated (default: every installed one)")
+    add_run_settings(p)
+    p.add_argument("--threshold", action="append", metavar="KIND=VALUE",
+                   help="divergence thresholds, comma-separated: position=M, orientation=RAD "
+                        f"(default position={DEFAULT_THRESHOLDS['position']:g},"
+                        f"orientation={DEFAULT_THRESHOLDS['orientation']:g})")
+    p.add_argument("--json", metavar="OUT.json", help="write the full result, per-frame series included")
+    p.add_argument("--timeout", type=float, default=runner.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per run in seconds (default {runner.DEFAULT_TIMEOUT:g})")
+    p.add_argument("--jobs", type=int, default=1, metavar="N",
+                   help="runs in parallel (default 1: runs that share cores skew each other's real-time factor)")
+    p.set_defaults(func=cmd_compare)

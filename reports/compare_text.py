@@ -1,0 +1,84 @@
+"""`x3drbp compare`'s result as text: markdown tables that read as well in a terminal.
+
+Reads a conformance.compare.Comparison (or its JSON, through Comparison.from_json); runs nothing.
+"""
+
+from __future__ import annotations
+
+from conformance.compare import RAN, BackendRun, Comparison, Crossing, Divergence, PairComparison
+
+from .text import escape, num
+
+_SHOWN_BODIES = 3  # bodies named at a first crossing; the rest counted
+
+
+def _rtf(r: BackendRun) -> str:
+    f = r.realtime_factor
+    if f is None:
+        return "-"
+    return f"{f:.3g}x" + (" (child)" if r.realtime_basis == "child" else "")
+
+
+def _rms_max(d: Divergence) -> str:
+    return "-" if d.max is None else f"{num(d.rms)} / {num(d.max)} ({d.max_body}, {num(d.max_time)} s)"
+
+
+def _crossing(c: Crossing | None) -> str:
+    if c is None:
+        return "never"
+    named = ", ".join(f"{b} {num(v)}" for b, v in zip(c.bodies[:_SHOWN_BODIES], c.values))
+    more = len(c.bodies) - _SHOWN_BODIES
+    return f"{num(c.time)} s: {named}" + (f" +{more} more" if more > 0 else "")
+
+
+def _joint(p: PairComparison) -> str:
+    j = p.worst_joint()
+    if j is None:
+        return "-"
+    return f"{j.node}.{j.field} {num(j.max)} {j.unit} ({num(j.max_time)} s)"
+
+
+def _notes(p: PairComparison) -> list[str]:
+    notes = []
+    for what, names in (("bodies", p.only_in_a), ("joint outputs", p.joints_only_in_a)):
+        if names:
+            notes.append(f"{what} only in {p.a}: {', '.join(names)}")
+    for what, names in (("bodies", p.only_in_b), ("joint outputs", p.joints_only_in_b)):
+        if names:
+            notes.append(f"{what} only in {p.b}: {', '.join(names)}")
+    if not p.times.size:
+        notes.append("no frame time in common")
+    return [f"- {p.a} / {p.b}: {n}" for n in notes]
+
+
+def render(c: Comparison) -> str:
+    th = c.thresholds
+    lines = [f"# x3drbp compare {c.scene}", "",
+             f"{c.duration:g} s, dt {c.dt:g} s, {c.frame_rate:g} frames/s; thresholds: position "
+             f"{num(th['position'])} m, orientation {num(th['orientation'])} rad", "",
+             "| backend | version | verdict | real-time factor |", "|---|---|---|---:|"]
+    for r in c.runs:
+        lines.append(f"| {r.backend} | {r.version or '-'} | {r.verdict} | {_rtf(r)} |")
+    lines += ["", "Real-time factor: simulated s / wall s of the simulation itself (plan, engine build, steps, "
+              "state readback), as the child timed it; '(child)': of the whole child process."]
+    stopped = [r for r in c.runs if r.verdict != RAN]
+    if stopped:
+        lines += [""] + [f"- {r.backend}: **{r.verdict}**: {escape(r.reason)}" for r in stopped]
+    lines.append("")
+    if not c.pairs:
+        lines.append("No pair compared: fewer than two backends ran.")
+        return "\n".join(lines) + "\n"
+    lines += ["| pair | bodies | frames | position RMS / max (m) | orientation RMS / max (rad) "
+              f"| first position > {num(th['position'])} m | first orientation > {num(th['orientation'])} rad "
+              "| worst joint output |", "|---|---:|---:|---|---|---|---|---|"]
+    for p in c.pairs:
+        lines.append(f"| {p.a} / {p.b} | {len(p.bodies)} | {p.times.size} | {_rms_max(p.position)} | "
+                     f"{_rms_max(p.orientation)} | {_crossing(p.position.first_over)} | "
+                     f"{_crossing(p.orientation.first_over)} | {_joint(p)} |")
+    notes = [n for p in c.pairs for n in _notes(p)]
+    lines += ["", "RMS and max: over every frame and body (the max's body and time); first: the first frame a "
+              "body passes the threshold, the bodies over it then, worst first; worst joint output: the largest "
+              "difference against its unit's threshold (m, m/s: position; rad, rad/s, axes: orientation)."]
+    if notes:
+        lines += [""] + notes
+    return "\n".join(lines) + "\n"
