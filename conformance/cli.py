@@ -13,6 +13,7 @@ from x3d_core.paths import scene_files
 from .compare_command import add_command as add_compare
 from .conformance_command import add_command as add_conformance
 from .run_command import add_commands
+from .sweep_command import add_command as add_sweep
 
 
 def _check(args: argparse.Namespace) -> int:
@@ -60,6 +61,7 @@ def main(argv: list[str] | None = None) -> int:
     add_commands(sub)
     add_compare(sub)
     add_conformance(sub)
+    add_sweep(sub)
     args = parser.parse_args(argv)
     try:
         return args.func(args)

@@ -1,0 +1,130 @@
+"""`x3drbp sweep`: speed against error per scene and backend, over the step, iterations and
+preferAccuracy (conformance/sweep.py says what is measured).
+
+    x3drbp sweep [--scenes NAMES] [--backends LIST] [--dts LIST] [--iterations LIST]
+                 [--accuracy both|false|true] [--window S] [--out DIR]
+                 [--scheduler ADDRESS] [--workers N] [--timeout S] [--quiet]
+
+Writes DIR/sweep.json (every point), DIR/sweep.md (the Pareto fronts) and DIR/sweep_SCENE.png
+(error against wall time per simulated second, one line per backend and variation); DIR
+defaults to out/sweep. Runs on a local process pool, or on a Dask cluster with --scheduler.
+Exit status 0 whatever the verdicts; 2 on bad usage.
+
+The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, every
+installed backend) takes about 2 minutes on 2 cores; a long sweep names more:
+    x3drbp sweep --dts 1/60,1/120,1/240,1/500,1/1000,1/2000,1/4000,1/8000 \\
+                 --iterations 5,10,20,50,100 --scenes pendulum_period,projectile,torque_free,...
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import os
+import sys
+import time
+from fractions import Fraction
+
+from . import runner
+from . import sweep as S
+from .conformance_command import _names
+
+EXIT_OK, EXIT_USAGE = 0, 2
+ACCURACY = {"both": (False, True), "false": (False,), "true": (True,)}
+
+
+def _dts(values: list[str] | None) -> list[float]:
+    """Steps as fractions (1/240) or decimals, finest last."""
+    dts = [float(Fraction(v)) for v in _names(values)] or list(S.DEFAULT_DTS)
+    if any(dt <= 0 for dt in dts):
+        raise ValueError("steps must be positive")
+    return sorted(set(dts), reverse=True)
+
+
+def to_json(sweep: S.Sweep, chosen: list[S.Target], plans: dict[str, S.BackendPlan], settings: dict,
+            wall_s: float) -> dict:
+    return {
+        "generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "measured": {"speed": "wall_per_sim_s: the child's wall time in the engine's steps (x3drbp run --timing) "
+                              "over the simulated seconds; not start-up, loading, the model build, per-frame reads or "
+                              "trace writing (simulation_per_sim_s: the whole simulation, build and reads included)",
+                     "error": "closed form: the case's convergence measure; fine step: the largest distance of a "
+                              "body from the same backend's run at the reference step, over the window"},
+        "settings": {**settings, "reference_refinement": S.REFINEMENT},
+        "backends": {n: {"version": p.version, "iterations": p.iterations, "preferAccuracy": p.prefer_accuracy}
+                     for n, p in plans.items()},
+        "scenes": [{"name": t.name, "scene": t.scene, "reference": t.reference, "case": t.case,
+                    "quantity": t.quantity, "unit": sweep.units.get(t.name, ""), "duration": t.settings.duration,
+                    "frame_rate": t.settings.frame_rate} for t in chosen],
+        "references": [{"scene": scene, "backend": backend, "dt": job.settings.dt, "iterations": job.iterations,
+                        "prefer_accuracy": job.prefer_accuracy, "verdict": res.verdict, "reason": res.reason}
+                       for (scene, backend), (job, res) in sweep.references.items()],
+        "points": [p.to_json() for p in sweep.points],
+        "wall_s": round(wall_s, 1),
+    }
+
+
+def cmd_sweep(args: argparse.Namespace) -> int:
+    try:
+        dts = _dts(args.dts)
+        iterations = sorted({int(v) for v in _names(args.iterations)} or set(S.DEFAULT_ITERATIONS))
+        chosen = S.targets(_names(args.scenes) or list(S.DEFAULT_SCENES), dts, args.window)
+        plans, skipped = S.backend_plans(_names(args.backends), args.timeout)
+    except ValueError as e:
+        print(f"x3drbp sweep: {e}", file=sys.stderr)
+        return EXIT_USAGE
+    for name, why in skipped.items():
+        print(f"x3drbp sweep: {name} is not run: {why}", file=sys.stderr)
+    if not plans:
+        print("x3drbp sweep: no backend is available here", file=sys.stderr)
+        return EXIT_OK
+    started = time.perf_counter()
+    sweep = S.run_sweep(chosen, plans, dts, iterations, ACCURACY[args.accuracy], args.timeout, args.scheduler,
+                        args.workers, progress=not args.quiet and sys.stderr.isatty())
+    settings = {"dts": dts, "iterations": iterations, "accuracy": args.accuracy, "window": args.window,
+                "scheduler": args.scheduler, "workers": args.workers, "timeout": args.timeout}
+    doc = to_json(sweep, chosen, plans, settings, time.perf_counter() - started)
+    from reports.plots import sweep_plot  # matplotlib: only here, not in every `x3drbp run` child
+    from reports.sweep_tables import markdown
+    os.makedirs(args.out, exist_ok=True)
+    with open(os.path.join(args.out, "sweep.json"), "w", encoding="utf-8") as f:
+        json.dump(doc, f, indent=1)
+        f.write("\n")
+    for t in chosen:
+        sweep_plot(doc, t.name, os.path.join(args.out, f"sweep_{t.name}.png"))
+    text = markdown(doc)
+    with open(os.path.join(args.out, "sweep.md"), "w", encoding="utf-8") as f:
+        f.write(text)
+    if not args.quiet:
+        sys.stdout.write(text)
+    print(f"wrote {os.path.join(args.out, 'sweep.md')}, sweep.json and {len(chosen)} plot(s) in {doc['wall_s']:g} s")
+    return EXIT_OK
+
+
+def add_command(sub) -> None:
+    p = sub.add_parser("sweep", help="speed against error per scene and backend over step, iterations, accuracy",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--scenes", "--cases", action="append", metavar="NAMES",
+                   help="case names or scene files, comma-separated (default: "
+                        f"{', '.join(S.DEFAULT_SCENES)})")
+    p.add_argument("--backends", action="append", metavar="LIST",
+                   help="backends, comma-separated (default: every installed one)")
+    p.add_argument("--dts", action="append", metavar="LIST",
+                   help="physics steps, comma-separated, as 1/240 or 0.004 (default 1/60,1/240,1/1000,1/4000)")
+    p.add_argument("--iterations", action="append", metavar="LIST",
+                   help="RigidBodyCollection.iterations values (default 10,50; where the backend honours it)")
+    p.add_argument("--accuracy", choices=tuple(ACCURACY), default="both",
+                   help="preferAccuracy values (default both; where the backend honours it)")
+    p.add_argument("--window", type=float, default=S.DEFAULT_WINDOW, metavar="S",
+                   help=f"seconds compared with the fine-step reference (default {S.DEFAULT_WINDOW:g})")
+    p.add_argument("--out", default=os.path.join("out", "sweep"), metavar="DIR",
+                   help="folder for sweep.json, sweep.md and the plots (default out/sweep)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="a Dask scheduler (tcp://host:8786) to run on; default: local processes")
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="local processes (default: the number of CPUs; ignored with --scheduler)")
+    p.add_argument("--timeout", type=float, default=runner.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per run in seconds (default {runner.DEFAULT_TIMEOUT:g})")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no markdown on stdout")
+    p.set_defaults(func=cmd_sweep)

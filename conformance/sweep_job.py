@@ -1,0 +1,113 @@
+"""One sweep run: a scene, its RigidBodyCollections' iterations and preferAccuracy set as
+asked, on one backend at one step, in a child `x3drbp run`; plain data back.
+
+It runs wherever the executor puts it (a local pool process, a Dask worker, perhaps on
+another machine with the project at another path), so a Job carries everything by value,
+the scene as a path under the project root, and the run writes its scene copy, trace and
+timing in a temporary folder of its own.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from dataclasses import dataclass
+
+import numpy as np
+
+from x3d_core.load import load
+from x3d_core.model import LoadError
+from x3d_core.trace import read_trace
+from x3d_core.xml_writer import write_xml
+
+from . import cases as C
+from . import runner
+from .sweep_metrics import Positions
+
+MEASURED = "measured"  # the run ended well; its error is against a finer-step run, no tolerance
+
+
+@dataclass(frozen=True)
+class Job:
+    scene: str  # relative to the project root (or absolute)
+    backend: str
+    settings: C.Settings
+    iterations: int | None = None  # written into every RigidBodyCollection; None keeps the file's
+    prefer_accuracy: bool | None = None  # likewise
+    case: str | None = None  # judge the run by this case and return its convergence measure; None: positions
+    timeout: float = runner.DEFAULT_TIMEOUT
+
+
+@dataclass
+class JobResult:
+    verdict: str  # the runner's verdict of a judged run; MEASURED for a run kept for its positions
+    reason: str = ""
+    step_s: float | None = None  # the child's own wall time in the engine's steps (x3drbp run --timing)
+    simulation_s: float | None = None  # ... and of the whole simulation (plan, build, steps, per-frame reads)
+    error: float | None = None  # the case's convergence measure
+    unit: str = ""
+    positions: Positions | None = None
+
+
+def with_collection_fields(src: str, dst: str, iterations: int | None, prefer_accuracy: bool | None) -> None:
+    """Write the scene at src to dst (XML encoding) with every RigidBodyCollection's iterations
+    and preferAccuracy set (None: as in the file). LoadError if src does not load."""
+    scene = load(src)
+    if scene.errors:
+        raise LoadError(scene.errors[0])
+    for node in scene.of_type("RigidBodyCollection"):
+        if iterations is not None:
+            node.values["iterations"] = iterations
+        if prefer_accuracy is not None:
+            node.values["preferAccuracy"] = prefer_accuracy
+    with open(dst, "wb") as f:
+        f.write(write_xml(scene))
+
+
+def positions(view: C.TraceView) -> Positions:
+    """Every body's position series from a trace (bodies in the trace's order)."""
+    keys = [node for node, fld in view.keys() if fld == "position"]
+    series = [view.series(node, "position") for node in keys]
+    if not series:
+        raise ValueError("the trace has no body positions")
+    times = series[0][0]
+    if any(len(t) != len(times) for t, _ in series):
+        raise ValueError("the bodies' positions are recorded at different frames")
+    return Positions(times, tuple(keys), np.stack([v for _, v in series], axis=1))
+
+
+def run_job(job: Job) -> JobResult:
+    """Run the job's scene once in a child process and judge or sample its trace."""
+    scene = job.scene if os.path.isabs(job.scene) else os.path.join(C.ROOT, job.scene)
+    with tempfile.TemporaryDirectory(prefix="x3drbp-sweep-") as tmp:
+        if job.iterations is not None or job.prefer_accuracy is not None:
+            copy = os.path.join(tmp, "scene.x3d")
+            try:
+                with_collection_fields(scene, copy, job.iterations, job.prefer_accuracy)
+            except (OSError, LoadError) as e:
+                return JobResult(runner.ERROR, f"the scene could not be rewritten: {e}")
+            scene = copy
+        trace, timing = os.path.join(tmp, "trace.csv"), os.path.join(tmp, "timing.json")
+        out = runner.run_child(scene, job.backend, job.settings, trace, job.timeout, extra=("--timing", timing))
+        if out.verdict is not None:
+            return JobResult(out.verdict, out.reason)
+        try:
+            with open(timing, encoding="utf-8") as f:
+                times = json.load(f)
+            step_s, simulation_s = float(times["step_wall_s"]), float(times["simulation_wall_s"])
+            view = C.TraceView(read_trace(trace))
+        except (OSError, ValueError, KeyError) as e:
+            return JobResult(runner.ERROR, f"unreadable trace or timing: {e}")
+    if job.case is None:
+        try:
+            return JobResult(MEASURED, "", step_s, simulation_s, positions=positions(view))
+        except ValueError as e:
+            return JobResult(runner.ERROR, str(e), step_s, simulation_s)
+    case = C.BY_NAME[job.case]
+    result = runner.evaluate(case, job.backend, [view], [job.settings])
+    measure = result.measure(case.convergence) if case.convergence else None
+    if measure is None:
+        return JobResult(result.verdict if result.verdict == runner.ERROR else runner.ERROR,
+                         result.reason or f"no {case.convergence} measure", step_s, simulation_s)
+    return JobResult(result.verdict, result.reason, step_s, simulation_s, measure.error, measure.unit)

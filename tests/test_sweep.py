@@ -1,0 +1,120 @@
+"""The sweep: its measures on synthetic data, the scene rewrite, a real tiny sweep through the
+command, and the same numbers from a Dask cluster as from the local pool."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from conftest import SCENES
+
+from conformance import runner
+from conformance import sweep as S
+from conformance.cli import main as cli_main
+from conformance.sweep_job import with_collection_fields
+from conformance.sweep_metrics import Positions, comparison_interval, pareto, window_error
+from x3d_core.load import load
+
+BACKEND = "mujoco"  # a dependency, installed wherever the project is
+
+
+def test_pareto_front_is_exact():
+    costs = [1.0, 2.0, 3.0, 2.0, 4.0, 1.0, None, 0.5, 3.0]
+    errors = [5.0, 2.0, 1.0, 3.0, 1.0, 5.0, 0.1, None, float("nan")]
+    # 0 and 5 tie (both on it); 3 is as fast as 1 but less accurate; 4 as accurate as 2 but slower;
+    # 6, 7, 8 lack a finite cost or error
+    assert pareto(costs, errors) == [True, True, True, False, False, True, False, False, False]
+    assert pareto([], []) == []
+    assert pareto([1.0, 1.0], [2.0, 1.0]) == [False, True]  # equal speed: the more accurate one only
+
+
+def _positions(times, values, bodies=("A", "B")) -> Positions:
+    return Positions(np.asarray(times, dtype=float), tuple(bodies), np.asarray(values, dtype=float))
+
+
+def test_window_error_compares_shared_frames_within_the_window():
+    ref_times = np.arange(0, 21) * 0.05
+    ref = _positions(ref_times, np.zeros((21, 2, 3)))
+    run_values = np.zeros((21, 2, 3))
+    run_values[4, 1] = [0.3, 0.4, 0.0]  # body B 0.5 m off at t = 0.2
+    run_values[20, 0] = [10.0, 0.0, 0.0]  # beyond a 0.5 s window: not error
+    run = _positions(ref_times, run_values)
+    assert window_error(run, ref, 0.5) == pytest.approx(0.5)
+    assert window_error(run, ref, 1.0) == pytest.approx(10.0)
+    # a run sampled every other frame, times off by rounding, meets the reference where both recorded
+    sparse = _positions(ref_times[::2] + 1e-12, run_values[::2])
+    assert window_error(sparse, ref, 0.5) == pytest.approx(0.5)
+    with pytest.raises(ValueError, match="different bodies"):
+        window_error(_positions(ref_times, run_values, ("A", "C")), ref, 0.5)
+    with pytest.raises(ValueError, match="no frame"):
+        window_error(_positions(ref_times + 0.01, run_values), ref, 0.5)
+
+
+def test_comparison_interval_is_a_whole_number_of_every_step():
+    assert comparison_interval([1 / 60, 1 / 240, 1 / 1000, 1 / 4000, 1 / 32000]) == pytest.approx(0.05)
+    assert comparison_interval([1 / 240]) == pytest.approx(1 / 60)  # never finer than a display frame
+    assert comparison_interval([1 / 7, 1 / 60]) == pytest.approx(1.0)
+    with pytest.raises(ValueError, match="window"):
+        S.targets(["bounce_apex"], [1 / 7, 1 / 60], window=0.5)
+
+
+def test_scene_rewrite_sets_every_collection(tmp_path):
+    out = tmp_path / "bounce.x3d"
+    with_collection_fields(f"{SCENES}/conformance/bounce_apex.x3d", str(out), 50, True)
+    collections = load(str(out)).of_type("RigidBodyCollection")
+    assert len(collections) == 3
+    assert all(c.get("iterations") == 50 and c.get("preferAccuracy") is True for c in collections)
+    with_collection_fields(f"{SCENES}/conformance/ball_chain.x3d", str(out), None, True)  # iterations='20' kept
+    (chain,) = load(str(out)).of_type("RigidBodyCollection")
+    assert chain.get("iterations") == 20 and chain.get("preferAccuracy") is True
+
+
+def test_targets_pick_the_reference():
+    dts = [1 / 60, 1 / 240]
+    closed, contact, scene = S.targets(["pendulum_period", "bounce_apex",
+                                        f"{SCENES}/conformance/double_pendulum_energy.x3d"], dts)
+    assert (closed.reference, closed.quantity, closed.settings.duration) == (S.CLOSED_FORM, "Bob.period", 2.0)
+    assert (contact.reference, contact.case, contact.settings.frame_rate) == (S.FINE_STEP, None, 60.0)
+    assert (scene.name, scene.scene) == ("double_pendulum_energy", "scenes/conformance/double_pendulum_energy.x3d")
+    with pytest.raises(ValueError, match="neither a case"):
+        S.targets(["no_such_thing"], dts)
+    with pytest.raises(ValueError, match="several runs"):
+        S.targets(["frame_rate"], dts)
+
+
+def test_sweep_command_writes_json_markdown_and_plot(tmp_path):
+    out = tmp_path / "sweep"
+    assert cli_main(["sweep", "--scenes", "projectile", "--backends", BACKEND, "--dts", "1/60,1/240",
+                     "--iterations", "10", "--accuracy", "false", "--out", str(out), "--workers", "2", "-q"]) == 0
+    doc = json.loads((out / "sweep.json").read_text())
+    assert doc["scenes"][0]["reference"] == S.CLOSED_FORM and doc["scenes"][0]["unit"] == "m"
+    points = doc["points"]
+    assert [(p["dt_label"], p["iterations"], p["prefer_accuracy"]) for p in points] == \
+        [("1/60", 10, False), ("1/240", 10, False)]
+    assert all(p["verdict"] == runner.PASS and 0 < p["wall_per_sim_s"] < p["simulation_per_sim_s"] for p in points)
+    # semi-implicit Euler's position error is first order: a quarter of the step, a quarter of the error
+    assert points[1]["error"] / points[0]["error"] == pytest.approx(0.25, rel=0.05)
+    assert points[1]["pareto_scene"] or points[0]["pareto_scene"]
+    text = (out / "sweep.md").read_text()
+    assert "## projectile" in text and "| mujoco | 1/240 | 10 | FALSE |" in text
+    png = (out / "sweep_projectile.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 1000
+    assert cli_main(["sweep", "--scenes", "no_such_case", "--out", str(out), "-q"]) == 2
+    assert cli_main(["sweep", "--backends", "no_such_engine", "--out", str(out), "-q"]) == 2
+
+
+def test_dask_cluster_gives_the_local_pool_s_numbers():
+    distributed = pytest.importorskip("distributed")
+    chosen = S.targets(["projectile", f"{SCENES}/conformance/double_pendulum_energy.x3d"], [1 / 60, 1 / 240])
+    plans, _ = S.backend_plans([BACKEND])
+
+    def errors(scheduler: str | None) -> list:
+        sweep = S.run_sweep(chosen, plans, [1 / 60, 1 / 240], [10], [False], scheduler=scheduler, workers=2)
+        return [(p.scene, p.dt, p.verdict, p.error) for p in sweep.points]
+
+    local = errors(None)
+    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None,
+                                  silence_logs=50) as cluster:
+        assert errors(cluster.scheduler_address) == local
+    assert all(e is not None and e > 0 for *_, e in local)
