@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import math
-import stat
 import sys
 
 import numpy as np
@@ -22,6 +21,8 @@ from conformance.cli import main as cli_main
 from x3d_core.analysis import features
 from x3d_core.load import load
 from x3d_core.trace import Row
+
+from fake_child import fake_python
 
 INFO = runner.backend_table()
 INSTALLED = [n for n, i in INFO.items() if i.usable]
@@ -239,13 +240,6 @@ def test_nonexistent_and_broken_scenes_are_errors(tmp_path):
     assert r.verdict == runner.ERROR and "mass" in r.reason
 
 
-def _fake_python(tmp_path, script: str) -> str:
-    path = tmp_path / "fake-python"
-    path.write_text("#!/bin/sh\n" + script)
-    path.chmod(path.stat().st_mode | stat.S_IXUSR)
-    return str(path)
-
-
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals and shell scripts")
 @pytest.mark.parametrize("script,verdict,reason", [
     ("kill -SEGV $$\n", runner.CRASHED, "SIGSEGV"),
@@ -256,7 +250,7 @@ def _fake_python(tmp_path, script: str) -> str:
     ("exit 0\n", runner.ERROR, "no trace"),
 ])
 def test_child_process_endings_become_verdicts(tmp_path, monkeypatch, script, verdict, reason):
-    monkeypatch.setattr(runner.sys, "executable", _fake_python(tmp_path, script))
+    monkeypatch.setattr(runner.sys, "executable", fake_python(tmp_path, script))
     r = runner.run_pair(C.BY_NAME["free_fall"], "mujoco", timeout=0.5)
     assert r.verdict == verdict and reason in r.reason
 
