@@ -13,6 +13,7 @@ from x3d_core.paths import scene_files
 from .compare_command import add_command as add_compare
 from .conformance_command import add_command as add_conformance
 from .run_command import add_commands
+from .stability_command import add_command as add_stability
 from .sweep_command import add_command as add_sweep
 
 
@@ -61,6 +62,7 @@ def main(argv: list[str] | None = None) -> int:
     add_commands(sub)
     add_compare(sub)
     add_conformance(sub)
+    add_stability(sub)
     add_sweep(sub)
     args = parser.parse_args(argv)
     try:

@@ -1,0 +1,397 @@
+"""The stability suite: hard cases run per backend and per step size until they blow up or
+the clock ends, each with a verdict and its drift figures.
+
+A hard case is a scene of scenes/stability/ (its leading comment says what it stresses and
+argues its bounds), how long to run it, and monitors: functions of the trace that measure a
+quantity over the run and, where the quantity has a bound, the first frame past it. The
+verdict of a (case, backend, dt) run is the earliest bound broken, named after its monitor
+(energy grew past bound, joint drifted past bound, ...), else the case's verdict for a run
+that held (survived; stopped for the impact). A run that did not finish keeps the child's
+verdict from conformance.runner: blew up (with the time the evaluator or engine gave),
+unsupported, crashed, timed out, error.
+
+The bounds say what "stable" means physically, never what an engine happens to reach:
+- energy of a conservative system released from rest: it may not rise above its start by
+  more than 10% of the energy the motion exchanges (the potential energy of the fall the
+  scene allows, stated in the scene): a pendulum swinging back a tenth of its fall higher than
+  it was let go from shows energy a viewer sees made. Semi-implicit Euler, the scheme of these
+  engines, keeps no exact energy for jointed bodies, but for a motion of angular rate w its
+  energy error oscillates by about h w / 2 of the exchange (on a linear oscillator the energy
+  it keeps exactly differs from E by h w^2 x v / 2), so the bound admits motions up to
+  12 rad/s at h = 1/60 (48 rad/s at 1/240) without a trend; past it a run is too coarse for
+  its fastest motion or gains energy step by step. Losses (error correction, softness, an
+  iterative solver stopped short) are dissipation: reported, not judged;
+- energy and world angular momentum of a torque-free body: exact constants, with no exchange
+  to oscillate through: 1% of their start. A rotation update that turns L by the body's own
+  rotation keeps L and bounds the error in E; one that takes the gyroscopic term w x I w at
+  the start of the step amplifies any wobble by sqrt(1 + (W h)^2) a step (W its rate in the
+  body) and drifts in both without bound: the instability these cases catch;
+- joints: anchors 1 cm apart at most, a gap a viewer sees on links of 0.1-1 m, and ten times
+  what error correction leaves in a converged joint at these rates (the conformance ball
+  chain's dt^2 |w|^2 r / (2 ERP): under 1 mm for w = 10 rad/s, r = 5 cm, h = 1/60);
+- a stack at rest: each watched box within 1 cm of where it started (5% of a 0.2 m box);
+- the impact: the sphere's centre never past the wall's far face.
+The monitors read masses, inertias and gravity from the scene through x3d_core, the model the
+engines were given: a stability figure measures what an engine made of its own input.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import os
+import re
+import tempfile
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import ClassVar, Protocol
+
+import numpy as np
+
+from x3d_core import rotation as R
+from x3d_core.load import load
+from x3d_core.trace import read_trace
+from x3d_core.world import worlds
+
+from . import runner
+from .cases import ROOT, Settings, TraceView, quaternions
+
+SCENES = os.path.join(ROOT, "scenes", "stability")
+DEFAULT_DTS = (1 / 60, 1 / 240)
+DEFAULT_TIMEOUT = runner.DEFAULT_TIMEOUT
+
+SURVIVED, STOPPED = "survived", "stopped"
+ENERGY, MOMENTUM, JOINT, DRIFT, TUNNELLED = ("energy grew past bound", "momentum drifted past bound",
+                                             "joint drifted past bound", "drifted past bound", "tunnelled")
+HELD = (SURVIVED, STOPPED)
+
+
+# -- what a run measures ----------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Figure:
+    """One quantity over a run: its worst value, the bound it is held to (None: reported
+    only), the first frame time past the bound (None: it held), and where the worst was
+    (the joint, for a gap over several)."""
+    quantity: str
+    value: float
+    unit: str = ""
+    bound: float | None = None
+    at: float | None = None
+    where: str = ""
+
+    def __post_init__(self) -> None:  # plain floats (numpy scalars do not go to JSON)
+        object.__setattr__(self, "value", float(self.value))
+
+    def to_json(self) -> dict:
+        return {"quantity": self.quantity, "value": _json_float(self.value), "unit": self.unit,
+                "bound": self.bound, "at": self.at, "where": self.where}
+
+
+def _json_float(x: float) -> float | str:
+    return x if math.isfinite(x) else str(x)
+
+
+@dataclass
+class Model:
+    """The bodies as the engines got them (x3d_core's reading of the scene), by trace name."""
+    names: list[str]
+    mass: np.ndarray  # (n,)
+    inertia: np.ndarray  # (n, 3, 3) body axes, about the centre of mass
+    com: np.ndarray  # (n, 3) local
+    moving: np.ndarray  # (n,) bool: not fixed
+    gravity: np.ndarray  # (3,)
+
+    def rows(self, names: Sequence[str] = ()) -> list[int]:
+        """Rows of the named bodies (all moving bodies when none are named)."""
+        if not names:
+            return [int(i) for i in np.flatnonzero(self.moving)]
+        return [self.names.index(n) for n in names]
+
+
+@functools.lru_cache(maxsize=None)
+def model(path: str) -> Model:
+    w = worlds(load(path))[0]
+    b = w.bodies
+    return Model(list(b.names), b.mass, b.inertia, b.com, ~b.fixed, w.gravity)
+
+
+@dataclass
+class Motion:
+    """Bodies' states over the frames: (frames, bodies, ...) arrays; the centre of mass's
+    position and velocity, world inertia and angular velocity."""
+    t: np.ndarray
+    com: np.ndarray
+    v: np.ndarray
+    w: np.ndarray
+    i_world: np.ndarray
+    mass: np.ndarray
+
+    @classmethod
+    def read(cls, view: TraceView, m: Model, rows: Sequence[int]) -> Motion:
+        def stack(fld: str) -> np.ndarray:
+            return np.stack([view.series(m.names[r], fld)[1] for r in rows], axis=1)
+        t = view.series(m.names[rows[0]], "position")[0]
+        mats = R.matrix(quaternions(stack("orientation")))
+        com = stack("position") + np.einsum("fbij,bj->fbi", mats, m.com[rows])
+        i_world = mats @ m.inertia[rows] @ np.swapaxes(mats, -1, -2)
+        return cls(t, com, stack("linearVelocity"), stack("angularVelocity"), i_world, m.mass[rows])
+
+    def energy(self, gravity: np.ndarray) -> np.ndarray:
+        """Kinetic plus potential energy per frame (J), potential zero at the origin."""
+        linear = 0.5 * np.einsum("b,fbi,fbi->f", self.mass, self.v, self.v)
+        angular = 0.5 * np.einsum("fbi,fbij,fbj->f", self.w, self.i_world, self.w)
+        return linear + angular - np.einsum("b,fbi,i->f", self.mass, self.com, gravity)
+
+    def angular_momentum(self) -> np.ndarray:
+        """World angular momentum about the origin per frame, (frames, 3)."""
+        spin = np.einsum("fbij,fbj->fi", self.i_world, self.w)
+        return spin + np.einsum("b,fbi->fi", self.mass, R.cross(self.com, self.v))
+
+
+def first_past(t: np.ndarray, x: np.ndarray, bound: float) -> float | None:
+    """The first time x exceeds bound (a non-finite x counts as past it)."""
+    past = np.flatnonzero(~(np.asarray(x) <= bound))
+    return float(t[past[0]]) if past.size else None
+
+
+def _worst(x: np.ndarray) -> float:
+    """The largest value, inf where any is not finite (a run that overflowed)."""
+    x = np.asarray(x, dtype=np.float64)
+    return float(np.max(x)) if np.all(np.isfinite(x)) else math.inf
+
+
+class Monitor(Protocol):
+    verdict: str  # the verdict of a run that breaks this monitor's bound
+
+    def read(self, view: TraceView, m: Model) -> list[Figure]: ...
+
+
+@dataclass(frozen=True)
+class EnergyGain:
+    """Total energy's rise above its start, as a fraction of `scale` J (None: of the start
+    itself, for a system whose energy is all kinetic). Its largest fall is reported."""
+    scale: float | None = None
+    bound: float = 0.10
+    bodies: tuple[str, ...] = ()
+    verdict: ClassVar[str] = ENERGY
+
+    def read(self, view: TraceView, m: Model) -> list[Figure]:
+        motion = Motion.read(view, m, m.rows(self.bodies))
+        with np.errstate(over="ignore", invalid="ignore"):
+            e = motion.energy(m.gravity)
+            scale = self.scale if self.scale is not None else abs(float(e[0]))
+            change = (e - e[0]) / scale
+        of = f"E0 = {scale:.4g} J" if self.scale is None else f"{scale:.4g} J exchanged"
+        return [Figure(f"energy gain over {of}", 100 * _worst(change), "%", 100 * self.bound,
+                       first_past(motion.t, change, self.bound)),
+                Figure(f"energy loss over {of}", 100 * _worst(-change), "%")]
+
+
+@dataclass(frozen=True)
+class MomentumDrift:
+    """|L(t) - L(0)| of the world angular momentum, as a fraction of |L(0)| (torque-free)."""
+    bound: float = 0.01
+    bodies: tuple[str, ...] = ()
+    verdict: ClassVar[str] = MOMENTUM
+
+    def read(self, view: TraceView, m: Model) -> list[Figure]:
+        motion = Motion.read(view, m, m.rows(self.bodies))
+        with np.errstate(over="ignore", invalid="ignore"):
+            big_l = motion.angular_momentum()
+            drift = np.linalg.norm(big_l - big_l[0], axis=1) / np.linalg.norm(big_l[0])
+        return [Figure(f"angular momentum drift over |L0| = {np.linalg.norm(big_l[0]):.4g} kg m^2/s",
+                       100 * _worst(drift), "%", 100 * self.bound,
+                       first_past(motion.t, drift, self.bound))]
+
+
+@dataclass(frozen=True)
+class AnchorGap:
+    """|body1AnchorPoint - body2AnchorPoint| of each joint (x3d_core's joint outputs, asked
+    for by the scene's forceOutput), the worst joint named."""
+    joints: tuple[str, ...]
+    bound: float = 0.01
+    verdict: ClassVar[str] = JOINT
+
+    def read(self, view: TraceView, m: Model) -> list[Figure]:
+        with np.errstate(over="ignore", invalid="ignore"):
+            gaps = np.stack([np.linalg.norm(view.series(j, "body1AnchorPoint")[1]
+                                            - view.series(j, "body2AnchorPoint")[1], axis=1) for j in self.joints],
+                            axis=1)
+        t = view.series(self.joints[0], "body1AnchorPoint")[0]
+        finite = np.where(np.isfinite(gaps), gaps, math.inf)
+        worst = self.joints[int(np.argmax(np.max(finite, axis=0)))]
+        per_frame = np.max(finite, axis=1)
+        return [Figure("anchor gap", _worst(per_frame), "m", self.bound,
+                       first_past(t, per_frame, self.bound), worst)]
+
+
+@dataclass(frozen=True)
+class Displacement:
+    """A body's distance from where it started; the largest is judged, the last reported."""
+    body: str
+    bound: float = 0.01
+    verdict: ClassVar[str] = DRIFT
+
+    def read(self, view: TraceView, m: Model) -> list[Figure]:
+        t, p = view.series(self.body, "position")
+        with np.errstate(over="ignore", invalid="ignore"):
+            d = np.linalg.norm(p - p[0], axis=1)
+        return [Figure(f"{self.body} displacement (max)", _worst(d), "m", self.bound, first_past(t, d, self.bound)),
+                Figure(f"{self.body} displacement at the end", float(d[-1]), "m")]
+
+
+@dataclass(frozen=True)
+class Tunnelling:
+    """A body's centre along +x against a wall's far face: ever beyond it, the body went through."""
+    body: str
+    far_face: float
+    verdict: ClassVar[str] = TUNNELLED
+
+    def read(self, view: TraceView, m: Model) -> list[Figure]:
+        t, p = view.series(self.body, "position")
+        return [Figure(f"{self.body} furthest centre x", _worst(p[:, 0]), "m", self.far_face,
+                       first_past(t, p[:, 0], self.far_face))]
+
+
+# -- the cases ----------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class HardCase:
+    name: str
+    scene: str  # file name under scenes/stability
+    stresses: str  # one line: what is hard about it
+    duration: float  # simulated seconds
+    monitors: tuple[Monitor, ...]
+    held: str = SURVIVED  # the verdict of a run that keeps every bound
+
+    @property
+    def path(self) -> str:
+        return self.scene if os.path.isabs(self.scene) else os.path.join(SCENES, self.scene)
+
+
+def _chain(n: int) -> tuple[str, ...]:
+    return tuple(f"Joint{k}" for k in range(1, n + 1))
+
+
+# energies the motion exchanges (J), as the scenes' comments derive them: g = 9.8
+CHAIN_EXCHANGE = 50 * 0.1 * 9.8 * 5.0 / 2  # M g L / 2: a 5 m, 5 kg chain from horizontal to hanging
+PENDULUM_EXCHANGE = 9.8 * (100.0 * 1.1 + 0.1 * 0.5)  # the bob's centre falls 1.1 m, the arm's 0.5 m
+FOUR_BAR_EXCHANGE = 2.118  # from the crank upright to the lowest configuration, over the crank angle
+
+CASES: tuple[HardCase, ...] = (
+    HardCase("ball_chain_50", "ball_chain_50.x3d",
+             "50 ball-joint links (5 m) released from horizontal: the free end whips through the bottom",
+             5.0, (EnergyGain(CHAIN_EXCHANGE), AnchorGap(_chain(50)))),
+    HardCase("mass_ratio_pendulum", "mass_ratio_pendulum.x3d",
+             "a 0.1 kg arm carrying a 100 kg bob (1:1000 across a joint), released from horizontal",
+             10.0, (EnergyGain(PENDULUM_EXCHANGE), AnchorGap(("Shoulder", "Wrist")))),
+    HardCase("mass_ratio_stack", "mass_ratio_stack.x3d",
+             "a 1000 kg box resting on a 1 kg slab on the floor (1:1000 in a stack)",
+             10.0, (Displacement("Heavy"), Displacement("Light"))),
+    HardCase("box_stack_10", "box_stack_10.x3d", "ten 1 kg boxes stacked at rest on the floor",
+             10.0, (Displacement("Box10"),)),
+    HardCase("spinning_wheel_finite", "spinning_wheels.x3d",
+             "a free wheel at 150 rad/s with a 2 rad/s wobble, useFiniteRotation TRUE",
+             5.0, (EnergyGain(None, 0.01, ("FiniteWheel",)), MomentumDrift(0.01, ("FiniteWheel",)))),
+    HardCase("spinning_wheel_plain", "spinning_wheels.x3d",
+             "the same wheel with useFiniteRotation FALSE (ODE's infinitesimal rotation update)",
+             5.0, (EnergyGain(None, 0.01, ("PlainWheel",)), MomentumDrift(0.01, ("PlainWheel",)))),
+    HardCase("intermediate_axis_tumble", "intermediate_axis_tumble.x3d",
+             "a 0.1 x 0.4 x 0.9 m box spun about its intermediate axis for 30 s: it flips every few seconds",
+             30.0, (EnergyGain(None, 0.01), MomentumDrift(0.01))),
+    HardCase("thin_wall_impact", "thin_wall_impact.x3d",
+             "a 2 cm sphere at 80 m/s against a static wall 4 cm thick (tunnelling)",
+             0.25, (Tunnelling("Pellet", 0.02), EnergyGain(None, 0.01)), held=STOPPED),
+    HardCase("four_bar_linkage", "four_bar_linkage.x3d",
+             "a four-bar linkage (a closed loop of pins) falling under gravity: loop closure",
+             10.0, (EnergyGain(FOUR_BAR_EXCHANGE), AnchorGap(("PinA", "PinB", "PinD", "PinC")))),
+)
+BY_NAME = {c.name: c for c in CASES}
+
+
+def select(names: Sequence[str]) -> list[HardCase]:
+    unknown = [n for n in names if n not in BY_NAME]
+    if unknown:
+        raise KeyError(f"unknown case(s) {', '.join(unknown)}; known: {', '.join(BY_NAME)}")
+    return [BY_NAME[n] for n in names] if names else list(CASES)
+
+
+# -- verdicts -------------------------------------------------------------------------------
+
+@dataclass
+class StabilityResult:
+    case: str
+    backend: str
+    dt: float
+    verdict: str
+    at: float | None = None  # when the run broke a bound or blew up
+    reason: str = ""
+    figures: list[Figure] = field(default_factory=list)
+    wall_s: float = 0.0
+
+    def to_json(self) -> dict:
+        return {"case": self.case, "backend": self.backend, "dt": self.dt, "verdict": self.verdict, "at": self.at,
+                "reason": self.reason, "wall_s": round(self.wall_s, 3), "figures": [f.to_json() for f in self.figures]}
+
+
+def judge(case: HardCase, view: TraceView, m: Model) -> tuple[str, float | None, str, list[Figure]]:
+    """(verdict, when, why, figures) of a finished run: the earliest bound broken wins."""
+    figures: list[Figure] = []
+    broken: list[tuple[float, str, Figure]] = []
+    for mon in case.monitors:
+        for f in mon.read(view, m):
+            figures.append(f)
+            if f.at is not None:
+                broken.append((f.at, mon.verdict, f))
+    if not broken:
+        return case.held, None, "", figures
+    at, verdict, f = min(broken, key=lambda b: b[0])
+    unit = f" {f.unit}" if f.unit and f.unit != "%" else f.unit
+    where = f" at {f.where}" if f.where else ""
+    return verdict, at, f"{f.quantity}{where} past {f.bound:g}{unit} at t = {at:.3g} s (worst {f.value:.3g}{unit})", \
+        figures
+
+
+_BLEW_UP_AT = re.compile(r"blew up (?:at|by) t=([-+0-9.eE]+)")
+
+
+def run_one(case: HardCase, backend: str, dt: float, timeout: float = DEFAULT_TIMEOUT) -> StabilityResult:
+    """One (case, backend, dt) in a child process (runner.run_child), judged here."""
+    started = time.perf_counter()
+
+    def result(verdict: str, reason: str = "", at: float | None = None,
+               figures: list[Figure] | None = None) -> StabilityResult:
+        return StabilityResult(case.name, backend, dt, verdict, at, reason, figures or [],
+                               time.perf_counter() - started)
+
+    if not os.path.exists(case.path):
+        return result(runner.ERROR, f"no scene file {case.path}")
+    with tempfile.TemporaryDirectory(prefix="x3drbp-stab-") as tmp:
+        path = os.path.join(tmp, "trace.csv")
+        out = runner.run_child(case.path, backend, Settings(case.duration, dt), path, timeout)
+        if out.verdict == runner.BLEW_UP:
+            hit = _BLEW_UP_AT.search(out.reason)  # the reason less the child's "SCENE: BACKEND: "
+            return result(runner.BLEW_UP, out.reason[hit.start():] if hit else out.reason,
+                          float(hit.group(1)) if hit else None)
+        if out.verdict is not None:
+            return result(out.verdict, out.reason)
+        try:
+            view = TraceView(read_trace(path))
+        except (OSError, ValueError) as e:
+            return result(runner.ERROR, f"unreadable trace: {e}")
+    try:
+        verdict, at, reason, figures = judge(case, view, model(case.path))
+    except (KeyError, ValueError, IndexError) as e:
+        msg = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
+        return result(runner.ERROR, f"the monitors could not read the trace: {msg}")
+    return result(verdict, reason, at, figures)
+
+
+def run_suite(cases: Sequence[HardCase], backends: Sequence[str], dts: Sequence[float],
+              timeout: float = DEFAULT_TIMEOUT, workers: int | None = None) -> list[StabilityResult]:
+    """Every case on every backend at every dt, in parallel; results case-, then dt-, then
+    backend-major."""
+    return runner.run_many([lambda c=c, b=b, dt=dt: run_one(c, b, dt, timeout)
+                            for c in cases for dt in dts for b in backends], workers)

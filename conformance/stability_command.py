@@ -1,0 +1,108 @@
+"""`x3drbp stability`: the hard cases on every backend at every step size.
+
+    x3drbp stability [--backends LIST] [--cases NAMES] [--dts 1/60,1/240,1/1000] [--out DIR]
+                     [--timeout S] [--jobs N]
+
+Writes DIR/stability.json and DIR/stability.md (DIR defaults to out/stability) and prints the
+markdown. Each (case, backend, dt) runs in its own child process under the time limit; its
+verdict is survived (stopped, for the impact), what gave way first and when (energy grew past
+bound, momentum drifted past bound, joint drifted past bound, drifted past bound, tunnelled,
+blew up), or unsupported, crashed, timed out, error. Exit status 0 whatever the verdicts
+(they are results, not errors); 2 on bad usage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import os
+import sys
+import time
+from fractions import Fraction
+
+from reports.stability_table import markdown
+
+from . import runner
+from . import stability as S
+from .conformance_command import _dt_label, _names
+
+EXIT_OK, EXIT_USAGE = 0, 2
+
+
+def _dts(values: list[str] | None) -> list[float]:
+    """Steps as fractions (1/240) or decimals, in the order given."""
+    dts = list(dict.fromkeys(float(Fraction(v)) for v in _names(values))) or list(S.DEFAULT_DTS)
+    if any(dt <= 0 for dt in dts):
+        raise ValueError("steps must be positive")
+    return dts
+
+
+def to_json(results: list[S.StabilityResult], cases: list[S.HardCase], backends: list[str], dts: list[float],
+            info: dict[str, runner.BackendInfo], jobs: int, wall_s: float) -> dict:
+    return {
+        "generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "backends": {n: {"version": i.version, "unavailable": i.unavailable, "run": n in backends}
+                     for n, i in info.items()},
+        "dts": [{"dt": dt, "label": _dt_label(dt)} for dt in dts],
+        "jobs": jobs, "wall_s": round(wall_s, 1),
+        "cases": [{"name": c.name, "scene": os.path.relpath(c.path, S.ROOT), "stresses": c.stresses,
+                   "duration": c.duration, "held": c.held,
+                   "monitors": [{"monitor": type(m).__name__, **vars(m)} for m in c.monitors]} for c in cases],
+        "results": [r.to_json() for r in results],
+    }
+
+
+def cmd_stability(args: argparse.Namespace) -> int:
+    try:
+        cases = S.select(_names(args.cases))
+        dts = _dts(args.dts)
+    except (KeyError, ValueError, ZeroDivisionError) as e:
+        print(f"x3drbp stability: {e.args[0] if isinstance(e, KeyError) else e}", file=sys.stderr)
+        return EXIT_USAGE
+    info = runner.backend_table(args.timeout)
+    wanted = _names(args.backends)
+    unknown = [b for b in wanted if b not in info]
+    if unknown:
+        print(f"x3drbp stability: unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}", file=sys.stderr)
+        return EXIT_USAGE
+    backends = wanted or [n for n, i in info.items() if i.usable]
+    runnable = [b for b in backends if info[b].usable]
+    jobs = max(1, args.jobs or os.cpu_count() or 1)
+    started = time.perf_counter()
+    results = S.run_suite(cases, runnable, dts, args.timeout, jobs)
+    wall_s = time.perf_counter() - started
+    for b in backends:  # named on the command line but not installed: say so in every cell
+        if not info[b].usable:
+            results += [S.StabilityResult(c.name, b, dt, runner.ERROR, reason=f"backend unavailable: "
+                                          f"{info[b].unavailable}") for c in cases for dt in dts]
+    data = to_json(results, cases, backends, dts, info, jobs, wall_s)
+    text = markdown(data)
+    os.makedirs(args.out, exist_ok=True)
+    with open(os.path.join(args.out, "stability.json"), "w", encoding="utf-8") as f:
+        json.dump(data, f, indent=1)
+        f.write("\n")
+    with open(os.path.join(args.out, "stability.md"), "w", encoding="utf-8") as f:
+        f.write(text)
+    sys.stdout.write(text)
+    print(f"\nwrote {os.path.join(args.out, 'stability.md')} and stability.json")
+    return EXIT_OK
+
+
+def add_command(sub) -> None:
+    p = sub.add_parser("stability", help="run the hard cases per backend and step size: survived or what gave way",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--backends", action="append", metavar="LIST",
+                   help="backends to run, comma-separated (default: every installed one)")
+    p.add_argument("--cases", action="append", metavar="NAMES",
+                   help=f"cases to run, comma-separated (default: all: {', '.join(S.BY_NAME)})")
+    p.add_argument("--dts", action="append", metavar="LIST",
+                   help="physics steps, comma-separated, as 1/240 or 0.004 (default "
+                        f"{','.join(_dt_label(dt) for dt in S.DEFAULT_DTS)})")
+    p.add_argument("--out", default=os.path.join("out", "stability"), metavar="DIR",
+                   help="folder for stability.md and stability.json (default out/stability)")
+    p.add_argument("--timeout", type=float, default=S.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per run in seconds (default {S.DEFAULT_TIMEOUT:g})")
+    p.add_argument("--jobs", type=int, default=None, metavar="N",
+                   help="runs in parallel (default: the number of CPUs)")
+    p.set_defaults(func=cmd_stability)

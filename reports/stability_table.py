@@ -1,0 +1,80 @@
+"""The stability suite's results (stability.json, as conformance.stability_command writes it)
+as markdown: a verdict per (case, dt, backend), then each case's drift figures."""
+
+from __future__ import annotations
+
+from .text import escape, num
+
+HELD = ("survived", "stopped")
+PLAIN = (*HELD, "unsupported", "error")  # not a breakdown: no bold
+
+
+def _label(verdict: str) -> str:
+    return verdict.removesuffix(" past bound")
+
+
+def _cell(r: dict) -> str:
+    """The verdict, bold where the run broke down, with the time it did."""
+    v = r["verdict"]
+    if v in PLAIN:
+        return v
+    when = f" at {r['at']:.3g} s" if r.get("at") is not None else ""
+    return f"**{_label(v)}**{when}"
+
+
+def _figure(f: dict | None) -> str:
+    if f is None:
+        return "-"
+    v = f["value"]
+    text = num(v) if isinstance(v, float) else str(v)
+    return text + (f" ({f['where']})" if f.get("where") else "")
+
+
+def markdown(data: dict) -> str:
+    backends = [n for n, b in data["backends"].items() if b["run"]]
+    label = {d["dt"]: d["label"] for d in data["dts"]}
+    dts = list(label)
+    results = {(r["case"], r["dt"], r["backend"]): r for r in data["results"]}
+    lines = ["# x3drbp stability", ""]
+
+    def describe(n: str) -> str:
+        b = data["backends"][n]
+        if b["unavailable"]:
+            return f"{n} (unavailable: {b['unavailable']})"
+        return f"{n} {b['version']}" + ("" if b["run"] else " (not run)")
+    lines += ["Backends: " + "; ".join(describe(n) for n in data["backends"]), "",
+              f"{len(data['results'])} runs, {data['jobs']} at a time: {data['wall_s']:.0f} s wall.", "",
+              "Cell: the verdict; where a run did not hold, what gave way first and when (simulated time). "
+              "Bounds and their arguments: conformance/stability.py and each scene's leading comment.", "",
+              "| case | dt | " + " | ".join(backends) + " |", "|---|---|" + "---|" * len(backends)]
+    for c in data["cases"]:
+        for dt in dts:
+            cells = [_cell(results[(c["name"], dt, b)]) if (c["name"], dt, b) in results else "-" for b in backends]
+            lines.append(f"| {c['name']} | {label[dt]} | " + " | ".join(cells) + " |")
+    lines += ["", "## Cases", ""]
+    for c in data["cases"]:
+        lines.append(f"- **{c['name']}** ({c['scene']}, {c['duration']:g} s): {escape(c['stresses'])}")
+    lines += ["", "## Drift figures", "",
+              "Each monitored quantity's worst value over the run (its bound in the header; none: reported only). "
+              "'-': the run gave no trace to measure (it blew up, was refused or did not finish)."]
+    for c in data["cases"]:
+        mine = [results[k] for k in ((c["name"], dt, b) for dt in dts for b in backends) if k in results]
+        heads: dict[str, str] = {}
+        for r in mine:
+            for f in r["figures"]:
+                bound = f"; bound {f['bound']:g}" if f["bound"] is not None else ""
+                heads.setdefault(f["quantity"], f"{f['quantity']} ({f['unit']}{bound})")
+        lines += ["", f"### {c['name']}", "", "| backend | dt | verdict | " + " | ".join(map(escape, heads.values()))
+                  + " | wall s |", "|---|---|---|" + "---:|" * (len(heads) + 1)]
+        for r in mine:
+            by = {f["quantity"]: f for f in r["figures"]}
+            cells = [_figure(by.get(q)) for q in heads]
+            lines.append(f"| {r['backend']} | {label[r['dt']]} | {_cell(r)} | " + " | ".join(cells)
+                         + f" | {r['wall_s']:.1f} |")
+    others = [r for r in data["results"] if r["verdict"] not in HELD]
+    if others:
+        lines += ["", "## Why", ""]
+        for r in others:
+            lines.append(f"- {r['case']} on {r['backend']} at dt {label[r['dt']]}: {_label(r['verdict'])}: "
+                         f"{escape(r['reason'])}")
+    return "\n".join(lines) + "\n"
