@@ -17,7 +17,8 @@ pybullet facts this relies on (measured with pybullet 3.2.7):
 createMultiBody's linkParentIndices count the base as 0; its joints carry velocity
 motors that hold them still until given zero force; multibodies are damped and joint
 speeds clamped to 100 rad/s by default; a free base or a ball joint turns at most pi/4
-per step (faster spins are clamped: 188 rad/s at dt = 1/240), a revolute joint exactly.
+per step (faster spins are clamped: 188 rad/s at dt = 1/240), a revolute joint exactly;
+a multibody's links hold at most 122 degrees of freedom that read back right (_MAX_LINK_DOFS).
 
 Collisions (where the world has a collider): a moving body's first geometry is its link's
 collision shape, each further one rides on a massless link fixed to it, so contact points
@@ -60,6 +61,10 @@ _PROCESSING = 1e-4
 _THIN = 1e-6  # the least size a collision shape gets (pybullet refuses empty ones)
 _HULL_MARGIN = 1e-4  # the collision margin of convex hulls: they collide this far outside their vertices
 _CONE_SIDES = 64  # a cone is the convex hull of a 64-gon and its apex
+# pybullet's state read-back holds 128 degrees of freedom a multibody (MAX_DEGREE_OF_FREEDOM), 6 of
+# them the base's: past 122 in its links it reports wrong link states, or refuses a joint index
+# (measured: 40 ball joints or 122 hinges read back exactly, 41 or 123 do not)
+_MAX_LINK_DOFS = 122
 _Z_TO_Y = np.array([np.cos(-np.pi / 4), np.sin(-np.pi / 4), 0.0, 0.0])  # turns pybullet's z axis to X3D's y
 
 
@@ -276,6 +281,11 @@ class BulletSimulation:
         c = self.client
         base = tree.parts[0] if tree.free else None
         links = tree.links
+        dofs = sum({p.JOINT_SPHERICAL: 3, p.JOINT_REVOLUTE: 1, p.JOINT_PRISMATIC: 1}.get(lk.joint_type, 0)
+                   for lk in links)
+        if dofs > _MAX_LINK_DOFS:
+            raise Unsupported(f"a tree of joints with {dofs} degrees of freedom: pybullet reads back at most "
+                              f"{_MAX_LINK_DOFS} in one multibody's links (its MAX_DEGREE_OF_FREEDOM)")
         tree.uid = p.createMultiBody(
             baseMass=base.mass if base else 0.0, baseCollisionShapeIndex=base.shape if base else -1,
             baseVisualShapeIndex=-1,

@@ -316,3 +316,22 @@ def test_damping_and_loads_on_a_free_tree_agree_with_mujoco(tmp_path):
     for node, field in [("J2", "angle"), ("J2", "angleRate"), ("A", "angularVelocity"), ("B", "angularVelocity"),
                         ("C", "angularVelocity")]:
         assert np.abs(values(ours, node, field) - values(theirs, node, field)).max() < 1e-6, (node, field)
+
+
+@pytest.mark.parametrize("links", [40, 41])
+def test_a_tree_past_pybullets_degrees_of_freedom_is_refused_not_misread(tmp_path, links):
+    """A chain of ball joints from a fixed base: 40 (120 degrees of freedom) reads back where
+    it was built; 41 (123) pybullet would report with its first links misplaced by 0.1 m
+    (measured), so it is refused."""
+    bodies = "<RigidBody DEF='Base' fixed='true'/>" + "".join(
+        f"<RigidBody DEF='L{k}' position='{0.1 * k} 0 0'/>" for k in range(1, links + 1))
+    joints = "".join(f"<BallJoint anchorPoint='{0.1 * k - 0.05} 0 0'><RigidBody USE='{f'L{k - 1}' if k > 1 else 'Base'}' "
+                     f"containerField='body1'/><RigidBody USE='L{k}' containerField='body2'/></BallJoint>"
+                     for k in range(1, links + 1))
+    body = f"<RigidBodyCollection gravity='0 0 0'>{bodies}{joints}</RigidBodyCollection>"
+    if links == 41:
+        with pytest.raises(Unsupported, match="123 degrees of freedom"):
+            BACKEND.build(scene_worlds(tmp_path, body)[0], DT)
+        return
+    s = simulate(tmp_path, body, duration=DT)
+    assert all(np.abs(last(s, f"L{k}", "position") - [0.1 * k, 0, 0]).max() < 1e-12 for k in range(1, links + 1))
