@@ -1,6 +1,7 @@
 # Two commands do all the set-up on a fresh machine with Python 3.11+:
 #   make report  installs into .venv and runs the main job: x3drbp check over the bundled
-#                scenes, then the conformance matrix of every case on every engine
+#                scenes, then x3drbp report (conformance, comparisons, sweeps, stability and
+#                the feature tables) into out/report/index.html and report.md
 #   make test    installs into .venv (with the dev tools) and runs the tests
 PYTHON ?= python3
 VENV := .venv
@@ -16,7 +17,7 @@ $(STAMP): pyproject.toml
 
 report: $(STAMP)
 	$(VENV)/bin/x3drbp check -q scenes
-	$(VENV)/bin/x3drbp conformance --out out/conformance
+	$(VENV)/bin/x3drbp report --out out/report
 
 test: $(STAMP)
 	$(VENV)/bin/python -m pytest -q

@@ -12,6 +12,7 @@ from x3d_core.paths import scene_files
 
 from .compare_command import add_command as add_compare
 from .conformance_command import add_command as add_conformance
+from .report_command import add_command as add_report
 from .run_command import add_commands
 from .stability_command import add_command as add_stability
 from .sweep_command import add_command as add_sweep
@@ -64,6 +65,7 @@ def main(argv: list[str] | None = None) -> int:
     add_conformance(sub)
     add_stability(sub)
     add_sweep(sub)
+    add_report(sub)
     args = parser.parse_args(argv)
     try:
         return args.func(args)

@@ -1,0 +1,147 @@
+"""`x3drbp report`: the main job. Every measurement x3drbp makes, on every installed backend,
+as one static HTML page with its plots, and the same in markdown.
+
+    x3drbp report [--out DIR] [--backends LIST] [--quick]
+
+Each step is the command of its name, run into a folder of DIR:
+
+    conformance  every case on every backend                 DIR/conformance/matrix.json, matrix.md
+    compare      each bundled example scene on every backend DIR/compare/SCENE.json
+    sweep        speed against error (its default scope)     DIR/sweep/sweep.json, sweep.md, sweep_*.png
+    stability    the hard cases at 1/60 and 1/240 s          DIR/stability/stability.json, stability.md
+    features     each backend's declared table against the verdicts of the cases that
+                 exercise each feature                       DIR/features.json
+
+then reports/report_page.py writes DIR/report.md and DIR/index.html from those files alone.
+--quick leaves out the sweep (the longest step). DIR defaults to out/report. Exit status 0
+whatever the verdicts (they are results); 1 where a step could not run at all (its log in
+DIR/logs/ says why); 2 on bad usage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import datetime
+import json
+import os
+import sys
+import time
+
+from backends import base
+
+from . import cases as C
+from . import runner
+from .conformance_command import _names
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+EXAMPLES = os.path.join(C.ROOT, "scenes", "examples")
+COMPARE_SECONDS = 5.0
+
+
+def _steps(out: str, backends: list[str], quick: bool) -> list[tuple[str, list[list[str]]]]:
+    """(step, the x3drbp command lines it runs)."""
+    chosen = ["--backends", ",".join(backends)]
+    examples = sorted(os.path.join(EXAMPLES, f) for f in os.listdir(EXAMPLES))
+    steps = [("conformance", [["conformance", *chosen, "--out", os.path.join(out, "conformance")]]),
+             ("compare", [["compare", path, *chosen, "--duration", f"{COMPARE_SECONDS:g}", "--json",
+                           os.path.join(out, "compare", os.path.splitext(os.path.basename(path))[0] + ".json")]
+                          for path in examples]),
+             ("sweep", [["sweep", *chosen, "--quiet", "--out", os.path.join(out, "sweep")]]),
+             ("stability", [["stability", *chosen, "--out", os.path.join(out, "stability")]])]
+    return [s for s in steps if not (quick and s[0] == "sweep")]
+
+
+def _run(argv: list[str], log: str) -> int:
+    """One x3drbp command in this process, its output into the log."""
+    from .cli import main  # the command line registers this module: imported when used
+    with open(log, "a", encoding="utf-8") as f, contextlib.redirect_stdout(f), contextlib.redirect_stderr(f):
+        print(f"$ x3drbp {' '.join(argv)}", flush=True)
+        try:
+            return main(argv)
+        except SystemExit as e:  # argparse's own exit on usage
+            return int(e.code or 0)
+
+
+def features(matrix: dict, backends: list[str]) -> dict:
+    """Per backend and feature exercised by a case: what the backend declares, and the verdicts
+    of the cases that exercise it (a feature declared native whose case fails is a finding)."""
+    verdicts = {(r["case"], r["backend"]): r["verdict"] for r in matrix["results"]}
+    exercised: dict[str, list[str]] = {}
+    for case in C.CASES:
+        for f in case.exercises:
+            exercised.setdefault(f, []).append(case.name)
+    rows = []
+    for feature in sorted(exercised):
+        cells = {}
+        for b in backends:
+            d = base.load(b).support(feature)
+            cells[b] = {"support": d.support.value, "note": d.note,
+                        "cases": [{"case": c, "verdict": verdicts.get((c, b), "not run")} for c in exercised[feature]]}
+        rows.append({"feature": feature, "backends": cells})
+    declared = {b: {s.value: sum(1 for d in base.load(b).table().values() if d.support is s) for s in base.Support}
+                for b in backends}
+    return {"features": rows, "declared": declared}
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    from reports.report_page import write_report  # reports read results; imported when there are some
+    info = runner.backend_table()
+    wanted = _names(args.backends)
+    unknown = [b for b in wanted if b not in info]
+    if unknown:
+        print(f"x3drbp report: unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}", file=sys.stderr)
+        return EXIT_USAGE
+    backends = [b for b in (wanted or list(info)) if info[b].usable]
+    if len(backends) < 2:
+        print("x3drbp report: needs two installed backends or more", file=sys.stderr)
+        return EXIT_USAGE
+    out = args.out
+    logs = os.path.join(out, "logs")
+    for sub in ("logs", "compare"):
+        os.makedirs(os.path.join(out, sub), exist_ok=True)
+    timings, failed = {}, []
+    started = time.perf_counter()
+    for step, commands in _steps(out, backends, args.quick):
+        t0 = time.perf_counter()
+        log = os.path.join(logs, f"{step}.log")
+        open(log, "w").close()
+        print(f"report: {step} ...", end="", file=sys.stderr, flush=True)
+        codes = [_run(argv, log) for argv in commands]
+        if step == "compare":  # a scene that compares nothing is a result; a usage error is not
+            bad = [c for c in codes if c == EXIT_USAGE]
+        else:
+            bad = [c for c in codes if c != 0]
+        timings[step] = round(time.perf_counter() - t0, 1)
+        print(f" {timings[step]:g} s" + (f" (FAILED: see {log})" if bad else ""), file=sys.stderr, flush=True)
+        if bad:
+            failed.append(step)
+    matrix_path = os.path.join(out, "conformance", "matrix.json")
+    if os.path.exists(matrix_path):
+        with open(matrix_path, encoding="utf-8") as f:
+            table = features(json.load(f), backends)
+        with open(os.path.join(out, "features.json"), "w", encoding="utf-8") as f:
+            json.dump(table, f, indent=1)
+            f.write("\n")
+    timings["total"] = round(time.perf_counter() - started, 1)
+    meta = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+            "backends": {b: info[b].version for b in backends}, "cpus": os.cpu_count(), "timings_s": timings,
+            "failed": failed, "quick": args.quick}
+    with open(os.path.join(out, "report.json"), "w", encoding="utf-8") as f:
+        json.dump(meta, f, indent=1)
+        f.write("\n")
+    page = write_report(out)
+    print(f"report: wrote {page} and report.md in {timings['total']:g} s", file=sys.stderr)
+    return EXIT_FAILED if failed else EXIT_OK
+
+
+def add_command(sub) -> None:
+    p = sub.add_parser("report", help="the main job: conformance, comparisons, sweeps, stability and the feature "
+                                      "tables as one HTML page and markdown",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--out", default=os.path.join("out", "report"), metavar="DIR",
+                   help="folder for index.html, report.md and every step's results (default out/report)")
+    p.add_argument("--backends", action="append", metavar="LIST",
+                   help="backends, comma-separated (default: every installed one)")
+    p.add_argument("--quick", action="store_true", help="leave out the sweep, the longest step")
+    p.set_defaults(func=cmd_report)

@@ -1,0 +1,95 @@
+"""`x3drbp report`: the steps' results gathered into one page, and the feature table that sets
+each backend's declarations against the verdicts of the cases exercising each feature."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from backends import base
+from conftest import ROOT, SCENES
+from conformance import report_command as R
+from reports.report_page import report_markdown
+
+INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
+needs_two = pytest.mark.skipif(len(INSTALLED) < 2, reason="a report compares two installed backends or more")
+
+
+def test_features_set_declarations_against_the_cases_verdicts():
+    backend = INSTALLED[0]
+    matrix = {"results": [{"case": "free_fall", "backend": backend, "verdict": "fail"},
+                          {"case": "projectile", "backend": backend, "verdict": "pass"}]}
+    table = R.features(matrix, [backend])
+    gravity = next(r for r in table["features"] if r["feature"] == "RigidBodyCollection.gravity")
+    cell = gravity["backends"][backend]
+    assert cell["support"] == base.load(backend).support("RigidBodyCollection.gravity").support.value
+    assert {"case": "free_fall", "verdict": "fail"} in cell["cases"]
+    velocity = next(r for r in table["features"] if r["feature"] == "RigidBody.linearVelocity")
+    assert {"case": "projectile", "verdict": "pass"} in velocity["backends"][backend]["cases"]
+    declared = table["declared"][backend]
+    assert sum(declared.values()) == len(base.load(backend).table())
+
+
+def _fake_results(out) -> None:
+    """What the steps leave behind, written by hand: the page must need nothing else."""
+    (out / "conformance").mkdir(parents=True)
+    (out / "conformance" / "matrix.md").write_text("# x3drbp conformance\n\n| case | a |\n|---|---|\n| free_fall | "
+                                                   "pass |\n\n## Measures\n\nsee [traces](traces/x.csv)\n")
+    (out / "stability").mkdir()
+    (out / "stability" / "stability.md").write_text("# x3drbp stability\n\n| case | dt | a |\n|---|---|---|\n")
+    (out / "compare").mkdir()
+    feature = {"feature": "RigidBody.mass", "backends": {
+        "a": {"support": "native", "note": "", "cases": [{"case": "c1", "verdict": "fail"}]},
+        "b": {"support": "approximate", "note": "", "cases": [{"case": "c1", "verdict": "unsupported"}]}}}
+    (out / "features.json").write_text(json.dumps({"features": [feature], "declared": {
+        "a": {"native": 3, "approximate": 1, "unsupported": 0}, "b": {"native": 1, "approximate": 2, "unsupported": 1}}}))
+    (out / "report.json").write_text(json.dumps({
+        "generated": "2026-11-21T00:00:00+00:00", "backends": {"a": "1", "b": "2"}, "cpus": 2,
+        "timings_s": {"conformance": 1.5, "stability": 2.0, "total": 3.5}, "failed": [], "quick": True}))
+
+
+def test_the_page_gathers_each_section_from_the_files_alone(tmp_path):
+    _fake_results(tmp_path)
+    text = report_markdown(str(tmp_path))
+    assert text.startswith("# x3drbp report") and "in 3.5 s (conformance 1.5 s, stability 2 s)" in text
+    assert "# x3drbp conformance" not in text and "### Measures" in text  # titles dropped, headings down one
+    assert "[traces](conformance/traces/x.csv)" in text  # links into the step's folder
+    assert "Not run (`x3drbp report --quick` leaves it out)" in text  # no sweep
+    assert "| RigidBody.mass | **native: 0 pass, 1 not (c1)** | approx.: 0 pass, 1 refused |" in text
+    assert "| a | 3 | 1 | 0 |" in text
+
+
+@needs_two
+def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys):
+    """The real steps, made small: one case, one example scene for half a second, one hard case."""
+    pair = ",".join(INSTALLED[:2])
+    out = str(tmp_path / "report")
+
+    def small(out_dir, backends, quick):
+        chosen = ["--backends", ",".join(backends)]
+        return [("conformance", [["conformance", *chosen, "--cases", "free_fall", "--out",
+                                   os.path.join(out_dir, "conformance")]]),
+                ("compare", [["compare", os.path.join(SCENES, "examples", "pendulum.x3d"), *chosen, "--duration",
+                              "0.5", "--json", os.path.join(out_dir, "compare", "pendulum.json")]]),
+                ("stability", [["stability", *chosen, "--cases", "four_bar_linkage", "--dts", "1/60", "--out",
+                                os.path.join(out_dir, "stability")]])]
+    monkeypatch.setattr(R, "_steps", small)
+    from conformance.cli import main
+    assert main(["report", "--out", out, "--backends", pair]) == 0
+    page = open(os.path.join(out, "index.html"), encoding="utf-8").read()
+    assert page.startswith("<!DOCTYPE html>") and page.count("<table>") >= 5
+    text = open(os.path.join(out, "report.md"), encoding="utf-8").read()
+    assert "| free_fall |" in text and "### pendulum.x3d" in text and "four_bar_linkage" in text
+    meta = json.load(open(os.path.join(out, "report.json"), encoding="utf-8"))
+    assert set(meta["timings_s"]) == {"conformance", "compare", "stability", "total"} and not meta["failed"]
+    assert "$ x3drbp conformance" in open(os.path.join(out, "logs", "conformance.log"), encoding="utf-8").read()
+
+
+def test_bad_usage_is_exit_2_without_a_traceback(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "conformance.cli", "report", "--backends", "nope", "--out",
+                        str(tmp_path)], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2 and "unknown backend(s) nope" in r.stderr and "Traceback" not in r.stderr
