@@ -24,8 +24,7 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     nonzero = [p["error"] for p in points if p["error"] > 0]
     floor = min(nonzero) / 10 if nonzero else 1e-16
     fig, ax = plt.subplots(figsize=(9, 6))
-    backends = list(dict.fromkeys(p["backend"] for p in points))
-    for b, backend in enumerate(backends):
+    for b, backend in enumerate(doc["backends"]):  # a backend keeps its colour in every plot
         mine = [p for p in points if p["backend"] == backend]
         for v, var in enumerate(dict.fromkeys(variation(p) for p in mine)):
             line = sorted((p for p in mine if variation(p) == var), key=lambda p: -p["dt"])
