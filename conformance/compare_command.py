@@ -1,14 +1,16 @@
 """`x3drbp compare`: one scene on several backends, and where and how far their runs part.
 
     x3drbp compare SCENE [--backends LIST] [--duration S] [--dt S] [--frame-rate HZ]
-                   [--threshold KIND=VALUE] [--json OUT.json] [--timeout S] [--jobs N]
+                   [--threshold KIND=VALUE] [--json OUT.json] [--rerun OUT.rrd] [--timeout S] [--jobs N]
 
 Runs the scene on each backend, each in its own child process with a time limit (a
 crash, timeout, blow-up or refusal is that backend's verdict), then compares every pair
 that ran: body position (m) and orientation (rad) divergence per frame and over the run,
 the first frame a body passes the threshold and the bodies over it, the joint outputs
 both runs hold (conformance/compare.py says how each is measured), and each run's
-real-time factor. Prints the tables; --json writes all of it, the per-frame series too.
+real-time factor. Prints the tables; --json writes all of it, the per-frame series too;
+--rerun a rerun recording of every run side by side with the divergence series
+(reports/rerun_recording.py), and the seconds it took on stderr.
 
 Exit status: 0 when at least one pair was compared, whatever the divergences (they are
 results); 1 when nothing could be compared: the scene does not load (each error one
@@ -67,7 +69,8 @@ def cmd_compare(args: argparse.Namespace) -> int:
         value = getattr(args, name)
         if not (math.isfinite(value) and value > 0):
             return _usage(f"--{name.replace('_', '-')} must be a positive number, not {value:g}")
-    if load_scene(args.scene) is None:
+    scene = load_scene(args.scene)
+    if scene is None:
         return EXIT_NOTHING_COMPARED
     info = runner.backend_table(args.timeout)
     backends = _names(args.backends) or [n for n, i in info.items() if i.usable]
@@ -85,6 +88,12 @@ def cmd_compare(args: argparse.Namespace) -> int:
         with open(args.json, "w", encoding="utf-8") as f:
             json.dump(result.to_json(), f, indent=1)
             f.write("\n")
+    if args.rerun:
+        from reports.rerun_recording import write_recording  # rerun is imported when a recording is asked for
+        seconds = write_recording(args.rerun, scene, [(r.backend, v) for r, v in runs if v is not None], result.pairs)
+        ran = sum(r.simulation_wall_s or 0.0 for r in result.runs)
+        print(f"x3drbp compare: wrote {args.rerun} in {seconds:.3g} s (the runs' simulations: {ran:.3g} s)",
+              file=sys.stderr)
     if not result.pairs:
         print("x3drbp compare: fewer than two backends ran: nothing compared", file=sys.stderr)
         return EXIT_NOTHING_COMPARED
@@ -103,6 +112,8 @@ def add_command(sub) -> None:
                         f"(default position={DEFAULT_THRESHOLDS['position']:g},"
                         f"orientation={DEFAULT_THRESHOLDS['orientation']:g})")
     p.add_argument("--json", metavar="OUT.json", help="write the full result, per-frame series included")
+    p.add_argument("--rerun", metavar="OUT.rrd",
+                   help="write a rerun recording of the runs and their divergence (open it with `rerun OUT.rrd`)")
     p.add_argument("--timeout", type=float, default=runner.DEFAULT_TIMEOUT, metavar="S",
                    help=f"time limit per run in seconds (default {runner.DEFAULT_TIMEOUT:g})")
     p.add_argument("--jobs", type=int, default=1, metavar="N",

@@ -95,6 +95,10 @@ def cmd_run(args: argparse.Namespace) -> int:
     except Exception as e:  # the engine refused its model: still one line, never a traceback
         print(f"{args.scene}: {args.backend} failed: {type(e).__name__}: {e}", file=sys.stderr)
         return EXIT_ERROR
+    if args.rerun:
+        from reports.rerun_recording import write_recording  # rerun is imported when a recording is asked for
+        from .cases import TraceView
+        write_recording(args.rerun, scene, [(args.backend, TraceView(trace.rows))])
     if args.trace:
         trace.write(args.trace)
     else:
@@ -130,6 +134,7 @@ def add_commands(sub) -> None:
     r.add_argument("--backend", required=True, help=f"one of {', '.join(base.ENGINES)}")
     add_run_settings(r)
     r.add_argument("--trace", help="write the trace CSV here (default: standard output)")
+    r.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording of the run (open it with `rerun OUT.rrd`)")
     r.add_argument("--timing", metavar="FILE", help="write the simulation's wall time (plan, engine build, "
                    "steps, state readback; not the load or the trace writing) to FILE as JSON "
                    "{\"simulation_wall_s\": S, \"step_wall_s\": T}, T the engine's steps alone")
