@@ -22,11 +22,11 @@ not a positive number.
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 
 from reports.compare_text import render
+from x3d_core import atomic
 
 from . import runner
 from .cases import Settings
@@ -85,9 +85,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
                         [r for r, _ in runs], compare_all(runs, thresholds))
     sys.stdout.write(render(result))
     if args.json:
-        with open(args.json, "w", encoding="utf-8") as f:
-            json.dump(result.to_json(), f, indent=1)
-            f.write("\n")
+        atomic.write_json(args.json, result.to_json())
     if args.rerun:
         from reports.rerun_recording import write_recording  # rerun is imported when a recording is asked for
         seconds = write_recording(args.rerun, scene, [(r.backend, v) for r, v in runs if v is not None], result.pairs)

@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 import math
 import os
 import sys
 
 from reports.text import escape as _escape
 from reports.text import num as _num
+from x3d_core import atomic
 
 from . import cases as C
 from . import runner
@@ -149,11 +149,8 @@ def cmd_conformance(args: argparse.Namespace) -> int:
         convergence = runner.run_convergence(cases, runnable, C.CONVERGENCE_DTS, args.timeout, args.jobs)
     text = markdown(results, cases, backends, info, convergence)
     os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "matrix.md"), "w", encoding="utf-8") as f:
-        f.write(text)
-    with open(os.path.join(args.out, "matrix.json"), "w", encoding="utf-8") as f:
-        json.dump(to_json(results, cases, backends, info, convergence), f, indent=1)
-        f.write("\n")
+    atomic.write_text(os.path.join(args.out, "matrix.md"), text)
+    atomic.write_json(os.path.join(args.out, "matrix.json"), to_json(results, cases, backends, info, convergence))
     sys.stdout.write(text)
     print(f"\nwrote {os.path.join(args.out, 'matrix.md')} and matrix.json")
     return EXIT_OK

@@ -29,6 +29,7 @@ import sys
 import time
 
 from backends import base
+from x3d_core import atomic
 
 from . import cases as C
 from . import runner
@@ -120,16 +121,12 @@ def cmd_report(args: argparse.Namespace) -> int:
     if os.path.exists(matrix_path):
         with open(matrix_path, encoding="utf-8") as f:
             table = features(json.load(f), backends)
-        with open(os.path.join(out, "features.json"), "w", encoding="utf-8") as f:
-            json.dump(table, f, indent=1)
-            f.write("\n")
+        atomic.write_json(os.path.join(out, "features.json"), table)
     timings["total"] = round(time.perf_counter() - started, 1)
     meta = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "backends": {b: info[b].version for b in backends}, "cpus": os.cpu_count(), "timings_s": timings,
             "failed": failed, "quick": args.quick}
-    with open(os.path.join(out, "report.json"), "w", encoding="utf-8") as f:
-        json.dump(meta, f, indent=1)
-        f.write("\n")
+    atomic.write_json(os.path.join(out, "report.json"), meta)
     page = write_report(out)
     print(f"report: wrote {page} and report.md in {timings['total']:g} s", file=sys.stderr)
     return EXIT_FAILED if failed else EXIT_OK

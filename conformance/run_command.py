@@ -3,16 +3,17 @@
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 
 from backends import base
+from x3d_core import atomic
 from x3d_core.analysis import run_features
 from x3d_core.engine import BlewUp, Engine, Simulation, Unsupported
 from x3d_core.evaluator import RunSettings, run
 from x3d_core.load import load
 from x3d_core.model import LoadError, Scene
+from x3d_core.trace import Trace
 from x3d_core.world import World, worlds
 
 EXIT_OK, EXIT_ERROR, EXIT_UNSUPPORTED = 0, 1, 3
@@ -60,6 +61,14 @@ def load_scene(path: str) -> Scene | None:
     return None if scene.errors else scene
 
 
+def _write_trace(trace: Trace, path: str | None) -> None:
+    """The trace to path (atomically), else to standard output."""
+    if path:
+        trace.write(path)
+    else:
+        sys.stdout.write(trace.text())
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     scene = load_scene(args.scene)
     if scene is None:
@@ -90,22 +99,22 @@ def cmd_run(args: argparse.Namespace) -> int:
         print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
         return EXIT_UNSUPPORTED
     except BlewUp as e:
-        print(f"{args.scene}: {args.backend}: {e}", file=sys.stderr)
+        kept = "no trace written"
+        if e.trace is not None:
+            _write_trace(e.trace, args.trace)
+            kept = f"the frames before it written to {args.trace or 'standard output'}"
+        print(f"{args.scene}: {args.backend}: {e} ({kept})", file=sys.stderr)
         return EXIT_ERROR
     except Exception as e:  # the engine refused its model: still one line, never a traceback
         print(f"{args.scene}: {args.backend} failed: {type(e).__name__}: {e}", file=sys.stderr)
         return EXIT_ERROR
+    _write_trace(trace, args.trace)
     if args.rerun:
         from reports.rerun_recording import write_recording  # rerun is imported when a recording is asked for
         from .cases import TraceView
         write_recording(args.rerun, scene, [(args.backend, TraceView(trace.rows))])
-    if args.trace:
-        trace.write(args.trace)
-    else:
-        sys.stdout.write(trace.text())
     if args.timing:
-        with open(args.timing, "w", encoding="utf-8") as f:
-            json.dump({"simulation_wall_s": simulation_s, "step_wall_s": clock.step_s}, f)
+        atomic.write_json(args.timing, {"simulation_wall_s": simulation_s, "step_wall_s": clock.step_s}, indent=None)
     return EXIT_OK
 
 

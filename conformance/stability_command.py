@@ -15,13 +15,13 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 import os
 import sys
 import time
 from fractions import Fraction
 
 from reports.stability_table import markdown
+from x3d_core import atomic
 
 from . import runner
 from . import stability as S
@@ -79,11 +79,8 @@ def cmd_stability(args: argparse.Namespace) -> int:
     data = to_json(results, cases, backends, dts, info, jobs, wall_s)
     text = markdown(data)
     os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "stability.json"), "w", encoding="utf-8") as f:
-        json.dump(data, f, indent=1)
-        f.write("\n")
-    with open(os.path.join(args.out, "stability.md"), "w", encoding="utf-8") as f:
-        f.write(text)
+    atomic.write_json(os.path.join(args.out, "stability.json"), data)
+    atomic.write_text(os.path.join(args.out, "stability.md"), text)
     sys.stdout.write(text)
     print(f"\nwrote {os.path.join(args.out, 'stability.md')} and stability.json")
     return EXIT_OK

@@ -21,11 +21,12 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 import os
 import sys
 import time
 from fractions import Fraction
+
+from x3d_core import atomic
 
 from . import runner
 from . import sweep as S
@@ -89,14 +90,11 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     from reports.plots import sweep_plot  # matplotlib: only here, not in every `x3drbp run` child
     from reports.sweep_tables import markdown
     os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "sweep.json"), "w", encoding="utf-8") as f:
-        json.dump(doc, f, indent=1)
-        f.write("\n")
+    atomic.write_json(os.path.join(args.out, "sweep.json"), doc)
     for t in chosen:
         sweep_plot(doc, t.name, os.path.join(args.out, f"sweep_{t.name}.png"))
     text = markdown(doc)
-    with open(os.path.join(args.out, "sweep.md"), "w", encoding="utf-8") as f:
-        f.write(text)
+    atomic.write_text(os.path.join(args.out, "sweep.md"), text)
     if not args.quiet:
         sys.stdout.write(text)
     print(f"wrote {os.path.join(args.out, 'sweep.md')}, sweep.json and {len(chosen)} plot(s) in {doc['wall_s']:g} s")

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from x3d_core import atomic
 from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.trace import read_trace
@@ -61,8 +62,7 @@ def with_collection_fields(src: str, dst: str, iterations: int | None, prefer_ac
             node.values["iterations"] = iterations
         if prefer_accuracy is not None:
             node.values["preferAccuracy"] = prefer_accuracy
-    with open(dst, "wb") as f:
-        f.write(write_xml(scene))
+    atomic.write_bytes(dst, write_xml(scene))
 
 
 def positions(view: C.TraceView) -> Positions:

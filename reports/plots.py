@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import io
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
+
+from x3d_core import atomic  # noqa: E402
 
 from .sweep_tables import variation  # noqa: E402
 
@@ -49,5 +53,7 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     if points:
         ax.legend(fontsize=6, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    png = io.BytesIO()
+    fig.savefig(png, format="png", dpi=110)
+    atomic.write_bytes(path, png.getvalue())
     plt.close(fig)

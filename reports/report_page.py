@@ -18,6 +18,7 @@ import re
 import markdown as md
 
 from conformance.compare import Comparison
+from x3d_core import atomic
 
 from .compare_text import render as render_comparison
 from .text import escape
@@ -132,12 +133,10 @@ def report_markdown(out: str) -> str:
 def write_report(out: str) -> str:
     """Writes DIR/report.md and DIR/index.html; returns the page's path."""
     text = report_markdown(out)
-    with open(os.path.join(out, "report.md"), "w", encoding="utf-8") as f:
-        f.write(text)
+    atomic.write_text(os.path.join(out, "report.md"), text)
     body = md.markdown(text, extensions=["tables", "toc"])
     page = os.path.join(out, "index.html")
-    with open(page, "w", encoding="utf-8") as f:
-        f.write("<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
-                f"<title>{html.escape('x3drbp report')}</title><style>{_STYLE}</style></head>\n"
-                f"<body>\n{body}\n</body></html>\n")
+    atomic.write_text(page, "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
+                            f"<title>{html.escape('x3drbp report')}</title><style>{_STYLE}</style></head>\n"
+                            f"<body>\n{body}\n</body></html>\n")
     return page

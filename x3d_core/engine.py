@@ -20,8 +20,11 @@ class Unsupported(Exception):
 
 
 class BlewUp(RuntimeError):
-    """A body's state stopped being finite, or the engine gave up on it; the message says
-    what (the evaluator adds when)."""
+    """A body's state stopped being finite (or sane, see evaluator.STATE_BOUND), or the
+    engine gave up on it; the message says what (the evaluator adds when). `trace`, set by
+    the evaluator, holds every frame before the one that blew up: what did run is kept."""
+
+    trace = None
 
 
 class Simulation(Protocol):

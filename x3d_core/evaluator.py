@@ -25,6 +25,13 @@ from .world import STATIC, State, World
 # A frame end that lands within this fraction of a step of a step boundary counts as
 # on it: frame times are sums of decimal fractions and carry rounding of ~1e-16 s.
 _STEP_SLACK = 1e-9
+# The largest |position| (m) and |velocity| (m/s, rad/s) a body may have before its run counts
+# as blown up. An engine that hides a non-finite joint transform (DART uses the identity)
+# carries on with finite but absurd states (1e157 rad/s). 1e12 is beyond any scene the
+# component models: 1e12 m is 7 AU, where float64 keeps only 0.1 mm (less than contact and
+# joint tolerances); 1e12 m/s is 3000 times the speed of light; at 1e12 rad/s a body turns
+# 1e6 rad in a microsecond step, so its orientation means nothing.
+STATE_BOUND = 1e12
 _OUTPUT_TYPES = {"angle": "SFFloat", "angleRate": "SFFloat", "separation": "SFFloat", "separationRate": "SFFloat",
                  "hinge1Angle": "SFFloat", "hinge1AngleRate": "SFFloat", "hinge2Angle": "SFFloat",
                  "hinge2AngleRate": "SFFloat", "body1AnchorPoint": "SFVec3f", "body2AnchorPoint": "SFVec3f",
@@ -159,25 +166,33 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
     inputs = [_StepInputs(w, dt) for w in worlds]
     recorders = [_Recorder(w, sim) for w, sim in zip(worlds, sims)]
     trace = Trace()
-    for rec in recorders:
-        rec.record(trace, 0.0)
-    steps = 0
-    for t in settings.frame_times() if frame_times is None else frame_times:
-        due = int(math.floor(t / dt + _STEP_SLACK))
-        for sim, step_inputs in zip(sims, inputs):
-            try:
-                if step_inputs.active:
-                    for _ in range(due - steps):
-                        step_inputs.before(sim)
-                        sim.step()
-                        step_inputs.after(sim)
-                elif due > steps:
-                    sim.step(due - steps)
-            except BlewUp as e:
-                raise BlewUp(f"blew up by t={due * dt:g}: {e}") from None
-        steps = max(steps, due)
+    whole = 0  # trace.blocks[:whole] are the frames recorded for every world
+    try:
         for rec in recorders:
-            rec.record(trace, float(t))
+            rec.record(trace, 0.0)
+        whole = len(trace.blocks)
+        steps = 0
+        for t in settings.frame_times() if frame_times is None else frame_times:
+            due = int(math.floor(t / dt + _STEP_SLACK))
+            for sim, step_inputs in zip(sims, inputs):
+                try:
+                    if step_inputs.active:
+                        for _ in range(due - steps):
+                            step_inputs.before(sim)
+                            sim.step()
+                            step_inputs.after(sim)
+                    elif due > steps:
+                        sim.step(due - steps)
+                except BlewUp as e:
+                    raise BlewUp(f"blew up by t={due * dt:g}: {e}") from None
+            steps = max(steps, due)
+            for rec in recorders:
+                rec.record(trace, float(t))
+            whole = len(trace.blocks)
+    except BlewUp as e:
+        del trace.blocks[whole:]
+        e.trace = trace
+        raise
     return trace
 
 
@@ -232,7 +247,8 @@ class _Sensors:
 
 
 class _Recorder:
-    """Reads one world's state at a frame end into the trace, and checks it is finite."""
+    """Reads one world's state at a frame end into the trace, and checks it is finite and
+    within STATE_BOUND."""
 
     def __init__(self, world: World, sim: Simulation):
         self.world, self.sim = world, sim
@@ -248,6 +264,12 @@ class _Recorder:
             if not np.isfinite(arr).all():
                 row = int(np.flatnonzero(~np.isfinite(arr).reshape(len(arr), -1).all(axis=1))[0])
                 raise BlewUp(f"blew up at t={t:g}: {self.world.bodies.names[row]} has a non-finite state")
+        for arr, what in ((s.position, "position"), (s.linear_velocity, "linear velocity"),
+                          (s.angular_velocity, "angular velocity")):
+            if len(arr) and np.abs(arr).max() > STATE_BOUND:
+                row = int(np.flatnonzero((np.abs(arr) > STATE_BOUND).any(axis=1))[0])
+                raise BlewUp(f"blew up at t={t:g}: {self.world.bodies.names[row]}'s {what} is beyond "
+                             f"{STATE_BOUND:g} (SI units)")
         pick = (lambda a: a) if self.all else (lambda a: a[self.rows])
         trace.add_many(t, self.names, "position", "SFVec3f", pick(s.position))
         trace.add_many(t, self.names, "orientation", "SFRotation", pick(s.orientation), convert=R.to_axis_angle)

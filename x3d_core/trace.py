@@ -8,13 +8,12 @@ A trace is written whole or not at all: to a temporary name, then renamed.
 from __future__ import annotations
 
 import csv
-import os
-import tempfile
 from dataclasses import dataclass
 from typing import Any, Callable, Iterator, NamedTuple
 
 import numpy as np
 
+from . import atomic
 from . import fields as F
 
 HEADER = ("time", "node", "field", "value")
@@ -133,15 +132,7 @@ class Trace:
         return "\n".join(lines)
 
     def write(self, path: str) -> None:
-        folder = os.path.dirname(os.path.abspath(path))
-        fd, tmp = tempfile.mkstemp(prefix=".trace-", suffix=".csv", dir=folder)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
-                f.write(self.text())
-            os.replace(tmp, path)
-        except BaseException:
-            os.unlink(tmp)
-            raise
+        atomic.write_text(path, self.text())
 
 
 def _quoted(text: str) -> str:
