@@ -45,9 +45,10 @@ def _steps(out: str, backends: list[str], quick: bool) -> list[tuple[str, list[l
     chosen = ["--backends", ",".join(backends)]
     examples = sorted(os.path.join(EXAMPLES, f) for f in os.listdir(EXAMPLES))
     steps = [("conformance", [["conformance", *chosen, "--out", os.path.join(out, "conformance")]]),
-             ("compare", [["compare", path, *chosen, "--duration", f"{COMPARE_SECONDS:g}", "--json",
-                           os.path.join(out, "compare", os.path.splitext(os.path.basename(path))[0] + ".json")]
-                          for path in examples]),
+             ("compare", [["compare", path, *chosen, "--duration", f"{COMPARE_SECONDS:g}",
+                           "--json", stem + ".json", "--rerun", stem + ".rrd"]
+                          for path in examples
+                          for stem in [os.path.join(out, "compare", os.path.splitext(os.path.basename(path))[0])]]),
              ("sweep", [["sweep", *chosen, "--quiet", "--out", os.path.join(out, "sweep")]]),
              ("stability", [["stability", *chosen, "--out", os.path.join(out, "stability")]])]
     return [s for s in steps if not (quick and s[0] == "sweep")]

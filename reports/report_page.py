@@ -94,6 +94,10 @@ def _comparisons(out: str) -> str:
         with open(path, encoding="utf-8") as f:
             comparison = Comparison.from_json(json.load(f))
         parts += ["", f"### {os.path.basename(comparison.scene)}", "", _section(render_comparison(comparison))]
+        rrd = os.path.basename(os.path.splitext(path)[0] + ".rrd")
+        parted = any(d.first_over is not None for p in comparison.pairs for d in (p.position, p.orientation))
+        if parted and os.path.exists(os.path.join(out, "compare", rrd)):
+            parts.append(f"Where they part, as a rerun recording: [{rrd}](compare/{rrd}) (open it with `rerun {rrd}`).")
     return "\n".join(parts) + "\n"
 
 

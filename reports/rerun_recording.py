@@ -29,6 +29,7 @@ import rerun.blueprint as rrb
 from conformance.cases import TraceView
 from conformance.compare import JOINT_OUTPUTS, ORIENTATION, POSITION, Divergence, PairComparison, bodies
 from x3d_core import rotation as R
+from x3d_core.collision import Geometry
 from x3d_core.model import Scene
 from x3d_core.world import STATIC, worlds
 
@@ -55,17 +56,20 @@ def _times(t: np.ndarray) -> list[rr.TimeColumn]:
     return [rr.TimeColumn(TIMELINE, duration=t)]
 
 
-def _geometry(rec: rr.RecordingStream, backend: str, scene: Scene, names: Sequence[str], color) -> None:
-    """Static shapes: each body's collidables in its frame, the static environment in the world."""
-    drawn: set[str] = set()
-    for w in worlds(scene):
-        for g in (w.collisions.geometries if w.collisions is not None else []):
-            where = (backend, "static", g.name) if g.body == STATIC else \
-                (backend, "bodies", w.bodies.names[g.body], g.name)
-            rec.log(path(*where), rr.Transform3D(translation=g.position, quaternion=xyzw(g.orientation)),
-                    shape(g, color), static=True)
-            if g.body != STATIC:
-                drawn.add(w.bodies.names[g.body])
+def placed_shapes(scene: Scene) -> list[tuple[tuple[str, ...], Geometry]]:
+    """Each collidable and where it hangs below a backend's root: its body, or static."""
+    return [(("static", g.name) if g.body == STATIC else ("bodies", w.bodies.names[g.body], g.name), g)
+            for w in worlds(scene) for g in (w.collisions.geometries if w.collisions is not None else [])]
+
+
+def _geometry(rec: rr.RecordingStream, backend: str, shapes: Sequence[tuple[tuple[str, ...], Geometry]],
+              names: Sequence[str], color: tuple[int, int, int]) -> None:
+    """Static shapes: each body's collidables in its frame, the static environment in the
+    world, a marker for a body with none."""
+    for where, g in shapes:
+        rec.log(path(backend, *where), rr.Transform3D(translation=g.position, quaternion=xyzw(g.orientation)),
+                shape(g, color), static=True)
+    drawn = {where[1] for where, _ in shapes if where[0] == "bodies"}
     for n in names:
         if n not in drawn:
             rec.log(path(backend, "bodies", n, "marker"), marker(color), static=True)
@@ -78,7 +82,8 @@ def _poses(rec: rr.RecordingStream, backend: str, trace: TraceView, names: Seque
         rec.send_columns(path(backend, "bodies", n), _times(t), rr.Transform3D.columns(translation=p, quaternion=q))
 
 
-def _contacts(rec: rr.RecordingStream, backend: str, trace: TraceView, frames: np.ndarray, color) -> None:
+def _contacts(rec: rr.RecordingStream, backend: str, trace: TraceView, frames: np.ndarray,
+              color: tuple[int, int, int]) -> None:
     """Every sensor's contacts per frame; a frame without any gets an empty row, so that
     the last contacts do not linger."""
     if not len(frames):
@@ -154,11 +159,12 @@ def write_recording(out: str, scene: Scene, runs: Sequence[tuple[str, TraceView]
     started = time.perf_counter()
     rec = rr.RecordingStream("x3drbp", make_default=False)
     rec.set_log_time_enabled(False)  # simulation time is the one timeline
+    shapes = placed_shapes(scene)
     any_joints = False
     for k, (backend, trace) in enumerate(runs):
         color = PALETTE[k % len(PALETTE)]
         names = bodies(trace)
-        _geometry(rec, backend, scene, names, color)
+        _geometry(rec, backend, shapes, names, color)
         _poses(rec, backend, trace, names)
         frames = np.unique(np.concatenate([trace.series(n, POSITION)[0] for n in names])) if names else np.empty(0)
         _contacts(rec, backend, trace, frames, color)

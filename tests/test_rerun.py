@@ -12,6 +12,7 @@ from rerun.chunk import RrdReader
 
 from conformance.cli import main as cli_main
 from conftest import SCENES
+from reports.report_page import _comparisons
 from reports.rerun_recording import TIMELINE
 from reports.rerun_shapes import cone_mesh, grid_triangles
 
@@ -35,7 +36,8 @@ def _times(batches: list[pa.RecordBatch]) -> np.ndarray:
 
 
 def test_compare_recording_holds_each_backend_its_bodies_and_compares_divergence(tmp_path):
-    rrd, js = tmp_path / "cradle.rrd", tmp_path / "cradle.json"
+    (tmp_path / "compare").mkdir()
+    rrd, js = tmp_path / "compare" / "cradle.rrd", tmp_path / "compare" / "cradle.json"
     assert cli_main(["compare", CRADLE, "--backends", "bullet,mujoco", "--duration", "2", "--json", str(js),
                      "--rerun", str(rrd)]) == 0
     pair = json.loads(js.read_text())["pairs"][0]
@@ -61,6 +63,7 @@ def test_compare_recording_holds_each_backend_its_bodies_and_compares_divergence
     assert all(level == "WARN" for level in np.ravel(_column(events, "TextLog:level")))
     assert _column(entities[f"{where}/position_first_over"], "Scalars:scalars") == [[first["bodies"][0]["value"]]]
     assert RrdReader(str(rrd)).blueprints()  # the layout travels with the recording
+    assert "[cradle.rrd](compare/cradle.rrd)" in _comparisons(str(tmp_path))  # the report links it
 
 
 def test_run_recording_has_one_backend_and_no_divergence(tmp_path):
