@@ -120,6 +120,8 @@ def _from_tokens(ftype: FieldType, tokens: list) -> Any:
         except (ValueError, TypeError):
             bad = next(t for t in tokens if not _is_float(t))
             raise FieldError(f"{bad!r} is not a number; expected {ftype.describe()}") from None
+        except OverflowError:  # a JSON integer beyond the float range
+            raise FieldError(f"number beyond the float range; expected {ftype.describe()}") from None
         if not np.isfinite(arr).all():
             raise FieldError(f"non-finite number; expected {ftype.describe()}")
     else:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import re
 from typing import Any
 
@@ -12,14 +13,21 @@ from .build import Builder
 from .model import Location, Node, Scene
 
 _HEADER = re.compile(rb"^\s*#(X3D V[34]\.\d+|VRML V2\.0) [A-Za-z0-9_-]+")
-# A string may lack its closing quote only at the end of the file: the loader reports it
-_TOKEN = re.compile(r'(?:[\s,]+|#[^\n\r]*)*("(?:[^"\\]|\\.)*"?|[\[\]{}]|[^\s,"#\[\]{}]+)', re.S)
-_CLOSED_STRING = re.compile(r'"(?:[^"\\]|\\.)*"', re.S)
+# A string may lack its closing quote only at the end of the file: the loader reports it.
+# Possessive (*+, ++) throughout: a file ending in a long run of blanks made the regex try
+# every way of splitting it (2^n: a hang), and a string of 10^7 characters took 1.3 GiB of
+# backtracking state, one entry per character.
+_TOKEN = re.compile(r'(?:[\s,]+|#[^\n\r]*)*+("(?:[^"\\]++|\\.)*+"?|[\[\]{}]|[^\s,"#\[\]{}]+)', re.S)
+_CLOSED_STRING = re.compile(r'"(?:[^"\\]++|\\.)*+"', re.S)
 _NUMBER = re.compile(r"^[+-]?(?:0[xX][0-9a-fA-F]+|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)$")
 _ACCESS = frozenset({"inputOnly", "outputOnly", "initializeOnly", "inputOutput",
                      "eventIn", "eventOut", "field", "exposedField"})
 _KEYWORDS = frozenset({"DEF", "USE", "ROUTE", "TO", "PROTO", "EXTERNPROTO", "IS", "NULL", "IMPORT", "EXPORT",
                        "AS", "TRUE", "FALSE"})
+# Every token costs ~300 bytes here (its text, match, position, line and column): 2e6 tokens
+# load in ~2.5 s and ~650 MiB; a file of 1e7 numbers took 20 s and 3 GiB. Larger arrays
+# belong in the XML or JSON encoding, which keep numbers as text until parsed in bulk.
+MAX_TOKENS = 2_000_000
 _END = " end of file"  # after the last token; no real token starts with a space
 _NUMBER_START = frozenset("0123456789+-.")
 
@@ -46,7 +54,12 @@ class _Parser:
         self.b = b
         self.path = path
         self.text = text
-        matches = list(_TOKEN.finditer(text, start))
+        matches = list(itertools.islice(_TOKEN.finditer(text, start), MAX_TOKENS + 1))
+        if len(matches) > MAX_TOKENS:
+            line = text.count("\n", 0, matches[-1].start(1)) + 1
+            raise b.fatal(Location(path, line, 1), f"more than {MAX_TOKENS} tokens (numbers, names, brackets): "
+                                                   "x3drbp reads no larger ClassicVRML file; the XML or JSON "
+                                                   "encoding holds larger arrays")
         self.ntok = len(matches)
         self.toks: list[str] = [m.group(1) for m in matches] + [_END, _END]
         self.pos: list[int] = [m.start(1) for m in matches] + [len(text)]
