@@ -525,6 +525,9 @@ class MujocoSimulation:
         m, d = self.model, self.data
         if m.nv == 0:
             return
+        if not (linear.any() or angular.any()):  # at rest: every joint is still, and no fit (cubic in bodies) is needed
+            d.qvel[:] = 0.0
+            return
         self._forward_kinematics()
         if self.direct is not None:  # a free joint moves its origin: v_origin = v_com - w x (com - origin)
             rows, ids = self.direct, self.ids[self.direct]
