@@ -16,6 +16,7 @@ from .report_command import add_command as add_report
 from .run_command import add_commands
 from .stability_command import add_command as add_stability
 from .sweep_command import add_command as add_sweep
+from .validate_command import add_command as add_validate
 
 
 def _check(args: argparse.Namespace) -> int:
@@ -66,6 +67,7 @@ def main(argv: list[str] | None = None) -> int:
     add_stability(sub)
     add_sweep(sub)
     add_report(sub)
+    add_validate(sub)
     args = parser.parse_args(argv)
     try:
         return args.func(args)

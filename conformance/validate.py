@@ -1,0 +1,154 @@
+"""Judges a trace written by another implementation (a browser) of a scene x3drbp knows.
+
+Two judgements, each reusing what judges x3drbp's own backends:
+
+- the conformance case, where the scene is one (conformance.cases.CASES, matched by
+  path): its expectation on their trace(s), one per run of the case, in the case's order,
+  a verdict per measure (runner.evaluate);
+- the backends: each runs the scene with the settings read off their trace (duration: the
+  last time; frame rate: the median spacing of the times; dt: 1/240 unless given), and
+  their trace is compared with each run as two backends are (conformance.compare): body
+  position and orientation divergence, joint outputs. A backend agrees when the pair has
+  a frame in common and every divergence stays within its threshold (joint outputs: the
+  threshold of their unit).
+
+The rule (docs/implementers.md): a scene that is a conformance case conforms when the
+case's expectation passes, the backends' verdicts shown for information (engines part
+ways in chaotic scenes, and the case is the specification's answer); any other scene
+conforms when at least one backend agrees on every trace (the backends differ from each
+other where the specification leaves room, and agreeing with one of them is agreeing
+with a reading of it).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from x3d_core.trace import Row
+
+from . import runner
+from .cases import CASES, Case, Settings, TraceView
+from .compare import BackendRun, PairComparison, compare_pair
+from .compare_runs import run_backends
+
+THEIRS = "theirs"  # their trace's name in comparisons
+AGREES, DIFFERS = "agrees", "differs"
+# their frame times within this of a backend's frame time are that frame: a browser that
+# sums 1/60 each frame drifts by ~1e-13 s, far below any frame period
+SNAP = 1e-6  # s
+
+
+def find_case(scene: str) -> Case | None:
+    """The conformance case whose scene file this is."""
+    real = os.path.realpath(scene)
+    return next((c for c in CASES if os.path.realpath(c.path) == real), None)
+
+
+def _tidy(x: float) -> float:
+    """Nine significant digits: 60.00000000000001 frames/s is 60."""
+    return float(f"{x:.9g}")
+
+
+def trace_settings(rows: Sequence[Row], dt: float) -> Settings:
+    """The run their trace describes: until its last time, at its median frame spacing."""
+    times = np.unique([r.time for r in rows])
+    gaps = np.diff(times)
+    period = float(np.median(gaps)) if gaps.size else float(times[-1])
+    return Settings(_tidy(float(times[-1])), dt, _tidy(1.0 / period))
+
+
+def _aligned(rows: Sequence[Row], times: np.ndarray) -> TraceView:
+    """Their trace with each time moved onto the backend's frame time within SNAP of it."""
+    t = np.array([r.time for r in rows])
+    i = np.clip(np.searchsorted(times, t), 0, times.size - 1)
+    j = np.maximum(i - 1, 0)
+    near = np.where(np.abs(times[j] - t) < np.abs(times[i] - t), times[j], times[i])
+    snapped = np.where(np.abs(near - t) <= SNAP, near, t)
+    return TraceView([Row(float(s), r.node, r.field, r.value) for s, r in zip(snapped, rows)])
+
+
+def _frame_times(view: TraceView) -> np.ndarray:
+    return np.unique(np.concatenate([view.series(*k)[0] for k in view.keys()] or [np.empty(0)]))
+
+
+def agrees(pair: PairComparison) -> bool:
+    """Every divergence of their trace from the backend's within its threshold."""
+    d = (pair.position, pair.orientation)
+    return bool(pair.times.size and pair.bodies and all(x.max is not None and x.max <= x.threshold for x in d)
+                and all(j.ratio <= 1.0 for j in pair.joints))
+
+
+@dataclass
+class TraceComparison:
+    """One of their traces against every backend's run with the settings read off it."""
+    trace: str
+    settings: Settings
+    runs: list[BackendRun]
+    pairs: dict[str, PairComparison]  # by backend, for those that ran
+
+    def verdict(self, backend: str) -> str:
+        """AGREES, DIFFERS, or the run's verdict where it did not run."""
+        pair = self.pairs.get(backend)
+        if pair is None:
+            return next(r.verdict for r in self.runs if r.backend == backend)
+        return AGREES if agrees(pair) else DIFFERS
+
+    def to_json(self) -> dict:
+        s = self.settings
+        return {"trace": self.trace, "duration": s.duration, "dt": s.dt, "frame_rate": s.frame_rate,
+                "runs": [dict(r.to_json(), comparison=self.verdict(r.backend)) for r in self.runs],
+                "pairs": [p.to_json() for p in self.pairs.values()]}
+
+
+@dataclass
+class Validation:
+    scene: str
+    traces: list[str]
+    thresholds: dict[str, float]
+    case: runner.Result | None  # the case's expectation on their traces, where the scene is a case
+    comparisons: list[TraceComparison] = field(default_factory=list)
+
+    @property
+    def backends(self) -> list[str]:
+        return [r.backend for r in self.comparisons[0].runs] if self.comparisons else []
+
+    def agreeing(self) -> list[str]:
+        """The backends that agree with their every trace."""
+        return [b for b in self.backends if all(c.verdict(b) == AGREES for c in self.comparisons)]
+
+    @property
+    def rule(self) -> str:
+        return "the case's expectation" if self.case is not None else "agreement with one backend"
+
+    @property
+    def conforms(self) -> bool:
+        if self.case is not None:
+            return self.case.verdict == runner.PASS
+        return bool(self.agreeing())
+
+    def to_json(self) -> dict:
+        return {"scene": self.scene, "traces": self.traces, "thresholds": self.thresholds, "rule": self.rule,
+                "conforms": self.conforms, "case": None if self.case is None else self.case.to_json(),
+                "agreeing": self.agreeing(), "comparisons": [c.to_json() for c in self.comparisons]}
+
+
+def check_case(case: Case, views: Sequence[TraceView], dt: float | None) -> runner.Result:
+    """The case's expectation on their traces (its runs' settings, at their dt if given)."""
+    settings = [Settings(s.duration, dt or s.dt, s.frame_rate) for s in case.runs]
+    return runner.evaluate(case, THEIRS, views, settings)
+
+
+def compare_with_backends(scene: str, trace: str, rows: Sequence[Row], dt: float, backends: Sequence[str],
+                          info: Mapping[str, runner.BackendInfo], thresholds: Mapping[str, float],
+                          timeout: float) -> TraceComparison:
+    """Each backend's run of the scene, with the settings of their trace, against it."""
+    settings = trace_settings(rows, dt)
+    runs = run_backends(scene, backends, settings, info, timeout, jobs=os.cpu_count() or 1)
+    pairs = {r.backend: compare_pair(THEIRS, _aligned(rows, _frame_times(v)), r.backend, v, thresholds)
+             for r, v in runs if v is not None}
+    return TraceComparison(trace, settings, [r for r, _ in runs], pairs)
+

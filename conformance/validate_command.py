@@ -1,0 +1,129 @@
+"""`x3drbp validate`: does another implementation's trace of a scene conform?
+
+    x3drbp validate SCENE --trace THEIRS.csv [--trace THEIRS2.csv ...] [--against LIST]
+                    [--dt S] [--threshold KIND=VALUE] [--json OUT.json] [--timeout S]
+
+Reads their trace and checks its format (conformance/trace_check.py); applies the
+conformance case's expectation where SCENE is a case's scene (a case of several runs takes
+one --trace per run, in the case's order); runs each backend (--against, default every
+installed one) with the settings read off their trace and measures how far their trace is
+from each run (conformance/validate.py says how, and the rule).
+
+Exit status: 0 when the trace conforms: the case's expectation passes, or, for a scene
+that is no case, the trace agrees with at least one backend within the thresholds; 1 when
+it does not; 2 when it cannot be judged: the trace is unreadable (one line per problem,
+FILE:LINE: ..., at most MAX_SHOWN), lacks what the expectation reads, or the usage is
+wrong (the scene does not load, an unknown backend, the wrong number of traces).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from collections.abc import Sequence
+
+from reports.validate_text import render
+from x3d_core import atomic
+from x3d_core.trace import Row
+
+from . import runner
+from .cases import Case, TraceView
+from .compare import DEFAULT_THRESHOLDS
+from .compare_command import _thresholds
+from .conformance_command import _names
+from .run_command import load_scene
+from .trace_check import Problem, check_trace
+from .validate import Validation, check_case, compare_with_backends, find_case
+
+EXIT_CONFORMS, EXIT_DOES_NOT, EXIT_UNREADABLE = 0, 1, 2
+MAX_SHOWN = 20  # problems printed; the rest counted
+
+
+def _unreadable(lines: Sequence[str]) -> int:
+    for line in lines[:MAX_SHOWN]:
+        print(line, file=sys.stderr)
+    if len(lines) > MAX_SHOWN:
+        print(f"... and {len(lines) - MAX_SHOWN} more problems", file=sys.stderr)
+    return EXIT_UNREADABLE
+
+
+def _usage(message: str) -> int:
+    return _unreadable([f"x3drbp validate: {message}"])
+
+
+def _coverage(path: str, rows: list[Row], case: Case | None, k: int) -> list[Problem]:
+    """A trace without frames, or shorter than the case's run k by more than half a frame."""
+    end = max(r.time for r in rows)
+    if end <= 0:
+        return [Problem(path, 0, "no frame after time 0")]
+    if case is not None and end < case.runs[k].duration - 0.5 / case.runs[k].rate:
+        return [Problem(path, 0, f"ends at {end:g} s; case {case.name}'s run {k + 1} lasts {case.runs[k].duration:g} s")]
+    return []
+
+
+def cmd_validate(args: argparse.Namespace) -> int:
+    try:
+        thresholds = _thresholds(args.threshold)
+    except ValueError as e:
+        return _usage(str(e))
+    for name in ("dt", "timeout"):
+        value = getattr(args, name)
+        if value is not None and not (math.isfinite(value) and value > 0):
+            return _usage(f"--{name} must be a positive number, not {value:g}")
+    scene = load_scene(args.scene)
+    if scene is None:
+        return EXIT_UNREADABLE
+    case = find_case(args.scene)
+    wanted = len(case.runs) if case is not None else 1
+    if len(args.trace) != wanted:
+        runs = "" if case is None else ": " + ", ".join(f"{s.rate:g} frames/s" for s in case.runs)
+        return _usage(f"{args.scene} takes {wanted} trace(s) (--trace, in this order{runs}), got {len(args.trace)}")
+    traces, problems = [], []
+    for k, path in enumerate(args.trace):
+        rows, found = check_trace(path, scene)
+        if rows and not found:
+            found = _coverage(path, rows, case, k)
+        traces.append(rows)
+        problems += found
+    if problems:
+        return _unreadable([str(p) for p in problems])
+    result = None
+    if case is not None:
+        result = check_case(case, [TraceView(r) for r in traces], args.dt)
+        if result.verdict == runner.ERROR:
+            return _unreadable([f"{', '.join(args.trace)}: case {case.name}: {result.reason}"])
+    info = runner.backend_table(args.timeout)
+    backends = _names(args.against) or [n for n, i in info.items() if i.usable]
+    unknown = [b for b in backends if b not in info]
+    if unknown:
+        return _usage(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}")
+    dt = args.dt or 1.0 / 240.0
+    validation = Validation(args.scene, list(args.trace), thresholds, result,
+                            [compare_with_backends(args.scene, path, rows, dt, backends, info, thresholds, args.timeout)
+                             for path, rows in zip(args.trace, traces)])
+    sys.stdout.write(render(validation))
+    if args.json:
+        atomic.write_json(args.json, validation.to_json())
+    return EXIT_CONFORMS if validation.conforms else EXIT_DOES_NOT
+
+
+def add_command(sub) -> None:
+    p = sub.add_parser("validate", help="check another implementation's trace of a scene: format, the "
+                       "conformance case's expectation, divergence from each backend",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("scene")
+    p.add_argument("--trace", action="append", required=True, metavar="THEIRS.csv",
+                   help="their trace; once per run of a case with several (in the case's order)")
+    p.add_argument("--against", action="append", metavar="LIST",
+                   help="backends to compare with, comma-separated (default: every installed one)")
+    p.add_argument("--dt", type=float, default=None, metavar="S",
+                   help="the physics step their implementation took (default: the case's, else 1/240)")
+    p.add_argument("--threshold", action="append", metavar="KIND=VALUE",
+                   help="divergence thresholds, comma-separated: position=M, orientation=RAD "
+                        f"(default position={DEFAULT_THRESHOLDS['position']:g},"
+                        f"orientation={DEFAULT_THRESHOLDS['orientation']:g})")
+    p.add_argument("--json", metavar="OUT.json", help="write the full result, per-frame series included")
+    p.add_argument("--timeout", type=float, default=runner.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per backend run in seconds (default {runner.DEFAULT_TIMEOUT:g})")
+    p.set_defaults(func=cmd_validate)
