@@ -1,0 +1,115 @@
+"""`x3drbp validate`: traces written by x3drbp itself conform, a wrong one fails naming the
+measure, malformed ones are refused line by line (exit 2, no traceback)."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import pytest
+
+from conformance.cli import main as cli_main
+from conftest import SCENES
+
+FREE_FALL = os.path.join(SCENES, "conformance", "free_fall.x3d")
+FRAME_RATE = os.path.join(SCENES, "conformance", "frame_rate.x3d")
+PENDULUM = os.path.join(SCENES, "examples", "pendulum.x3d")
+
+
+@pytest.fixture(scope="module")
+def bullet_fall(tmp_path_factory) -> list[str]:
+    """free_fall's trace by Bullet, as lines."""
+    path = tmp_path_factory.mktemp("validate") / "bullet.csv"
+    assert cli_main(["run", FREE_FALL, "--backend", "bullet", "--trace", str(path)]) == 0
+    return path.read_text().splitlines()
+
+
+def _write(tmp_path, lines: list[str], name: str = "theirs.csv") -> str:
+    path = tmp_path / name
+    path.write_text("\n".join(lines) + "\n")
+    return str(path)
+
+
+def _edit(lines: list[str], where: str, fn) -> list[str]:
+    """lines with fn applied to the value of every row whose node,field is `where`."""
+    out = []
+    for ln in lines:
+        t, node, fld, value = ln.split(",")
+        out.append(",".join([t, node, fld, fn(value)]) if f"{node},{fld}" == where else ln)
+    return out
+
+
+def _validate(*args: str) -> int:
+    return cli_main(["validate", *args])
+
+
+def test_own_trace_conforms_against_another_backend(bullet_fall, tmp_path, capsys):
+    # times off by 1e-13 s, as a browser summing 1/60 per frame writes them: still the same frames
+    lines = [bullet_fall[0]] + [f"{float(ln.split(',', 1)[0]) + 1e-13!r},{ln.split(',', 1)[1]}"
+                                for ln in bullet_fall[1:]]
+    out_json = tmp_path / "out.json"
+    assert _validate(FREE_FALL, "--trace", _write(tmp_path, lines), "--against", "mujoco",
+                     "--json", str(out_json)) == 0
+    out = capsys.readouterr().out
+    assert "Case free_fall: **pass**" in out and "| mujoco | agrees | 61 |" in out and "**Conforms**" in out
+    data = json.loads(out_json.read_text())
+    assert data["conforms"] and data["agreeing"] == ["mujoco"] and data["case"]["verdict"] == "pass"
+
+
+def test_halved_gravity_fails_naming_the_measure(bullet_fall, tmp_path, capsys):
+    def half(value: str) -> str:  # y0 - g t^2 / 4 instead of / 2
+        x, y, z = (float(v) for v in value.split())
+        return f"{x!r} {10.0 - (10.0 - y) / 2.0!r} {z!r}"
+    lines = _edit(bullet_fall, "Ball,position", half)
+    assert _validate(FREE_FALL, "--trace", _write(tmp_path, lines), "--against", "mujoco") == 1
+    out = capsys.readouterr().out
+    assert "Case free_fall: **fail**" in out and "| Ball.position |" in out and "**fail** |" in out
+    assert "| mujoco | differs |" in out and "**Does not conform**" in out
+
+
+def test_a_scene_without_case_conforms_by_agreeing_with_one_backend(tmp_path, capsys):
+    path = str(tmp_path / "ode.csv")
+    assert cli_main(["run", PENDULUM, "--backend", "ode", "--duration", "0.25", "--trace", path]) == 0
+    assert _validate(PENDULUM, "--trace", path, "--against", "ode,pymunk") == 0
+    out = capsys.readouterr().out
+    assert "| ode | agrees |" in out and "| pymunk | differs |" in out and "agreement with one backend" in out
+
+
+def _on(line: int, old: str, new: str):
+    """An edit of one line (1: the header) of the trace."""
+    def edit(lines: list[str]) -> list[str]:
+        assert old in lines[line - 1]
+        return lines[:line - 1] + [lines[line - 1].replace(old, new, 1)] + lines[line:]
+    return edit
+
+
+# (an edit of the trace, the line reported, a phrase of the message); rows 2-5 are Ball's
+# position, orientation, linearVelocity, angularVelocity at time 0, row 7 its orientation at 1/60 s
+MALFORMED = {
+    "bad header": (_on(1, "time,node,field,value", "time,node,field"), 1, "header is 'time,node,field'"),
+    "non-monotonic time": (_on(7, "0.016666666666666666", "0.01"), 7, "before the previous row's"),
+    "unknown node": (_on(4, "Ball", "Balll"), 4, "node 'Balll' is not in the scene"),
+    "unknown field": (_on(3, "orientation", "orientaton"), 3, "RigidBody has no output field 'orientaton'"),
+    "unparsable value": (_on(2, "0 10 0", "0 ten 0"), 2, "is not 3 numbers"),
+    "non-unit axis": (_on(3, "0 0 1 0", "0 0 2 0"), 3, "axis has length 2"),
+    "wrong column count": (_on(5, "0 0 0", "0 0 0,1"), 5, "5 columns, expected 4"),
+}
+
+
+@pytest.mark.parametrize("kind", list(MALFORMED))
+def test_malformed_trace_names_the_line(kind, bullet_fall, tmp_path, capsys):
+    edit, line, phrase = MALFORMED[kind]
+    path = _write(tmp_path, edit(bullet_fall))
+    assert _validate(FREE_FALL, "--trace", path, "--against", "mujoco") == 2
+    err = capsys.readouterr().err
+    assert f"{path}:{line}: " in err and phrase in err, err
+    assert "Traceback" not in err
+
+
+def test_missing_body_field_and_wrong_trace_count_are_refused(bullet_fall, tmp_path, capsys):
+    lines = [ln for ln in bullet_fall if ",angularVelocity," not in ln]
+    path = _write(tmp_path, lines)
+    assert _validate(FREE_FALL, "--trace", path) == 2
+    assert f"{path}: no rows for Ball.angularVelocity" in capsys.readouterr().err
+    assert _validate(FRAME_RATE, "--trace", path) == 2
+    assert "takes 2 trace(s) (--trace, in this order: 30 frames/s, 144 frames/s), got 1" in capsys.readouterr().err
