@@ -90,9 +90,11 @@ def _value_problem(ftype: F.FieldType, value: str, names: set[str]) -> str | Non
         return f"value {value!r} is not {ftype.describe()}: {e}"
     if ftype.rotation:
         axes = np.asarray(parsed, dtype=np.float64).reshape(-1, 4)[:, :3]
-        bad = np.abs(np.linalg.norm(axes, axis=1) - 1.0)
+        lengths = np.linalg.norm(axes, axis=1)
+        bad = np.abs(lengths - 1.0)
         if bad.size and not np.all(bad <= AXIS_TOLERANCE):
-            return f"rotation {value!r}: the axis has length {1.0 + float(np.max(bad)):.6g}, not 1 (within {AXIS_TOLERANCE:g})"
+            length = float(lengths[np.argmax(bad)])
+            return f"rotation {value!r}: the axis has length {length:.6g}, not 1 (within {AXIS_TOLERANCE:g})"
     return None
 
 

@@ -57,8 +57,9 @@ def _coverage(path: str, rows: list[Row], case: Case | None, k: int) -> list[Pro
     end = max(r.time for r in rows)
     if end <= 0:
         return [Problem(path, 0, "no frame after time 0")]
-    if case is not None and end < case.runs[k].duration - 0.5 / case.runs[k].rate:
-        return [Problem(path, 0, f"ends at {end:g} s; case {case.name}'s run {k + 1} lasts {case.runs[k].duration:g} s")]
+    run = case.runs[k] if case is not None else None
+    if run is not None and end < run.duration - 0.5 / run.rate:
+        return [Problem(path, 0, f"ends at {end:g} s; case {case.name}'s run {k + 1} lasts {run.duration:g} s")]
     return []
 
 

@@ -16,7 +16,8 @@ def _case(v: Validation) -> list[str]:
     r = v.case
     if r is None:
         return ["No conformance case has this scene: the trace conforms when it agrees with at least one backend.", ""]
-    lines = [f"## Case {r.case}: **{r.verdict}**", "", "| measure | error | tolerance | verdict |", "|---|---:|---:|---|"]
+    lines = [f"## Case {r.case}: **{r.verdict}**", "",
+             "| measure | error | tolerance | verdict |", "|---|---:|---:|---|"]
     lines += [f"| {escape(m.quantity)} | {num(m.error)} {m.unit} | {num(m.tolerance)} {m.unit} | "
               f"{'pass' if m.ok else '**fail**'} |" for m in r.measures]
     return lines + [""]
