@@ -64,13 +64,14 @@ def markdown(data: dict) -> str:
             for f in r["figures"]:
                 bound = f"; bound {f['bound']:g}" if f["bound"] is not None else ""
                 heads.setdefault(f["quantity"], f"{f['quantity']} ({f['unit']}{bound})")
-        lines += ["", f"### {c['name']}", "", "| backend | dt | verdict | " + " | ".join(map(escape, heads.values()))
-                  + " | wall s |", "|---|---|---|" + "---:|" * (len(heads) + 1)]
+        lines += ["", f"### {c['name']}", "",
+                  "| " + " | ".join(["backend", "dt", "verdict", *map(escape, heads.values()), "wall s"]) + " |",
+                  "|---|---|---|" + "---:|" * (len(heads) + 1)]
         for r in mine:
             by = {f["quantity"]: f for f in r["figures"]}
             cells = [_figure(by.get(q)) for q in heads]
-            lines.append(f"| {r['backend']} | {label[r['dt']]} | {_cell(r)} | " + " | ".join(cells)
-                         + f" | {r['wall_s']:.1f} |")
+            lines.append("| " + " | ".join([r["backend"], label[r["dt"]], _cell(r), *cells, f"{r['wall_s']:.1f}"])
+                         + " |")
     others = [r for r in data["results"] if r["verdict"] not in HELD]
     if others:
         lines += ["", "## Why", ""]
