@@ -14,6 +14,13 @@ G = 9.81
 
 Series = dict[tuple[str, str], list[tuple[float, np.ndarray]]]
 
+# A body with every pose and mass field off its default (an off-centre centre of mass, a full
+# inertia tensor), and the scene that starts it moving: for the backends' read-back tests
+ODD_BODY = ("position='1 2 3' orientation='0.2 1 0.3 0.9' centerOfMass='0.3 -0.1 0.2' mass='2' "
+            "inertia='0.3 0.02 -0.01 0.02 0.4 0.03 -0.01 0.03 0.5'")
+ODD_SCENE = (f"<RigidBodyCollection gravity='0 -9.81 0'><RigidBody DEF='B' {ODD_BODY} "
+             "linearVelocity='0.5 0 -1' angularVelocity='0 2 1'/></RigidBodyCollection>")
+
 
 def scene_worlds(tmp_path, body: str) -> list:
     """The worlds of a scene given as the X3D XML text of its Scene's content (which must
@@ -71,3 +78,11 @@ def last(series: Series, node: str, field: str) -> np.ndarray:
 def same_rotation(axis_angle: np.ndarray, expected: np.ndarray, tol: float) -> bool:
     q, e = R.from_axis_angle(axis_angle), R.from_axis_angle(expected)
     return min(np.abs(q - e).max(), np.abs(q + e).max()) < tol
+
+
+def assert_odd_body_reads_back(s: Series) -> None:
+    """ODD_SCENE's first record is the scene's own pose and velocities, to rounding."""
+    assert np.abs(first(s, "B", "position") - [1, 2, 3]).max() <= 1e-12
+    assert same_rotation(first(s, "B", "orientation"), np.array([0.2, 1, 0.3, 0.9]), 1e-12)
+    assert np.abs(first(s, "B", "linearVelocity") - [0.5, 0, -1]).max() <= 1e-12
+    assert np.abs(first(s, "B", "angularVelocity") - [0, 2, 1]).max() <= 1e-12

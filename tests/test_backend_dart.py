@@ -13,7 +13,8 @@ pytest.importorskip("dartpy")
 
 from backends import base  # noqa: E402
 from backends.dart import BACKEND  # noqa: E402
-from engine_run import DT, G, first, last, run_x3d, same_rotation, scene_worlds, times, values  # noqa: E402
+from engine_run import (DT, G, ODD_BODY, ODD_SCENE, assert_odd_body_reads_back, first, last, run_x3d,  # noqa: E402
+                        same_rotation, scene_worlds, times, values)
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
 
@@ -49,19 +50,11 @@ def test_free_fall(tmp_path):
     assert last(s, "B", "linearVelocity") == pytest.approx([0, -G, 0], abs=1e-12)  # exact for constant g
 
 
-ODD_BODY = ("position='1 2 3' orientation='0.2 1 0.3 0.9' centerOfMass='0.3 -0.1 0.2' mass='2' "
-            "inertia='0.3 0.02 -0.01 0.02 0.4 0.03 -0.01 0.03 0.5'")
-
-
 def test_centre_of_mass_offset_and_orientation_read_back_as_given(tmp_path):
-    s = simulate(tmp_path, f"<RigidBodyCollection gravity='0 -9.81 0'><RigidBody DEF='B' {ODD_BODY} "
-                           "linearVelocity='0.5 0 -1' angularVelocity='0 2 1'/></RigidBodyCollection>", duration=0.1)
+    s = simulate(tmp_path, ODD_SCENE, duration=0.1)
     # DART's body frame is the X3D body frame (the centre of mass is an offset in it), so
     # the pose comes back as given, and the velocities (linear at the centre of mass) too
-    assert first(s, "B", "position") == pytest.approx([1, 2, 3], abs=1e-12)
-    assert same_rotation(first(s, "B", "orientation"), np.array([0.2, 1, 0.3, 0.9]), 1e-12)
-    assert first(s, "B", "linearVelocity") == pytest.approx([0.5, 0, -1], abs=1e-12)
-    assert first(s, "B", "angularVelocity") == pytest.approx([0, 2, 1], abs=1e-12)
+    assert_odd_body_reads_back(s)
 
 
 def test_spin_about_the_centre_of_mass_keeps_it_in_place(tmp_path):

@@ -23,7 +23,8 @@ except ImportError as e:  # the library is missing: only the unavailable path is
 
 from backends import ode_lib  # noqa: E402
 from conformance.cases import ellipk  # noqa: E402
-from engine_run import DT, G, first, last, run_x3d, same_rotation, scene_worlds, times, values  # noqa: E402
+from engine_run import (DT, G, ODD_BODY, ODD_SCENE, assert_odd_body_reads_back, first, last, run_x3d,  # noqa: E402
+                        same_rotation, scene_worlds, times, values)
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
 
@@ -80,13 +81,8 @@ def test_free_fall(tmp_path):
     assert last(s, "B", "linearVelocity") == pytest.approx([0, -G, 0], abs=1e-12)
 
 
-ODD_BODY = ("position='1 2 3' orientation='0.2 1 0.3 0.9' centerOfMass='0.3 -0.1 0.2' mass='2' "
-            "inertia='0.3 0.02 -0.01 0.02 0.4 0.03 -0.01 0.03 0.5'")
-
-
 def test_centre_of_mass_offset_and_orientation_read_back_as_given(tmp_path):
-    s = simulate(tmp_path, f"<RigidBodyCollection gravity='0 -9.81 0'><RigidBody DEF='B' {ODD_BODY} "
-                           "linearVelocity='0.5 0 -1' angularVelocity='0 2 1'/></RigidBodyCollection>", duration=0.1)
+    s = simulate(tmp_path, ODD_SCENE, duration=0.1)
     # ODE's body sits at the centre of mass: the X3D origin comes back by taking the offset off
     assert first(s, "B", "position") == pytest.approx([1, 2, 3], abs=1e-12)
     assert same_rotation(first(s, "B", "orientation"), np.array([0.2, 1, 0.3, 0.9]), 1e-12)
