@@ -73,10 +73,10 @@ def cmd_compare(args: argparse.Namespace) -> int:
     if scene is None:
         return EXIT_NOTHING_COMPARED
     info = runner.backend_table(args.timeout)
-    backends = _names(args.backends) or [n for n, i in info.items() if i.usable]
-    unknown = [b for b in backends if b not in info]
-    if unknown:
-        return _usage(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}")
+    try:
+        backends = runner.named_backends(_names(args.backends), info)
+    except ValueError as e:
+        return _usage(str(e))
     if len(backends) < 2:
         return _usage(f"needs two backends or more to compare, got {', '.join(backends) or 'none'}")
     settings = Settings(args.duration, args.dt, args.frame_rate)

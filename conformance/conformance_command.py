@@ -125,13 +125,11 @@ def cmd_conformance(args: argparse.Namespace) -> int:
         print(f"x3drbp conformance: {e.args[0]}", file=sys.stderr)
         return EXIT_USAGE
     info = runner.backend_table(args.timeout)
-    wanted = _names(args.backends)
-    unknown = [b for b in wanted if b not in info]
-    if unknown:
-        print(f"x3drbp conformance: unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}",
-              file=sys.stderr)
+    try:
+        backends = runner.named_backends(_names(args.backends), info)
+    except ValueError as e:
+        print(f"x3drbp conformance: {e}", file=sys.stderr)
         return EXIT_USAGE
-    backends = wanted or [n for n, i in info.items() if i.usable]
     if not backends:
         print("x3drbp conformance: no backend is available here: "
               + "; ".join(f"{n}: {i.unavailable}" for n, i in info.items()), file=sys.stderr)

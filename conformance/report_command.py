@@ -89,12 +89,11 @@ def features(matrix: dict, backends: list[str]) -> dict:
 def cmd_report(args: argparse.Namespace) -> int:
     from reports.report_page import write_report  # reports read results; imported when there are some
     info = runner.backend_table()
-    wanted = _names(args.backends)
-    unknown = [b for b in wanted if b not in info]
-    if unknown:
-        print(f"x3drbp report: unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}", file=sys.stderr)
+    try:
+        backends = [b for b in runner.named_backends(_names(args.backends), info) if info[b].usable]
+    except ValueError as e:
+        print(f"x3drbp report: {e}", file=sys.stderr)
         return EXIT_USAGE
-    backends = [b for b in (wanted or list(info)) if info[b].usable]
     if len(backends) < 2:
         print("x3drbp report: needs two installed backends or more", file=sys.stderr)
         return EXIT_USAGE

@@ -328,6 +328,15 @@ class BackendInfo:
         return self.unavailable is None
 
 
+def named_backends(names: Sequence[str], info: dict[str, BackendInfo]) -> list[str]:
+    """The backends a command line names, in its order (default: every usable one);
+    ValueError naming any the registry does not know."""
+    unknown = [n for n in names if n not in info]
+    if unknown:
+        raise ValueError(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}")
+    return list(names) or [n for n, i in info.items() if i.usable]
+
+
 def backend_table(timeout: float = DEFAULT_TIMEOUT) -> dict[str, BackendInfo]:
     """backends.base.available(), asked in a child process: importing an engine can crash,
     and the suite must survive that too. Should the probe of all engines die, each engine

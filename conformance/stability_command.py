@@ -61,12 +61,11 @@ def cmd_stability(args: argparse.Namespace) -> int:
         print(f"x3drbp stability: {e.args[0] if isinstance(e, KeyError) else e}", file=sys.stderr)
         return EXIT_USAGE
     info = runner.backend_table(args.timeout)
-    wanted = _names(args.backends)
-    unknown = [b for b in wanted if b not in info]
-    if unknown:
-        print(f"x3drbp stability: unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}", file=sys.stderr)
+    try:
+        backends = runner.named_backends(_names(args.backends), info)
+    except ValueError as e:
+        print(f"x3drbp stability: {e}", file=sys.stderr)
         return EXIT_USAGE
-    backends = wanted or [n for n, i in info.items() if i.usable]
     runnable = [b for b in backends if info[b].usable]
     jobs = max(1, args.jobs or os.cpu_count() or 1)
     started = time.perf_counter()

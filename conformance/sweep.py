@@ -120,10 +120,7 @@ def backend_plans(names: Sequence[str], timeout: float = runner.DEFAULT_TIMEOUT
     process (importing an engine can crash) once runner.backend_table has said which engines
     load; and why the others cannot run. ValueError naming unknown backends."""
     info = runner.backend_table(timeout)
-    unknown = [n for n in names if n not in info]
-    if unknown:
-        raise ValueError(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}")
-    named = names or list(info)
+    named = runner.named_backends(names, info) if names else list(info)  # unusable ones listed as skipped
     usable = [n for n in named if info[n].usable]
     skipped = {n: info[n].unavailable or "" for n in named if not info[n].usable}
     if not usable:

@@ -95,10 +95,10 @@ def cmd_validate(args: argparse.Namespace) -> int:
         if result.verdict == runner.ERROR:
             return _unreadable([f"{', '.join(args.trace)}: case {case.name}: {result.reason}"])
     info = runner.backend_table(args.timeout)
-    backends = _names(args.against) or [n for n, i in info.items() if i.usable]
-    unknown = [b for b in backends if b not in info]
-    if unknown:
-        return _usage(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}")
+    try:
+        backends = runner.named_backends(_names(args.against), info)
+    except ValueError as e:
+        return _usage(str(e))
     dt = args.dt or 1.0 / 240.0
     validation = Validation(args.scene, list(args.trace), thresholds, result,
                             [compare_with_backends(args.scene, path, rows, dt, backends, info, thresholds, args.timeout)
