@@ -17,6 +17,7 @@ from .run_command import add_commands
 from .stability_command import add_command as add_stability
 from .sweep_command import add_command as add_sweep
 from .validate_command import add_command as add_validate
+from .x_ite_command import add_command as add_x_ite
 
 
 def _check(args: argparse.Namespace) -> int:
@@ -68,6 +69,7 @@ def main(argv: list[str] | None = None) -> int:
     add_sweep(sub)
     add_report(sub)
     add_validate(sub)
+    add_x_ite(sub)
     args = parser.parse_args(argv)
     try:
         return args.func(args)

@@ -89,6 +89,7 @@ class TraceComparison:
     settings: Settings
     runs: list[BackendRun]
     pairs: dict[str, PairComparison]  # by backend, for those that ran
+    views: dict[str, TraceView] = field(default_factory=dict, repr=False)  # their runs, for recordings
 
     def verdict(self, backend: str) -> str:
         """AGREES, DIFFERS, or the run's verdict where it did not run."""
@@ -144,11 +145,12 @@ def check_case(case: Case, views: Sequence[TraceView], dt: float | None) -> runn
 
 def compare_with_backends(scene: str, trace: str, rows: Sequence[Row], dt: float, backends: Sequence[str],
                           info: Mapping[str, runner.BackendInfo], thresholds: Mapping[str, float],
-                          timeout: float) -> TraceComparison:
-    """Each backend's run of the scene, with the settings of their trace, against it."""
+                          timeout: float, name: str = THEIRS) -> TraceComparison:
+    """Each backend's run of the scene, with the settings of their trace, against it (their
+    trace goes by `name` in the pairs)."""
     settings = trace_settings(rows, dt)
     runs = run_backends(scene, backends, settings, info, timeout, jobs=os.cpu_count() or 1)
-    pairs = {r.backend: compare_pair(THEIRS, _aligned(rows, _frame_times(v)), r.backend, v, thresholds)
+    pairs = {r.backend: compare_pair(name, _aligned(rows, _frame_times(v)), r.backend, v, thresholds)
              for r, v in runs if v is not None}
-    return TraceComparison(trace, settings, [r for r, _ in runs], pairs)
+    return TraceComparison(trace, settings, [r for r, _ in runs], pairs, {r.backend: v for r, v in runs if v is not None})
 

@@ -1,0 +1,130 @@
+"""The X_ITE browser (npm `x_ite`: the component on Bullet through ammo.js), run headless in
+Chromium, as an implementation under test: it writes a trace of a scene the way any browser
+author would (docs/implementers.md), and the suite judges that trace as it judges any.
+
+conformance/x_ite/record.mjs drives it through playwright-core with Debian's chromium (no
+browser download) under a virtual clock (conformance/x_ite/page.html): frame k is at
+k / frame_rate exactly, the state read at time 0 is the scene as loaded, before any step,
+and two runs are bit-identical. X_ITE reads its fields through its own scripting API.
+
+The step X_ITE takes is its own: each frame it advances the frame's duration (a moving
+average of the frame period) in `iterations` substeps, so the closed forms are judged at
+dt = 1 / (frame_rate * iterations) (`step`).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import tempfile
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+from x3d_core.model import Scene
+from x3d_core.world import node_names, worlds
+
+HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "x_ite")
+CHROMIUM = os.environ.get("X3DRBP_CHROMIUM", "/usr/bin/chromium")
+INSTALL = "make x-ite-install"
+# GL performance notes SwiftShader prints on every page: noise, not the scene's messages
+NOISE = "GL Driver Message"
+
+
+def unavailable() -> str | None:
+    """Why X_ITE cannot run here, or None."""
+    if shutil.which("node") is None:
+        return f"node is not installed (Debian: apt-get install nodejs npm; then {INSTALL})"
+    if not os.access(CHROMIUM, os.X_OK):
+        return f"no chromium at {CHROMIUM} (set X3DRBP_CHROMIUM, or run {INSTALL})"
+    for package in ("x_ite", "playwright-core"):
+        if not os.path.isdir(os.path.join(HERE, "node_modules", package)):
+            return f"{package} is not installed in {HERE} (run {INSTALL})"
+    return None
+
+
+class NotRecordable(ValueError):
+    """The scene has an output X_ITE's page cannot name."""
+
+
+def outputs(scene: Scene) -> dict:
+    """What the page reads each frame: every body of an enabled collection, the joint outputs
+    forceOutput selects, every enabled CollisionSensor; all by DEF name, which is how a
+    page finds a node (Scene.getNamedNode), so a node without one is refused by name."""
+    found: dict = {"bodies": [], "joints": {}, "sensors": []}
+    for w in worlds(scene):
+        found["bodies"] += [w.bodies.names[i] for i in range(len(w.bodies)) if w.bodies.enabled[i]]
+        found["joints"].update({j.name: list(j.outputs) for j in w.joints if j.outputs})
+        if w.collisions is not None:
+            found["sensors"] += [name for name, _ in w.collisions.sensors]
+    defined = {n.def_name for n in scene.nodes() if n.def_name}
+    unnamed = [n for n in (*found["bodies"], *found["joints"], *found["sensors"]) if n not in defined]
+    if unnamed:
+        raise NotRecordable(f"{', '.join(unnamed)}: a page reads nodes by DEF name, and these have none")
+    return found
+
+
+def step(scene: Scene, frame_rate: float) -> float:
+    """The physics step X_ITE takes at this frame rate: the frame in `iterations` substeps
+    (of the first enabled collection; one step for a scene with none)."""
+    found = worlds(scene)
+    return 1.0 / (frame_rate * (found[0].iterations if found else 1))
+
+
+@dataclass
+class Recording:
+    """One run of a scene in X_ITE: what to run, then what came of it."""
+    scene: str
+    out: str  # the trace's path
+    frame_rate: float
+    duration: float
+    what: dict  # outputs(scene)
+    ok: bool = False
+    error: str | None = None
+    frames: int = 0
+    wall_s: float | None = None
+    messages: list[str] = field(default_factory=list)
+
+
+def _job(runs: Sequence[Recording]) -> dict:
+    return {"chromium": CHROMIUM,
+            "runs": [{"scene": os.path.abspath(r.scene), "out": os.path.abspath(r.out), "frameRate": r.frame_rate,
+                      "duration": r.duration, "loadFrames": 100000, **r.what} for r in runs]}
+
+
+def record(runs: Sequence[Recording], timeout: float) -> None:
+    """Runs them in one browser, in order, filling in each result. A browser that crashes or
+    passes `timeout` seconds in all leaves the runs it did not finish with that as their error."""
+    if not runs:
+        return
+    with tempfile.TemporaryDirectory(prefix="x3drbp-x_ite-") as folder:
+        job = os.path.join(folder, "job.json")
+        with open(job, "w", encoding="utf-8") as f:
+            json.dump(_job(runs), f)
+        child = subprocess.Popen(["node", os.path.join(HERE, "record.mjs"), job], stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, text=True, start_new_session=True)
+        try:
+            stdout, stderr = child.communicate(timeout=timeout)
+            ended = f"the browser exited with status {child.returncode}: {_last_line(stderr)}"
+        except subprocess.TimeoutExpired:
+            os.killpg(child.pid, signal.SIGKILL)
+            stdout, _ = child.communicate()
+            ended = f"timeout: the browser passed {timeout:g} s"
+    for line in stdout.splitlines():
+        try:
+            d = json.loads(line)
+            r = runs[int(d["run"])]
+        except (ValueError, KeyError, IndexError, TypeError):
+            continue
+        r.ok, r.error, r.frames, r.wall_s = bool(d["ok"]), d.get("error"), int(d.get("frames", 0)), d.get("wallSeconds")
+        r.messages = [m for m in d.get("messages", []) if NOISE not in m]
+    for r in runs:
+        if not r.ok and r.error is None:
+            r.error = ended
+
+
+def _last_line(text: str) -> str:
+    lines = [s for s in text.strip().splitlines() if s.strip()]
+    return lines[-1].strip() if lines else "no message"

@@ -1,0 +1,200 @@
+"""X_ITE on the conformance cases: per case what it gets right, what it ignores and what it
+gets wrong, each measured by the suite's ordinary checks (`x3drbp validate`'s, unchanged).
+
+- Each case's runs are recorded in X_ITE at the case's frame rate and duration
+  (conformance.x_ite), and judged as any browser's traces are (conformance.validate): the
+  case's expectation at the step X_ITE takes, and every backend run at that step.
+- A case it passes is RIGHT.
+- A case it fails is probed: for each field the case exercises (Case.exercises, where the
+  feature is a field of a node type), the scene is recorded again with that field removed
+  from every node of the type, i.e. at its default. A field whose removal leaves X_ITE's
+  trace identical, byte for byte, has no effect in X_ITE: it IGNORES it. (Runs are
+  bit-identical, so any effect at all shows.) A failed case with no ignored field is WRONG.
+- A case X_ITE cannot run (its page throws, the browser crashes or times out, the scene
+  has an output the page cannot name) is an ERROR, with the reason.
+
+For every case where X_ITE's trace and a backend's part, a rerun recording shows X_ITE
+beside every backend with the divergence series (reports/rerun_recording.py).
+"""
+
+from __future__ import annotations
+
+import filecmp
+import os
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import asdict, dataclass, field
+
+from lxml import etree
+
+from x3d_core import schema
+from x3d_core.load import load
+from x3d_core.trace import read_trace
+
+from . import runner
+from .cases import Case, TraceView
+from .trace_check import check_trace
+from .validate import TraceComparison, Validation, check_case, compare_with_backends
+from .x_ite import NotRecordable, Recording, outputs, record, step
+
+RIGHT, IGNORES, WRONG, ERROR = "right", "ignores", "wrong", "error"
+NAME = "x_ite"  # X_ITE's name beside the backends' in comparisons and recordings
+
+
+@dataclass
+class CaseVerdict:
+    case: str
+    verdict: str  # RIGHT, IGNORES, WRONG or ERROR
+    detail: str  # the failing measures, or what stopped the run
+    dt: float | None = None  # the step X_ITE takes in this case
+    ignored: list[str] = field(default_factory=list)  # TYPE.field with no effect on X_ITE's trace
+    probed: list[str] = field(default_factory=list)  # every TYPE.field probed
+    agreeing: list[str] = field(default_factory=list)  # backends whose runs agree with X_ITE's
+    recording: str | None = None  # the rerun recording, relative to the output folder
+    wall_s: float = 0.0  # X_ITE's own recording time, all runs of the case
+    messages: list[str] = field(default_factory=list)  # what X_ITE printed as errors or warnings
+    validation: dict | None = None  # Validation.to_json()
+
+    def to_json(self) -> dict:
+        return asdict(self)
+
+    @classmethod
+    def from_json(cls, d: dict) -> CaseVerdict:
+        return cls(**d)
+
+
+def probe_fields(case: Case) -> list[tuple[str, str]]:
+    """(node type, field) of each exercised feature that is a field: the ones a scene sets."""
+    out = []
+    for feature in case.exercises:
+        parts = feature.split(".")
+        spec = schema.node_type(parts[0])
+        if len(parts) >= 2 and spec is not None and parts[1] in spec.fields and (parts[0], parts[1]) not in out:
+            out.append((parts[0], parts[1]))
+    return out
+
+
+def without(scene: str, node_type: str, fld: str, out: str) -> bool:
+    """Writes the XML scene with `fld` removed from every `node_type` element (so at its
+    default) to `out`; False where no element sets it, or the scene is not XML."""
+    if not scene.endswith(".x3d"):
+        return False
+    tree = etree.parse(scene, etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False))
+    changed = [e for e in tree.iter(node_type) if fld in e.attrib]
+    for e in changed:
+        del e.attrib[fld]
+    if changed:
+        tree.write(out, xml_declaration=True, encoding="UTF-8")
+    return bool(changed)
+
+
+def _failing(result: runner.Result) -> str:
+    bad = [m for m in result.measures if not m.ok]
+    if not bad:
+        return result.reason or result.verdict
+    return "; ".join(f"{m.quantity} {m.error:.3g} > {m.tolerance:.3g} {m.unit}".rstrip() for m in bad)
+
+
+@dataclass
+class _Case:
+    """A case under way: its recordings, then its judgement."""
+    case: Case
+    folder: str
+    runs: list[Recording] = field(default_factory=list)
+    verdict: CaseVerdict | None = None
+    probes: list[tuple[str, Recording]] = field(default_factory=list)  # (TYPE.field, its recording)
+
+
+def _prepare(case: Case, folder: str) -> _Case:
+    c = _Case(case, folder)
+    try:
+        scene = load(case.path)
+        what = outputs(scene)
+    except NotRecordable as e:
+        c.verdict = CaseVerdict(case.name, ERROR, str(e))
+        return c
+    c.runs = [Recording(case.path, os.path.join(folder, f"{case.name}.{k}.csv"), s.rate, s.duration, what)
+              for k, s in enumerate(case.runs)]
+    return c
+
+
+def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, runner.BackendInfo],
+           thresholds: Mapping[str, float], timeout: float, recordings: str | None) -> None:
+    case = c.case
+    wall = sum(r.wall_s or 0.0 for r in c.runs)
+    messages = sorted({m for r in c.runs for m in r.messages})
+    broken = next((r for r in c.runs if not r.ok), None)
+    if broken is not None:
+        c.verdict = CaseVerdict(case.name, ERROR, broken.error or "no trace", wall_s=wall, messages=messages)
+        return
+    scene = load(case.path)
+    dt = step(scene, c.runs[0].frame_rate)
+    views, rows_of = [], []
+    for r in c.runs:
+        rows, problems = check_trace(r.out, scene)
+        if problems:
+            c.verdict = CaseVerdict(case.name, ERROR, f"its trace is unreadable: {problems[0]}", dt,
+                                    wall_s=wall, messages=messages)
+            return
+        rows_of.append(rows)
+        views.append(TraceView(rows))
+    result = check_case(case, views, dt)
+    comparisons = [compare_with_backends(case.path, r.out, rows, dt, backends, info, thresholds, timeout, NAME)
+                   for r, rows in zip(c.runs, rows_of)]
+    v = Validation(case.path, [r.out for r in c.runs], dict(thresholds), result, comparisons)
+    verdict = RIGHT if result.verdict == runner.PASS else WRONG
+    detail = "" if verdict == RIGHT else _failing(result)
+    c.verdict = CaseVerdict(case.name, verdict, detail, dt, probed=[f"{t}.{f}" for t, f in probe_fields(case)],
+                            agreeing=v.agreeing(), wall_s=wall, messages=messages, validation=v.to_json())
+    parted = [b for b in comparisons[0].pairs if comparisons[0].verdict(b) != "agrees"]
+    if recordings is not None and parted:
+        c.verdict.recording = _record_divergence(case, views[0], comparisons[0], recordings)
+
+
+def _record_divergence(case: Case, theirs: TraceView, comparison: TraceComparison, folder: str) -> str:
+    from reports.rerun_recording import write_recording  # rerun is imported when a recording is written
+    os.makedirs(folder, exist_ok=True)
+    out = os.path.join(folder, f"{case.name}.rrd")
+    runs = [(NAME, theirs), *comparison.views.items()]
+    write_recording(out, load(case.path), runs, list(comparison.pairs.values()))
+    return out
+
+
+def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
+    """Records each failed case again without each field it exercises; a field whose removal
+    leaves the trace byte-identical is ignored."""
+    probes: list[Recording] = []
+    for c in cases:
+        if c.verdict is None or c.verdict.verdict != WRONG:
+            continue
+        first = c.runs[0]
+        for t, f in probe_fields(c.case):
+            variant = os.path.join(c.folder, f"{c.case.name}.without-{t}.{f}.x3d")
+            if without(c.case.path, t, f, variant):
+                r = Recording(variant, variant[:-4] + ".csv", first.frame_rate, first.duration, first.what)
+                c.probes.append((f"{t}.{f}", r))
+                probes.append(r)
+    record(probes, timeout_per_run * max(1, len(probes)))
+    for c in cases:
+        ignored = [name for name, r in c.probes if r.ok and filecmp.cmp(r.out, c.runs[0].out, shallow=False)]
+        if ignored:
+            c.verdict.verdict, c.verdict.ignored = IGNORES, ignored
+
+
+def run_cases(cases: Sequence[Case], folder: str, backends: Sequence[str], info: Mapping[str, runner.BackendInfo],
+              thresholds: Mapping[str, float], timeout: float, recordings: str | None,
+              progress: Callable[[str], None] = lambda _: None) -> list[CaseVerdict]:
+    """Every case through X_ITE in one browser, judged; traces and probe scenes in `folder`."""
+    prepared = [_prepare(case, folder) for case in cases]
+    runs = [r for c in prepared for r in c.runs]
+    started = time.perf_counter()
+    record(runs, timeout * max(1, len(runs)))
+    progress(f"recorded {len(runs)} runs in X_ITE in {time.perf_counter() - started:.1f} s")
+    for c in prepared:
+        if c.verdict is None:
+            _judge(c, backends, info, thresholds, timeout, recordings)
+        progress(f"{c.case.name}: {c.verdict.verdict}")
+    started = time.perf_counter()
+    _probe(prepared, timeout)
+    progress(f"probed the failed cases' fields in {time.perf_counter() - started:.1f} s")
+    return [c.verdict for c in prepared]

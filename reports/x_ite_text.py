@@ -1,0 +1,59 @@
+"""`x3drbp x-ite cases`' results as markdown: one row per conformance case, X_ITE's verdict
+beside the backends' where the conformance matrix is given.
+
+Reads DIR/x_ite.json (and conformance/matrix.json); runs nothing.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+
+from .text import escape, num
+
+_SHOWN = {"right": "right", "ignores": "**ignores**", "wrong": "**wrong**", "error": "**error**"}
+
+
+def _backend_verdicts(matrix: dict | None) -> tuple[list[str], dict[tuple[str, str], str]]:
+    if matrix is None:
+        return [], {}
+    backends = [b for b, d in matrix["backends"].items() if d["run"]]
+    return backends, {(r["case"], r["backend"]): r["verdict"] for r in matrix["results"]}
+
+
+def _evidence(c: dict) -> str:
+    parts = []
+    if c["ignored"]:
+        parts.append(f"no effect: {', '.join(c['ignored'])}")
+    if c["detail"]:
+        parts.append(c["detail"])
+    if c["verdict"] == "wrong" and c["probed"]:
+        parts.append(f"every probed field has an effect ({', '.join(c['probed'])})")
+    return escape("; ".join(parts)) or "-"
+
+
+def render(data: dict, matrix: dict | None = None) -> str:
+    v = data["versions"]
+    backends, verdicts = _backend_verdicts(matrix)
+    counts = Counter(c["verdict"] for c in data["cases"])
+    lines = [
+        "# X_ITE on the conformance cases", "",
+        f"X_ITE {v['x_ite']} (npm `x_ite`, Bullet through ammo.js) in {escape(v['chromium'])}, headless, under a "
+        "virtual clock: frame k at k / frame rate, runs bit-identical. Each case is recorded at its own frame "
+        "rate and duration and judged by `x3drbp validate`'s checks at the step X_ITE takes (the frame in "
+        "`iterations` substeps). **right**: the case passes. **ignores**: it fails, and recording it again "
+        "with a field it exercises at its default leaves X_ITE's trace byte-identical (listed). **wrong**: it "
+        "fails though every probed field has an effect. **error**: X_ITE did not run it.", "",
+        f"{counts['right']} right, {counts['ignores']} ignores, {counts['wrong']} wrong, {counts['error']} error, "
+        f"in {data['wall_s']:g} s.", "",
+        "| case | " + "".join(f"{b} | " for b in backends) + "X_ITE | dt (s) | evidence | agrees with | recording |",
+        "|---|" + "---|" * len(backends) + "---|---:|---|---|---|"]
+    for c in data["cases"]:
+        cells = "".join(f"{verdicts.get((c['case'], b), '-')} | " for b in backends)
+        rec = f"[{c['recording'].split('/')[-1]}]({c['recording']})" if c["recording"] else "-"
+        lines.append(f"| {c['case']} | {cells}{_SHOWN[c['verdict']]} | {num(c['dt'])} | {_evidence(c)} | "
+                     f"{', '.join(c['agreeing']) or 'none'} | {rec} |")
+    said = sorted({m for c in data["cases"] for m in c["messages"]})
+    if said:
+        lines += ["", "What X_ITE printed (errors and warnings, each once):", ""]
+        lines += [f"- `{escape(m[:300])}`" for m in said]
+    return "\n".join(lines) + "\n"
