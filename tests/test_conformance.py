@@ -480,9 +480,10 @@ COLLISION_MUTATIONS = [
     ("conveyor", "\n          appliedParameters='\"SPEED-1\"'", ""),
     ("resting_penetration", " contactSurfaceThickness='0.01'", ""),
     ("box_stack", " frictionCoefficients='0.3 0.3'", ""),
-    ("collision_filtering", "<CollidableShape USE='KeptShape'/>", ""),  # the collider's collidables emptied
-    ("collision_filtering", "<CollidableShape USE='KeptShape'/>",
-     "<CollidableShape USE='KeptShape'/><CollidableShape USE='GhostShape'/>"),  # every body collides
+    ("collision_filtering", "<CollidableShape containerField='collidables' USE='KeptShape'/>", ""),  # emptied
+    ("collision_filtering", "<CollidableShape containerField='collidables' USE='KeptShape'/>",
+     "<CollidableShape containerField='collidables' USE='KeptShape'/>"
+     "<CollidableShape containerField='collidables' USE='GhostShape'/>"),  # every body collides
     ("routed_contacts", "<ROUTE fromNode='Sensor' fromField='contacts' toNode='World' toField='set_contacts'/>",
      ""),  # nothing collides
     ("sensor_geometry", "<Sphere radius='0.1'/>", "<Sphere/>"),

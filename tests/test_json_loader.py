@@ -103,7 +103,7 @@ PROTO_XML = """<?xml version="1.0" encoding="UTF-8"?>
     <RigidBodyCollection DEF="RBC">
       <ProtoInstance name="Ball" DEF="P1" containerField="bodies">
         <fieldValue name="m" value="5"/>
-        <fieldValue name="geom"><CollidableShape DEF="G"><Shape><Sphere/></Shape></CollidableShape></fieldValue>
+        <fieldValue name="geom"><CollidableShape DEF="G"><Shape containerField="shape"><Sphere/></Shape></CollidableShape></fieldValue>
       </ProtoInstance>
       <ProtoInstance name="Ball" DEF="P2" containerField="bodies"/>
     </RigidBodyCollection>

@@ -220,7 +220,13 @@ class Builder:
                         if f.type.kind == "node" and f.readable and f.accepts and schema.accepts(f, child.type_name)
                         and not (f.name == "metadata" and child.spec and not child.spec.is_a("X3DMetadataObject"))]
                 if len(fits) == 1:
-                    fd = fits[0]
+                    inferred, fd = fd, fits[0]
+                    if fd.name != "metadata":  # where every browser puts a metadata node
+                        self.warning(loc, f"{parent.label}.{fd.name}",
+                                     f"a {child.type_name} goes by default into {default!r}, which "
+                                     f"{'does not accept it' if inferred is not None else f'{parent.type_name} lacks'}"
+                                     f"; taken as {fd.name!r}, the one field that accepts it, which browsers need not "
+                                     f"do (X_ITE 15 does not): give containerField='{fd.name}'")
                 elif fd is None:
                     self.error(loc, f"{parent.label}.{default}",
                                f"{parent.type_name} has no field {default!r} for a {child.type_name} "
