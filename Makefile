@@ -3,11 +3,15 @@
 #                scenes, then x3drbp report (conformance, comparisons, sweeps, stability and
 #                the feature tables) into out/report/index.html and report.md
 #   make test    installs into .venv (with the dev tools) and runs the tests
+# Opt-in, for the X_ITE browser (Debian's chromium and nodejs, npm packages pinned in
+# conformance/x_ite/package-lock.json; no browser download):
+#   make x-ite   installs them, then runs the main job with X_ITE's column (report --x-ite)
+#   make test-x-ite  the tests that drive the real browser (pytest -m x_ite)
 PYTHON ?= python3
 VENV := .venv
 STAMP := $(VENV)/.installed
 
-.PHONY: report test bench
+.PHONY: report test bench x-ite x-ite-install test-x-ite
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -21,6 +25,21 @@ report: $(STAMP)
 
 test: $(STAMP)
 	$(VENV)/bin/python -m pytest -q
+
+SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
+X_ITE := conformance/x_ite
+
+x-ite-install:
+	@[ -x /usr/bin/chromium ] && command -v npm >/dev/null || \
+		{ $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q --no-install-recommends chromium nodejs npm; }
+	cd $(X_ITE) && npm ci --no-audit --no-fund --loglevel=error
+
+x-ite: $(STAMP) x-ite-install
+	$(VENV)/bin/x3drbp check -q scenes
+	$(VENV)/bin/x3drbp report --x-ite --out out/report
+
+test-x-ite: $(STAMP) x-ite-install
+	$(VENV)/bin/python -m pytest -q -m x_ite
 
 bench: $(STAMP)
 	$(VENV)/bin/python benchmarks/load_large.py

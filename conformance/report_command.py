@@ -1,7 +1,7 @@
 """`x3drbp report`: the main job. Every measurement x3drbp makes, on every installed backend,
 as one static HTML page with its plots, and the same in markdown.
 
-    x3drbp report [--out DIR] [--backends LIST] [--quick]
+    x3drbp report [--out DIR] [--backends LIST] [--quick] [--x-ite]
 
 Each step is the command of its name, run into a folder of DIR:
 
@@ -11,6 +11,8 @@ Each step is the command of its name, run into a folder of DIR:
     stability    the hard cases at 1/60 and 1/240 s          DIR/stability/stability.json, stability.md
     features     each backend's declared table against the verdicts of the cases that
                  exercise each feature                       DIR/features.json
+    x_ite        with --x-ite only: the X_ITE browser on every case, judged (needs
+                 `make x-ite-install`)                       DIR/x_ite/x_ite.json, x_ite.md
 
 then reports/report_page.py writes DIR/report.md and DIR/index.html from those files alone.
 --quick leaves out the sweep (the longest step). DIR defaults to out/report. Exit status 0
@@ -40,7 +42,7 @@ EXAMPLES = os.path.join(C.ROOT, "scenes", "examples")
 COMPARE_SECONDS = 5.0
 
 
-def _steps(out: str, backends: list[str], quick: bool) -> list[tuple[str, list[list[str]]]]:
+def _steps(out: str, backends: list[str], quick: bool, x_ite: bool) -> list[tuple[str, list[list[str]]]]:
     """(step, the x3drbp command lines it runs)."""
     chosen = ["--backends", ",".join(backends)]
     examples = sorted(os.path.join(EXAMPLES, f) for f in os.listdir(EXAMPLES))
@@ -50,8 +52,9 @@ def _steps(out: str, backends: list[str], quick: bool) -> list[tuple[str, list[l
                           for path in examples
                           for stem in [os.path.join(out, "compare", os.path.splitext(os.path.basename(path))[0])]]),
              ("sweep", [["sweep", *chosen, "--quiet", "--out", os.path.join(out, "sweep")]]),
-             ("stability", [["stability", *chosen, "--out", os.path.join(out, "stability")]])]
-    return [s for s in steps if not (quick and s[0] == "sweep")]
+             ("stability", [["stability", *chosen, "--out", os.path.join(out, "stability")]]),
+             ("x_ite", [["x-ite", "cases", "--against", ",".join(backends), "--out", os.path.join(out, "x_ite")]])]
+    return [s for s in steps if not (quick and s[0] == "sweep") and (x_ite or s[0] != "x_ite")]
 
 
 def _run(argv: list[str], log: str) -> int:
@@ -103,7 +106,7 @@ def cmd_report(args: argparse.Namespace) -> int:
         os.makedirs(os.path.join(out, sub), exist_ok=True)
     timings, failed = {}, []
     started = time.perf_counter()
-    for step, commands in _steps(out, backends, args.quick):
+    for step, commands in _steps(out, backends, args.quick, args.x_ite):
         t0 = time.perf_counter()
         log = os.path.join(logs, f"{step}.log")
         open(log, "w").close()
@@ -141,4 +144,6 @@ def add_command(sub) -> None:
     p.add_argument("--backends", action="append", metavar="LIST",
                    help="backends, comma-separated (default: every installed one)")
     p.add_argument("--quick", action="store_true", help="leave out the sweep, the longest step")
+    p.add_argument("--x-ite", action="store_true",
+                   help="add the X_ITE browser's column: every case recorded in X_ITE and judged (`make x-ite`)")
     p.set_defaults(func=cmd_report)

@@ -23,6 +23,7 @@ import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
+from x3d_core import atomic
 from x3d_core.model import Scene
 from x3d_core.world import node_names, worlds
 
@@ -83,6 +84,7 @@ class Recording:
     what: dict  # outputs(scene)
     ok: bool = False
     error: str | None = None
+    blew_up: str | None = None  # the first output that was not finite: the trace stops before it
     frames: int = 0
     wall_s: float | None = None
     messages: list[str] = field(default_factory=list)
@@ -101,8 +103,7 @@ def record(runs: Sequence[Recording], timeout: float) -> None:
         return
     with tempfile.TemporaryDirectory(prefix="x3drbp-x_ite-") as folder:
         job = os.path.join(folder, "job.json")
-        with open(job, "w", encoding="utf-8") as f:
-            json.dump(_job(runs), f)
+        atomic.write_json(job, _job(runs))
         child = subprocess.Popen(["node", os.path.join(HERE, "record.mjs"), job], stdout=subprocess.PIPE,
                                  stderr=subprocess.PIPE, text=True, start_new_session=True)
         try:
@@ -119,6 +120,7 @@ def record(runs: Sequence[Recording], timeout: float) -> None:
         except (ValueError, KeyError, IndexError, TypeError):
             continue
         r.ok, r.error, r.frames, r.wall_s = bool(d["ok"]), d.get("error"), int(d.get("frames", 0)), d.get("wallSeconds")
+        r.blew_up = d.get("blewUp")
         r.messages = [m for m in d.get("messages", []) if NOISE not in m]
     for r in runs:
         if not r.ok and r.error is None:

@@ -65,7 +65,11 @@ def cmd_cases(args: argparse.Namespace) -> int:
         _say(f"X_ITE cannot run here: {reason}")
         return EXIT_FAILED
     traces = os.path.join(args.out, "traces")
-    os.makedirs(traces, exist_ok=True)
+    try:
+        os.makedirs(traces, exist_ok=True)
+    except OSError as e:
+        _say(f"--out {args.out}: {e.strerror}")
+        return EXIT_USAGE
     started = time.perf_counter()
     verdicts = run_cases(chosen, traces, backends, info, thresholds, args.timeout,
                          os.path.join(args.out, "recordings"), _say)

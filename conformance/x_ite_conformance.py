@@ -10,6 +10,8 @@ gets wrong, each measured by the suite's ordinary checks (`x3drbp validate`'s, u
   from every node of the type, i.e. at its default. A field whose removal leaves X_ITE's
   trace identical, byte for byte, has no effect in X_ITE: it IGNORES it. (Runs are
   bit-identical, so any effect at all shows.) A failed case with no ignored field is WRONG.
+- A case whose state stops being finite blew up: WRONG, and not probed (a trace cut short
+  says nothing of what a field would have changed later).
 - A case X_ITE cannot run (its page throws, the browser crashes or times out, the scene
   has an output the page cannot name) is an ERROR, with the reason.
 
@@ -129,6 +131,10 @@ def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, runner.BackendI
         return
     scene = load(case.path)
     dt = step(scene, c.runs[0].frame_rate)
+    blown = next((r for r in c.runs if r.blew_up), None)
+    if blown is not None:  # as the evaluator counts a backend's non-finite state
+        c.verdict = CaseVerdict(case.name, WRONG, f"blew up: {blown.blew_up}", dt, wall_s=wall, messages=messages)
+        return
     views, rows_of = [], []
     for r in c.runs:
         rows, problems = check_trace(r.out, scene)
@@ -165,8 +171,8 @@ def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
     leaves the trace byte-identical is ignored."""
     probes: list[Recording] = []
     for c in cases:
-        if c.verdict is None or c.verdict.verdict != WRONG:
-            continue
+        if c.verdict is None or c.verdict.verdict != WRONG or any(r.blew_up for r in c.runs):
+            continue  # a trace cut short says nothing of what a field changes later
         first = c.runs[0]
         for t, f in probe_fields(c.case):
             variant = os.path.join(c.folder, f"{c.case.name}.without-{t}.{f}.x3d")

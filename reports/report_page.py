@@ -22,6 +22,7 @@ from x3d_core import atomic
 
 from .compare_text import render as render_comparison
 from .text import escape
+from .x_ite_text import render as render_x_ite
 
 _STYLE = """
 body { font: 15px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 82em; padding: 0 1em; color: #222; }
@@ -111,7 +112,8 @@ def _header(meta: dict) -> str:
         "Backends: " + "; ".join(f"{b} {v}" for b, v in meta["backends"].items()), "",
         "Sections: [conformance](#conformance), [comparisons](#where-the-backends-part), "
         "[speed against error](#speed-against-error), [stability](#stability), "
-        "[declared against measured](#declared-against-measured). Every number comes from the JSON files "
+        "[declared against measured](#declared-against-measured)"
+        + (", [X_ITE](#x_ite)" if "x_ite" in t else "") + ". Every number comes from the JSON files "
         "beside this page."]) + "\n"
 
 
@@ -131,6 +133,11 @@ def report_markdown(out: str) -> str:
     parts.append("## Stability\n\n" + (_section(stability, "stability") if stability else "Not run.\n"))
     table = _read(os.path.join(out, "features.json"))
     parts.append(_features(json.loads(table)) if table else "## Declared against measured\n\nNot run.\n")
+    x_ite = _read(os.path.join(out, "x_ite", "x_ite.json"))
+    if x_ite:  # `x3drbp report --x-ite` only
+        matrix_json = _read(os.path.join(out, "conformance", "matrix.json"))
+        text = render_x_ite(json.loads(x_ite), json.loads(matrix_json) if matrix_json else None)
+        parts.append("## X_ITE\n\n" + _section(text, "x_ite"))
     return "\n".join(parts)
 
 

@@ -69,7 +69,7 @@ def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys
     pair = ",".join(INSTALLED[:2])
     out = str(tmp_path / "report")
 
-    def small(out_dir, backends, quick):
+    def small(out_dir, backends, quick, x_ite):
         chosen = ["--backends", ",".join(backends)]
         return [("conformance", [["conformance", *chosen, "--cases", "free_fall", "--out",
                                    os.path.join(out_dir, "conformance")]]),

@@ -6,8 +6,9 @@
 //
 // JOB: {"chromium": PATH, "runs": [{"scene", "out", "frameRate", "duration",
 //        "bodies": [NAME...], "joints": {NAME: [FIELD...]}, "sensors": [NAME...]}]}
-// Prints one JSON line per run, as it ends: {"run", "ok", "frames", "wallSeconds",
-// "messages"} or {"run", "ok": false, "error", "messages"}. Nothing is fetched from the
+// Prints one JSON line per run, as it ends: {"run", "ok", "frames", "blewUp", "wallSeconds",
+// "messages"} (blewUp: the first output that was not finite, where the trace stops; or null)
+// or {"run", "ok": false, "error", "messages"}. Nothing is fetched from the
 // network: the page, X_ITE and the scene's folder are served from disk by request routing,
 // and every other request is refused.
 import { readFileSync, writeFileSync } from "node:fs";
@@ -42,7 +43,11 @@ async function record(run) {
     if (typeof v === "boolean") return v ? "true" : "false";
     if (typeof v === "number") return String(v);
     if (typeof v.getNodeName === "function") return v.getNodeName() || "NULL";
-    if ("angle" in v) return `${v.x} ${v.y} ${v.z} ${v.angle}`;
+    if ("angle" in v) {  // the trace wants a unit axis: X_ITE hands back the axis as given, or
+      // for a tiny angle, a float32 one off by up to 10%
+      const n = Math.hypot(v.x, v.y, v.z);
+      return n > 0 ? `${v.x / n} ${v.y / n} ${v.z / n} ${v.angle}` : `0 0 1 ${v.angle}`;
+    }
     if ("z" in v) return `${v.x} ${v.y} ${v.z}`;
     if ("y" in v) return `${v.x} ${v.y}`;
     return String(v);
@@ -71,7 +76,12 @@ async function record(run) {
   const joints = Object.entries(run.joints).map(([name, fields]) => [name, get(name), fields]);
   const sensors = run.sensors.map(name => [name, get(name)]);
   const rows = ["time,node,field,value"];
-  const add = (t, node, field, value) => rows.push(`${t},${quote(node)},${quote(field)},${quote(fmt(value))}`);
+  let blewUp = null;  // the first output that is not a finite number, where the run stops
+  const add = (t, node, field, value) => {
+    const text = fmt(value);
+    if (blewUp === null && /NaN|Infinity/.test(text)) blewUp = `${node}.${field} is ${text} at ${t} s`;
+    rows.push(`${t},${quote(node)},${quote(field)},${quote(text)}`);
+  };
   const BODY = ["position", "orientation", "linearVelocity", "angularVelocity"];
   const CONTACT = ["position", "contactNormal", "depth", "body1", "body2", "geometry1", "geometry2"];
   const read = t => {
@@ -87,12 +97,17 @@ async function record(run) {
     }
   };
   const frames = Math.round(run.duration * run.frameRate);
+  // a frame's rows go into the trace only when all are finite: the trace stays readable
+  let kept = rows.length;
   read(0);
-  for (let k = 1; k <= frames; ++k) {
-    window.x3drbpClock.frame(k0 + k, periodMs);
+  let k = 0;
+  while (blewUp === null && k < frames) {
+    kept = rows.length;
+    window.x3drbpClock.frame(k0 + ++k, periodMs);
     read(k / run.frameRate);
   }
-  return { frames, text: rows.join("\n") + "\n" };
+  if (blewUp !== null) rows.length = kept;
+  return { frames: blewUp === null ? k : Math.max(k - 1, 0), blewUp, text: rows.join("\n") + "\n" };
 }
 
 async function main() {
@@ -124,7 +139,7 @@ async function main() {
         const url = `${ORIGIN}/scene/${encodeURIComponent(sceneName)}`;
         const result = await page.evaluate(record, { ...run, url });
         writeFileSync(run.out, result.text);
-        console.log(JSON.stringify({ run: index, ok: true, frames: result.frames,
+        console.log(JSON.stringify({ run: index, ok: true, frames: result.frames, blewUp: result.blewUp,
           wallSeconds: (performance.now() - started) / 1000, messages }));
       } catch (error) {
         console.log(JSON.stringify({ run: index, ok: false, error: String(error).split("\n")[0], messages }));

@@ -1,0 +1,151 @@
+"""The X_ITE harness's own logic, without a browser: what a page records and refuses, the step
+X_ITE takes, the field probes, the browser's failures as verdicts, and the report's column.
+The real browser is driven in tests/test_x_ite.py (opt-in)."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import textwrap
+
+import pytest
+
+from conformance import x_ite
+from conformance.cli import main as cli_main
+from conformance.cases import CASES
+from conformance.x_ite_conformance import probe_fields, without
+from conftest import SCENES
+from reports.report_page import report_markdown
+from reports.x_ite_text import render
+from x3d_core.load import load
+from x3d_core.trace import read_trace
+
+CONFORMANCE = os.path.join(SCENES, "conformance")
+CASE = {c.name: c for c in CASES}
+
+
+def _scene(tmp_path, body: str, name: str = "s.x3d") -> str:
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(f"""\
+        <?xml version="1.0" encoding="UTF-8"?>
+        <X3D profile='Full' version='4.0'><Scene>
+        {body}
+        </Scene></X3D>
+        """))
+    return str(path)
+
+
+@pytest.mark.parametrize("name", ["hinge_limits", "sensor_geometry", "universal_joint"])
+def test_outputs_are_what_the_evaluator_records(tmp_path, name):
+    """The page reads the (node, field) pairs x3drbp's own trace has at time 0."""
+    scene = os.path.join(CONFORMANCE, f"{name}.x3d")
+    trace = tmp_path / "t.csv"
+    assert cli_main(["run", scene, "--backend", "bullet", "--duration", "0.05", "--trace", str(trace)]) == 0
+    recorded = {(r.node, r.field) for r in read_trace(str(trace)) if r.time == 0}
+    what = x_ite.outputs(load(scene))
+    read = {(b, f) for b in what["bodies"] for f in ("position", "orientation", "linearVelocity", "angularVelocity")}
+    read |= {(j, f) for j, fields in what["joints"].items() for f in fields}
+    read |= {(s, "isActive") for s in what["sensors"]}
+    assert read == recorded
+
+
+def test_a_body_without_def_is_refused_by_name(tmp_path):
+    path = _scene(tmp_path, "<RigidBodyCollection><RigidBody/><RigidBody DEF='B'/></RigidBodyCollection>")
+    with pytest.raises(x_ite.NotRecordable, match="RigidBody_1"):
+        x_ite.outputs(load(path))
+
+
+def test_step_is_the_frame_in_iterations_substeps(tmp_path):
+    path = _scene(tmp_path, "<RigidBodyCollection iterations='4'><RigidBody DEF='B'/></RigidBodyCollection>")
+    assert x_ite.step(load(path), 50.0) == pytest.approx(1 / 200, rel=1e-15)
+    assert x_ite.step(load(os.path.join(CONFORMANCE, "free_fall.x3d")), 60.0) == pytest.approx(1 / 600, rel=1e-15)
+
+
+def test_probes_are_the_exercised_fields():
+    assert probe_fields(CASE["hinge_limits"]) == [("SingleAxisHingeJoint", "minAngle"),
+                                                 ("SingleAxisHingeJoint", "maxAngle")]  # not ".limits"
+    assert ("RigidBody", "inertia") in probe_fields(CASE["torque_free"])  # from inertia.offDiagonal
+    assert probe_fields(CASE["collision_filtering"]) == []  # node types and geometry only
+
+
+def test_without_puts_the_field_at_its_default(tmp_path):
+    scene = os.path.join(CONFORMANCE, "hinge_limits.x3d")
+    out = str(tmp_path / "v.x3d")
+    assert without(scene, "SingleAxisHingeJoint", "maxAngle", out)
+    hinge = next(iter(load(out).of_type("SingleAxisHingeJoint")))
+    original = next(iter(load(scene).of_type("SingleAxisHingeJoint")))
+    assert hinge.get("maxAngle") == pytest.approx(3.141592653)  # the default
+    assert original.get("maxAngle") != pytest.approx(3.141592653)
+    assert hinge.get("minAngle") == original.get("minAngle")
+    assert not without(scene, "SingleAxisHingeJoint", "stopBounce", str(tmp_path / "w.x3d"))  # not set there
+    assert not (tmp_path / "w.x3d").exists()
+
+
+@pytest.mark.skipif(shutil.which("node") is None, reason="node is not installed: the fake browser is a node script")
+def test_a_browser_that_dies_is_each_unfinished_run_s_verdict(tmp_path, monkeypatch):
+    """The first run finishes, then the browser exits: the second gets that as its error."""
+    (tmp_path / "record.mjs").write_text(textwrap.dedent("""\
+        import { readFileSync, writeFileSync } from "node:fs";
+        const job = JSON.parse(readFileSync(process.argv[2], "utf8"));
+        writeFileSync(job.runs[0].out, "time,node,field,value\\n");
+        console.log(JSON.stringify({run: 0, ok: true, frames: 1, wallSeconds: 0.5,
+                                    messages: ["GL Driver Message: noise", "X_ITE: a real warning"]}));
+        console.error("renderer crashed");
+        process.exit(3);
+        """))
+    monkeypatch.setattr(x_ite, "HERE", str(tmp_path))
+    runs = [x_ite.Recording("a.x3d", str(tmp_path / f"{k}.csv"), 60.0, 1.0, {}) for k in range(2)]
+    x_ite.record(runs, timeout=60)
+    assert runs[0].ok and runs[0].frames == 1 and runs[0].messages == ["X_ITE: a real warning"]
+    assert not runs[1].ok and runs[1].error == "the browser exited with status 3: renderer crashed"
+
+
+@pytest.mark.skipif(shutil.which("node") is None, reason="node is not installed: the fake browser is a node script")
+def test_a_browser_that_hangs_is_a_timeout(tmp_path, monkeypatch):
+    (tmp_path / "record.mjs").write_text("setInterval(() => {}, 1000);\n")
+    monkeypatch.setattr(x_ite, "HERE", str(tmp_path))
+    runs = [x_ite.Recording("a.x3d", str(tmp_path / "0.csv"), 60.0, 1.0, {})]
+    x_ite.record(runs, timeout=1.0)
+    assert not runs[0].ok and runs[0].error.startswith("timeout")
+
+
+def _results() -> dict:
+    base = {"dt": 1 / 600, "ignored": [], "probed": [], "agreeing": [], "recording": None, "wall_s": 1.0,
+            "messages": [], "validation": None}
+    return {"versions": {"x_ite": "15.0.1", "chromium": "Chromium 156"}, "backends": ["bullet", "ode"],
+            "thresholds": {}, "wall_s": 12.0, "cases": [
+                {**base, "case": "free_fall", "verdict": "right", "detail": "", "agreeing": ["bullet"]},
+                {**base, "case": "hinge_limits", "verdict": "ignores", "detail": "Hinge.angle 0.6 > 0.001 rad",
+                 "ignored": ["SingleAxisHingeJoint.maxAngle"], "probed": ["SingleAxisHingeJoint.minAngle",
+                                                                          "SingleAxisHingeJoint.maxAngle"],
+                 "recording": "recordings/hinge_limits.rrd"},
+                {**base, "case": "incline", "verdict": "wrong", "detail": "Box.position 1 > 0.01 m",
+                 "probed": ["CollisionCollection.frictionCoefficients"], "messages": ["Ammo: warning"]},
+                {**base, "case": "bounce_apex", "verdict": "error", "detail": "timeout", "dt": None}]}
+
+
+def test_the_column_says_right_ignores_wrong_and_error_with_evidence():
+    matrix = {"backends": {"bullet": {"run": True}, "ode": {"run": True}, "dart": {"run": False}},
+              "results": [{"case": "free_fall", "backend": "bullet", "verdict": "pass"},
+                          {"case": "hinge_limits", "backend": "ode", "verdict": "fail"}]}
+    text = render(_results(), matrix)
+    rows = {ln.split(" | ")[0][2:]: ln for ln in text.splitlines() if ln.startswith("| ") and " | " in ln}
+    assert "| bullet | ode | X_ITE |" in rows["case"] and "dart" not in rows["case"]
+    assert rows["free_fall"].startswith("| free_fall | pass | - | right |")
+    assert "**ignores**" in rows["hinge_limits"] and "no effect: SingleAxisHingeJoint.maxAngle" in rows["hinge_limits"]
+    assert "(recordings/hinge_limits.rrd)" in rows["hinge_limits"]
+    assert "**wrong**" in rows["incline"] and "every probed field has an effect" in rows["incline"]
+    assert "**error**" in rows["bounce_apex"] and "timeout" in rows["bounce_apex"]
+    assert "1 right, 1 ignores, 1 wrong, 1 error" in text and "- `Ammo: warning`" in text
+
+
+def test_the_report_gains_the_x_ite_section_only_when_it_ran(tmp_path):
+    meta = {"generated": "now", "cpus": 2, "timings_s": {"conformance": 1.0, "total": 1.0}, "failed": [],
+            "backends": {"bullet": "3"}, "quick": True}
+    (tmp_path / "report.json").write_text(json.dumps(meta))
+    assert "## X_ITE" not in report_markdown(str(tmp_path))
+    (tmp_path / "x_ite").mkdir()
+    (tmp_path / "x_ite" / "x_ite.json").write_text(json.dumps(_results()))
+    text = report_markdown(str(tmp_path))
+    assert "## X_ITE" in text and "(x_ite/recordings/hinge_limits.rrd)" in text
