@@ -52,16 +52,19 @@ class NotRecordable(ValueError):
 
 def outputs(scene: Scene) -> dict:
     """What the page reads each frame: every body of an enabled collection, the joint outputs
-    forceOutput selects, every enabled CollisionSensor; all by DEF name, which is how a
-    page finds a node (Scene.getNamedNode), so a node without one is refused by name."""
-    found: dict = {"bodies": [], "joints": {}, "sensors": []}
+    forceOutput selects, every enabled CollisionSensor; and the enabled collections, which
+    it holds for one frame before the run (record.mjs says why). All by DEF name, which is
+    how a page finds a node (Scene.getNamedNode), so a node without one is refused by name."""
+    found: dict = {"collections": [], "bodies": [], "joints": {}, "sensors": []}
     for w in worlds(scene):
+        found["collections"].append(w.name)
         found["bodies"] += [w.bodies.names[i] for i in range(len(w.bodies)) if w.bodies.enabled[i]]
         found["joints"].update({j.name: list(j.outputs) for j in w.joints if j.outputs})
         if w.collisions is not None:
             found["sensors"] += [name for name, _ in w.collisions.sensors]
     defined = {n.def_name for n in scene.nodes() if n.def_name}
-    unnamed = [n for n in (*found["bodies"], *found["joints"], *found["sensors"]) if n not in defined]
+    unnamed = [n for n in (*found["collections"], *found["bodies"], *found["joints"], *found["sensors"])
+               if n not in defined]
     if unnamed:
         raise NotRecordable(f"{', '.join(unnamed)}: a page reads nodes by DEF name, and these have none")
     return found

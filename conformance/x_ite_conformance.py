@@ -50,7 +50,7 @@ class CaseVerdict:
     detail: str  # the failing measures, or what stopped the run
     dt: float | None = None  # the step X_ITE takes in this case
     ignored: list[str] = field(default_factory=list)  # TYPE.field with no effect on X_ITE's trace
-    probed: list[str] = field(default_factory=list)  # every TYPE.field probed
+    probed: list[str] = field(default_factory=list)  # every TYPE.field probed (the scene sets it)
     agreeing: list[str] = field(default_factory=list)  # backends whose runs agree with X_ITE's
     recording: str | None = None  # the rerun recording, relative to the output folder
     wall_s: float = 0.0  # X_ITE's own recording time, all runs of the case
@@ -150,8 +150,7 @@ def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, runner.BackendI
     v = Validation(case.path, [r.out for r in c.runs], dict(thresholds), result, comparisons)
     verdict = RIGHT if result.verdict == runner.PASS else WRONG
     detail = "" if verdict == RIGHT else _failing(result)
-    c.verdict = CaseVerdict(case.name, verdict, detail, dt, probed=[f"{t}.{f}" for t, f in probe_fields(case)],
-                            agreeing=v.agreeing(), wall_s=wall, messages=messages, validation=v.to_json())
+    c.verdict = CaseVerdict(case.name, verdict, detail, dt, agreeing=v.agreeing(), wall_s=wall, messages=messages, validation=v.to_json())
     parted = [b for b in comparisons[0].pairs if comparisons[0].verdict(b) != "agrees"]
     if recordings is not None and parted:
         c.verdict.recording = _record_divergence(case, views[0], comparisons[0], recordings)
@@ -180,6 +179,7 @@ def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
                 r = Recording(variant, variant[:-4] + ".csv", first.frame_rate, first.duration, first.what)
                 c.probes.append((f"{t}.{f}", r))
                 probes.append(r)
+        c.verdict.probed = [name for name, _ in c.probes]
     record(probes, timeout_per_run * max(1, len(probes)))
     for c in cases:
         ignored = [name for name, r in c.probes if r.ok and filecmp.cmp(r.out, c.runs[0].out, shallow=False)]

@@ -21,7 +21,7 @@ pytestmark = [pytest.mark.x_ite,
               pytest.mark.skipif(x_ite.unavailable() is not None, reason=f"X_ITE: {x_ite.unavailable()}")]
 
 CONFORMANCE = os.path.join(SCENES, "conformance")
-G = 9.81
+G = 9.8  # RigidBodyCollection.gravity by default
 # X_ITE's frame step: a moving average over this many frames of the frame period, from 0
 X_ITE_DELAY = 15
 

@@ -4,8 +4,9 @@
 //
 //   node record.mjs JOB.json
 //
-// JOB: {"chromium": PATH, "runs": [{"scene", "out", "frameRate", "duration",
-//        "bodies": [NAME...], "joints": {NAME: [FIELD...]}, "sensors": [NAME...]}]}
+// JOB: {"chromium": PATH, "runs": [{"scene", "out", "frameRate", "duration", "loadFrames",
+//        "collections": [NAME...], "bodies": [NAME...], "joints": {NAME: [FIELD...]},
+//        "sensors": [NAME...]}]}
 // Prints one JSON line per run, as it ends: {"run", "ok", "frames", "blewUp", "wallSeconds",
 // "messages"} (blewUp: the first output that was not finite, where the trace stops; or null)
 // or {"run", "ok": false, "error", "messages"}. Nothing is fetched from the
@@ -70,6 +71,15 @@ async function record(run) {
     await new Promise(resolve => setTimeout(resolve, 1));
   }
   if (failed !== null) throw failed;
+  // How many frames loading took varies from run to run, and with it the clock's value, and
+  // so the last bits of every frame interval X_ITE computes (t_k - t_(k-1) in seconds). So
+  // the collections are held disabled for one frame at a fixed time after any load can end,
+  // and the run's frames count from there: frame k at EPOCH + (loadFrames + 1 + k) periods.
+  const collections = run.collections.map(name => browser.currentScene.getNamedNode(name));
+  collections.forEach(c => { c.enabled = false; });
+  k0 = run.loadFrames + 1;
+  window.x3drbpClock.frame(k0, periodMs);
+  collections.forEach(c => { c.enabled = true; });
   const scene = browser.currentScene;
   const get = name => scene.getNamedNode(name);
   const bodies = run.bodies.map(get);
