@@ -57,8 +57,8 @@ def cmd_cases(args: argparse.Namespace) -> int:
         info = runner.backend_table()
         backends = [b for b in runner.named_backends(_names(args.against), info) if info[b].usable]
         thresholds = _thresholds(args.threshold)
-    except ValueError as e:
-        _say(str(e))
+    except (KeyError, ValueError) as e:  # an unknown case, backend or threshold
+        _say(str(e.args[0]))
         return EXIT_USAGE
     reason = unavailable()
     if reason:

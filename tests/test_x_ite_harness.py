@@ -149,3 +149,14 @@ def test_the_report_gains_the_x_ite_section_only_when_it_ran(tmp_path):
     (tmp_path / "x_ite" / "x_ite.json").write_text(json.dumps(_results()))
     text = report_markdown(str(tmp_path))
     assert "## X_ITE" in text and "(x_ite/recordings/hinge_limits.rrd)" in text
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["--cases", "nope"], "unknown case(s) nope"),
+    (["--against", "nope"], "nope"),
+    (["--threshold", "position=-1"], "threshold position must be a positive number"),
+])
+def test_bad_usage_is_one_line_and_exit_2(tmp_path, capsys, argv, says):
+    assert cli_main(["x-ite", "cases", *argv, "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("x3drbp x-ite: ") and says in err[0]
