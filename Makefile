@@ -4,7 +4,7 @@
 #                the feature tables) into out/report/index.html and report.md
 #   make test    installs into .venv (with the dev tools) and runs the tests
 # Opt-in, for the X_ITE browser (Debian's chromium and nodejs, npm packages pinned in
-# conformance/x_ite/package-lock.json; no browser download):
+# conformance/browsers/x_ite/package-lock.json; no browser download):
 #   make x-ite   installs them, then runs the main job with X_ITE's column (report --x-ite)
 #   make test-x-ite  the tests that drive the real browser (pytest -m x_ite)
 PYTHON ?= python3
@@ -27,7 +27,7 @@ test: $(STAMP)
 	$(VENV)/bin/python -m pytest -q
 
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
-X_ITE := conformance/x_ite
+X_ITE := conformance/browsers/x_ite
 
 x-ite-install:
 	@[ -x /usr/bin/chromium ] && command -v npm >/dev/null || \

@@ -23,7 +23,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from distributed import LocalCluster  # noqa: E402
 
-from conformance import sweep as S  # noqa: E402
+from conformance.analyses import sweep as S  # noqa: E402
 
 SCENE = "pendulum_period"
 DTS = (1 / 3000, 1 / 4000)

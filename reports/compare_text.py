@@ -1,11 +1,11 @@
 """`x3drbp compare`'s result as text: markdown tables that read as well in a terminal.
 
-Reads a conformance.compare.Comparison (or its JSON, through Comparison.from_json); runs nothing.
+Reads a conformance.results.Comparison (or its JSON, through Comparison.from_json); runs nothing.
 """
 
 from __future__ import annotations
 
-from conformance.compare import RAN, BackendRun, Comparison, Crossing, Divergence, PairComparison
+from conformance.results import RAN, BackendRun, Comparison, Crossing, Divergence, PairComparison
 
 from .text import escape, num
 

@@ -17,7 +17,7 @@ import re
 
 import markdown as md
 
-from conformance.compare import Comparison
+from conformance.results import Comparison
 from x3d_core import atomic
 
 from .compare_text import render as render_comparison

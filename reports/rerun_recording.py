@@ -26,10 +26,10 @@ import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
-from conformance.cases import TraceView
-from conformance.compare import JOINT_OUTPUTS, ORIENTATION, POSITION, Divergence, PairComparison, bodies
+from conformance.results import JOINT_OUTPUTS, ORIENTATION, POSITION, Divergence, PairComparison
 from x3d_core import rotation as R
 from x3d_core.collision import Geometry
+from x3d_core.trace import TraceView
 from x3d_core.model import Scene
 from x3d_core.world import STATIC, worlds
 
@@ -163,7 +163,7 @@ def write_recording(out: str, scene: Scene, runs: Sequence[tuple[str, TraceView]
     any_joints = False
     for k, (backend, trace) in enumerate(runs):
         color = PALETTE[k % len(PALETTE)]
-        names = bodies(trace)
+        names = trace.bodies()
         _geometry(rec, backend, shapes, names, color)
         _poses(rec, backend, trace, names)
         frames = np.unique(np.concatenate([trace.series(n, POSITION)[0] for n in names])) if names else np.empty(0)

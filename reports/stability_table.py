@@ -1,4 +1,4 @@
-"""The stability suite's results (stability.json, as conformance.stability_command writes it)
+"""The stability suite's results (stability.json, as conformance.cli.stability writes it)
 as markdown: a verdict per (case, dt, backend), then each case's drift figures."""
 
 from __future__ import annotations

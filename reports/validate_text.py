@@ -5,8 +5,7 @@ Reads a conformance.validate.Validation; runs nothing.
 
 from __future__ import annotations
 
-from conformance.compare import RAN
-from conformance.validate import TraceComparison, Validation
+from conformance.results import RAN, TraceComparison, Validation
 
 from .compare_text import _joint, _rms_max
 from .text import escape, num

@@ -7,7 +7,7 @@ import stat
 
 
 def fake_python(tmp_path, script: str) -> str:
-    """The path of an executable /bin/sh script with this body, for runner.sys.executable."""
+    """The path of an executable /bin/sh script with this body, for children.sys.executable."""
     path = tmp_path / "fake-python"
     path.write_text("#!/bin/sh\n" + script)
     path.chmod(path.stat().st_mode | stat.S_IXUSR)

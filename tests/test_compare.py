@@ -11,10 +11,11 @@ import signal
 import numpy as np
 import pytest
 
-from conformance import compare_runs, runner
-from conformance.cases import TraceView
+from conformance.runner import children, probe
+from x3d_core.trace import TraceView
 from conformance.cli import main as cli_main
-from conformance.compare import Comparison, compare_pair
+from conformance.analyses.compare import compare_pair
+from conformance.results import Comparison
 from conftest import SCENES
 from reports.compare_text import render
 from x3d_core.trace import Row
@@ -117,7 +118,7 @@ def test_runs_without_a_body_in_common_compare_to_nothing_without_failing():
 
 # -- the command --------------------------------------------------------------------------
 
-INSTALLED = [n for n, i in runner.backend_table().items() if i.usable]
+INSTALLED = [n for n, i in probe.backend_table().items() if i.usable]
 needs_two = pytest.mark.skipif(len(INSTALLED) < 2, reason=f"two backends needed, installed: {INSTALLED}")
 
 
@@ -149,14 +150,14 @@ def test_compare_two_backends_on_the_pendulum_writes_table_and_json(tmp_path, ca
 @needs_two
 def test_a_crashed_backend_is_its_verdict_and_the_others_still_compare(tmp_path, capsys, monkeypatch):
     victim = INSTALLED[0]
-    real = runner.run_child
+    real = children.run_child
 
     def crashing(scene, backend, *args, **kwargs):
         if backend == victim:  # as a child killed by a segfault ends
-            return runner.classify(-signal.SIGSEGV, "Fatal Python error: Segmentation fault")
+            return children.classify(-signal.SIGSEGV, "Fatal Python error: Segmentation fault")
         return real(scene, backend, *args, **kwargs)
 
-    monkeypatch.setattr(runner, "run_child", crashing)
+    monkeypatch.setattr(children, "run_child", crashing)
     others = INSTALLED[1:3]
     out = tmp_path / "c.json"
     code = cli_main(["compare", PENDULUM, "--backends", ",".join([victim, *others]), "--duration", "0.1",

@@ -16,15 +16,17 @@ import numpy as np
 import pytest
 
 from conformance import cases as C
-from conformance import runner
+from conformance import results
+from conformance.results import Settings
+from conformance.runner import children, probe, verdicts
 from conformance.cli import main as cli_main
 from x3d_core.analysis import features
 from x3d_core.load import load
-from x3d_core.trace import Row
+from x3d_core.trace import Row, TraceView
 
 from fake_child import fake_python
 
-INFO = runner.backend_table()
+INFO = probe.backend_table()
 INSTALLED = [n for n, i in INFO.items() if i.usable]
 REFERENCE = "mujoco" if "mujoco" in INSTALLED else (INSTALLED[0] if INSTALLED else None)
 
@@ -107,15 +109,15 @@ def matrix(request):
             p = item.callspec.params
             if p["case"] is not None:
                 wanted.append((p["case"], p["backend"]))
-    results = runner.run_many([lambda c=c, b=b: runner.run_pair(c, b) for c, b in wanted])
+    results = verdicts.run_many([lambda c=c, b=b: verdicts.run_pair(c, b) for c, b in wanted])
     return {(c.name, b): r for (c, b), r in zip(wanted, results)}
 
 
 @pytest.mark.parametrize("case,backend", _pairs())
 def test_case_on_backend(case, backend, matrix):
-    r = matrix.get((case.name, backend)) or runner.run_pair(case, backend)
-    assert r.verdict in (runner.PASS, runner.UNSUPPORTED), f"{case.name} on {backend}: {r.verdict}: {r.reason}"
-    if r.verdict == runner.UNSUPPORTED:
+    r = matrix.get((case.name, backend)) or verdicts.run_pair(case, backend)
+    assert r.verdict in (results.PASS, results.UNSUPPORTED), f"{case.name} on {backend}: {r.verdict}: {r.reason}"
+    if r.verdict == results.UNSUPPORTED:
         assert r.reason.strip(), "an unsupported verdict must carry the backend's reason"
     else:
         assert r.measures and all(m.ok for m in r.measures)
@@ -151,8 +153,8 @@ def test_free_fall_expectation_fails_when_gravity_is_ignored():
     case = C.BY_NAME["free_fall"]
     times = [k / 60 for k in range(61)]
     rows = _rows("Ball", {"position": ["0 10 0"] * 61, "linearVelocity": ["0 0 0"] * 61}, times)
-    r = runner.evaluate(case, "fake", [C.TraceView(rows)], case.runs)
-    assert r.verdict == runner.FAIL
+    r = verdicts.evaluate(case, "fake", [TraceView(rows)], case.runs)
+    assert r.verdict == results.FAIL
     pos = r.measure("Ball.position")
     assert pos.error == pytest.approx(0.5 * 9.81, rel=1e-12) and pos.error > pos.tolerance
     assert "Ball.position" in r.reason and "tolerance" in r.reason
@@ -167,11 +169,11 @@ def test_free_fall_expectation_passes_the_exact_discrete_solution():
 
     def trace(g):
         n = [round(t / dt) for t in times]
-        return C.TraceView(_rows("Ball", {"position": [f"0 {10 - g * dt * dt * k * (k + 1) / 2!r} 0" for k in n],
+        return TraceView(_rows("Ball", {"position": [f"0 {10 - g * dt * dt * k * (k + 1) / 2!r} 0" for k in n],
                                           "linearVelocity": [f"0 {-g * k * dt!r} 0" for k in n]}, times))
-    assert runner.evaluate(case, "fake", [trace(9.81)], case.runs).verdict == runner.PASS
-    wrong = runner.evaluate(case, "fake", [trace(9.8)], case.runs)
-    assert wrong.verdict == runner.FAIL and not wrong.measure("Ball.linearVelocity").ok
+    assert verdicts.evaluate(case, "fake", [trace(9.81)], case.runs).verdict == results.PASS
+    wrong = verdicts.evaluate(case, "fake", [trace(9.8)], case.runs)
+    assert wrong.verdict == results.FAIL and not wrong.measure("Ball.linearVelocity").ok
 
 
 def test_joint_expectations_fail_on_a_broken_joint():
@@ -185,73 +187,73 @@ def test_joint_expectations_fail_on_a_broken_joint():
         rows += _rows(f"Link{k}", zero, times)
     rows += _rows("Anchor", zero, times)
     chain = C.BY_NAME["ball_chain"]
-    r = runner.evaluate(chain, "fake", [C.TraceView(rows)], chain.runs)
-    assert r.verdict == runner.FAIL and "Joint3" in r.reason
+    r = verdicts.evaluate(chain, "fake", [TraceView(rows)], chain.runs)
+    assert r.verdict == results.FAIL and "Joint3" in r.reason
     uj = C.BY_NAME["universal_joint"]
     rows = _rows("Cross", {"body1Axis": ["0.8 0.6 0"] * 3, "body2Axis": ["-0.6 0.8 0", "-0.6 0.81 0", "-0.6 0.8 0"]},
                  times) + _rows("Upper", zero, times) + _rows("Lower", zero, times)
-    assert runner.evaluate(uj, "fake", [C.TraceView(rows)], uj.runs).verdict == runner.FAIL
+    assert verdicts.evaluate(uj, "fake", [TraceView(rows)], uj.runs).verdict == results.FAIL
 
 
 def test_frame_rate_expectation_sees_the_last_digit():
     case = C.BY_NAME["frame_rate"]
-    a = C.TraceView([Row(1.0, "Link1", "position", "0.1 0.2 0.30000000000000004")])
-    b = C.TraceView([Row(1.0, "Link1", "position", "0.1 0.2 0.3")])
-    assert runner.evaluate(case, "fake", [a, a], case.runs).verdict == runner.PASS
-    assert runner.evaluate(case, "fake", [a, b], case.runs).verdict == runner.FAIL
-    c = C.TraceView([Row(0.5, "Link1", "position", "0 0 0")])
-    assert runner.evaluate(case, "fake", [a, c], case.runs).verdict == runner.FAIL
+    a = TraceView([Row(1.0, "Link1", "position", "0.1 0.2 0.30000000000000004")])
+    b = TraceView([Row(1.0, "Link1", "position", "0.1 0.2 0.3")])
+    assert verdicts.evaluate(case, "fake", [a, a], case.runs).verdict == results.PASS
+    assert verdicts.evaluate(case, "fake", [a, b], case.runs).verdict == results.FAIL
+    c = TraceView([Row(0.5, "Link1", "position", "0 0 0")])
+    assert verdicts.evaluate(case, "fake", [a, c], case.runs).verdict == results.FAIL
 
 
 def test_expectation_that_cannot_read_the_trace_is_an_error():
     case = C.BY_NAME["free_fall"]
-    r = runner.evaluate(case, "fake", [C.TraceView([Row(0.0, "Other", "position", "0 0 0")])], case.runs)
-    assert r.verdict == runner.ERROR and "Ball.position" in r.reason
+    r = verdicts.evaluate(case, "fake", [TraceView([Row(0.0, "Other", "position", "0 0 0")])], case.runs)
+    assert r.verdict == results.ERROR and "Ball.position" in r.reason
 
 
 def test_classify():
-    assert runner.classify(0, "").verdict is None
-    out = runner.classify(3, "s.x3d: unsupported by bullet: SliderJoint.limits: no stops\n"
+    assert children.classify(0, "").verdict is None
+    out = children.classify(3, "s.x3d: unsupported by bullet: SliderJoint.limits: no stops\n"
                              "s.x3d: unsupported by bullet: RigidBody.torques: not yet\n", backend="bullet")
-    assert out.verdict == runner.UNSUPPORTED
+    assert out.verdict == results.UNSUPPORTED
     assert out.reason == "SliderJoint.limits: no stops; RigidBody.torques: not yet"
-    assert runner.classify(-11, "").verdict == runner.CRASHED and "SIGSEGV" in runner.classify(-11, "").reason
-    assert runner.classify(1, "s.x3d: dart: blew up at t=0.5: Bob has a non-finite state").verdict == runner.BLEW_UP
-    assert runner.classify(1, "Traceback (most recent call last):\n  ...\nZeroDivisionError: x").verdict == \
-        runner.CRASHED
-    assert runner.classify(1, "x3drbp run: backend nope: no backend").verdict == runner.ERROR
-    assert runner.classify(None, "", timed_out=True, timeout=5).verdict == runner.TIMED_OUT
+    assert children.classify(-11, "").verdict == results.CRASHED and "SIGSEGV" in children.classify(-11, "").reason
+    assert children.classify(1, "s.x3d: dart: blew up at t=0.5: Bob has a non-finite state").verdict == results.BLEW_UP
+    assert children.classify(1, "Traceback (most recent call last):\n  ...\nZeroDivisionError: x").verdict == \
+        results.CRASHED
+    assert children.classify(1, "x3drbp run: backend nope: no backend").verdict == results.ERROR
+    assert children.classify(None, "", timed_out=True, timeout=5).verdict == results.TIMED_OUT
 
 
 def test_nonexistent_backend_is_an_error():
-    r = runner.run_pair(C.BY_NAME["free_fall"], "no_such_engine")
-    assert r.verdict == runner.ERROR and "no_such_engine" in r.reason
+    r = verdicts.run_pair(C.BY_NAME["free_fall"], "no_such_engine")
+    assert r.verdict == results.ERROR and "no_such_engine" in r.reason
 
 
 def test_nonexistent_and_broken_scenes_are_errors(tmp_path):
     base = C.BY_NAME["free_fall"]
     missing = C.Case("missing", str(tmp_path / "nope.x3d"), "", base.runs, base.expect)
-    r = runner.run_pair(missing, REFERENCE or "mujoco")
-    assert r.verdict == runner.ERROR and "nope.x3d" in r.reason
+    r = verdicts.run_pair(missing, REFERENCE or "mujoco")
+    assert r.verdict == results.ERROR and "nope.x3d" in r.reason
     broken = tmp_path / "broken.x3d"
     broken.write_text("<X3D version='4.0'><Scene><RigidBodyCollection><RigidBody mass='0'/>"
                       "</RigidBodyCollection></Scene></X3D>")
-    r = runner.run_pair(C.Case("broken", str(broken), "", base.runs, base.expect), REFERENCE or "mujoco")
-    assert r.verdict == runner.ERROR and "mass" in r.reason
+    r = verdicts.run_pair(C.Case("broken", str(broken), "", base.runs, base.expect), REFERENCE or "mujoco")
+    assert r.verdict == results.ERROR and "mass" in r.reason
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals and shell scripts")
 @pytest.mark.parametrize("script,verdict,reason", [
-    ("kill -SEGV $$\n", runner.CRASHED, "SIGSEGV"),
-    ("echo 's.x3d: fake: blew up at t=0.25: Ball has a non-finite state' >&2; exit 1\n", runner.BLEW_UP, "t=0.25"),
-    ("echo 's.x3d: unsupported by mujoco: RigidBody.forces: why not' >&2; exit 3\n", runner.UNSUPPORTED,
+    ("kill -SEGV $$\n", results.CRASHED, "SIGSEGV"),
+    ("echo 's.x3d: fake: blew up at t=0.25: Ball has a non-finite state' >&2; exit 1\n", results.BLEW_UP, "t=0.25"),
+    ("echo 's.x3d: unsupported by mujoco: RigidBody.forces: why not' >&2; exit 3\n", results.UNSUPPORTED,
      "RigidBody.forces: why not"),
-    ("sleep 30\n", runner.TIMED_OUT, "within 0.5 s"),
-    ("exit 0\n", runner.ERROR, "no trace"),
+    ("sleep 30\n", results.TIMED_OUT, "within 0.5 s"),
+    ("exit 0\n", results.ERROR, "no trace"),
 ])
 def test_child_process_endings_become_verdicts(tmp_path, monkeypatch, script, verdict, reason):
-    monkeypatch.setattr(runner.sys, "executable", fake_python(tmp_path, script))
-    r = runner.run_pair(C.BY_NAME["free_fall"], "mujoco", timeout=0.5)
+    monkeypatch.setattr(children.sys, "executable", fake_python(tmp_path, script))
+    r = verdicts.run_pair(C.BY_NAME["free_fall"], "mujoco", timeout=0.5)
     assert r.verdict == verdict and reason in r.reason
 
 
@@ -261,8 +263,8 @@ def test_deliberately_wrong_expectation_fails():
     base = C.BY_NAME["free_fall"]
     wrong = C.Case("free_fall_wrong", base.scene, "free fall expected at g = 5", base.runs,
                    C.ballistic("Ball", (0, 10, 0), (0, 0, 0), (0, -5.0, 0)))
-    r = runner.run_pair(wrong, REFERENCE)
-    assert r.verdict == runner.FAIL
+    r = verdicts.run_pair(wrong, REFERENCE)
+    assert r.verdict == results.FAIL
     v = r.measure("Ball.linearVelocity")
     assert v.error == pytest.approx(4.81, rel=1e-9) and v.error > v.tolerance
 
@@ -300,18 +302,18 @@ def test_each_case_fails_when_its_field_is_ignored(tmp_path):
         path = tmp_path / f"{name}.x3d"
         path.write_text(text.replace(old, new))
         mutated = C.Case(name, str(path), case.checks, case.runs, case.expect)
-        jobs.append(lambda m=mutated: runner.run_pair(m, REFERENCE))
+        jobs.append(lambda m=mutated: verdicts.run_pair(m, REFERENCE))
         names.append(name)
-    for name, r in zip(names, runner.run_many(jobs)):
-        assert r.verdict == runner.FAIL, f"{name} with its field at the default: {r.verdict} {r.reason}"
+    for name, r in zip(names, verdicts.run_many(jobs)):
+        assert r.verdict == results.FAIL, f"{name} with its field at the default: {r.verdict} {r.reason}"
 
 
 def test_fitted_order():
     dts = list(C.CONVERGENCE_DTS)
-    assert runner.fitted_order(dts, [3.0 * d for d in dts]) == pytest.approx(1.0)
-    assert runner.fitted_order(dts, [7.0 * d * d for d in dts]) == pytest.approx(2.0)
-    assert runner.fitted_order(dts, [1e-15, 2e-16, 0.0, 1e-16]) is None  # exact to rounding
-    assert runner.fitted_order(dts, [None, None, 0.1, None]) is None
+    assert results.fitted_order(dts, [3.0 * d for d in dts]) == pytest.approx(1.0)
+    assert results.fitted_order(dts, [7.0 * d * d for d in dts]) == pytest.approx(2.0)
+    assert results.fitted_order(dts, [1e-15, 2e-16, 0.0, 1e-16]) is None  # exact to rounding
+    assert results.fitted_order(dts, [None, None, 0.1, None]) is None
 
 
 def test_command_writes_the_matrix(tmp_path, capsys):
@@ -333,9 +335,9 @@ def test_convergence_reports_errors_and_order():
     if REFERENCE is None:
         pytest.skip("no backend is installed")
     case = C.BY_NAME["free_fall"]
-    short = C.Case(case.name, case.scene, case.checks, (C.Settings(0.5, 1 / 240),), case.expect,
+    short = C.Case(case.name, case.scene, case.checks, (Settings(0.5, 1 / 240),), case.expect,
                    convergence=case.convergence, expected_order=1.0)
-    (cv,) = runner.run_convergence([short], [REFERENCE], [1 / 60, 1 / 120, 1 / 240])
+    (cv,) = verdicts.run_convergence([short], [REFERENCE], [1 / 60, 1 / 120, 1 / 240])
     errors = cv.errors()
     assert all(e is not None and e > 0 for e in errors) and errors[0] > errors[1] > errors[2]
     assert cv.order() == pytest.approx(1.0, abs=0.05)  # semi-implicit Euler and its kin
@@ -345,14 +347,14 @@ def test_convergence_reports_errors_and_order():
 # -- the cases added with hinge_bounce, motor_speed, motor_joint_torque, erp_cfm_spring and
 # double_pendulum_energy: more fields reset, and reference traces for what no backend runs
 
-def _run_mutated(tmp_path, name: str, old: str, new: str, backend: str, tag: str) -> runner.Result:
+def _run_mutated(tmp_path, name: str, old: str, new: str, backend: str, tag: str) -> results.Result:
     case = C.BY_NAME[name]
     with open(case.path, encoding="utf-8") as f:
         text = f.read()
     assert text.count(old) == 1, (name, old)
     path = tmp_path / f"{name}-{tag}.x3d"
     path.write_text(text.replace(old, new))
-    return runner.run_pair(C.Case(name, str(path), case.checks, case.runs, case.expect), backend)
+    return verdicts.run_pair(C.Case(name, str(path), case.checks, case.runs, case.expect), backend)
 
 
 MORE_MUTATIONS = [
@@ -367,11 +369,11 @@ def test_new_cases_fail_when_other_fields_are_ignored(tmp_path):
     if REFERENCE is None:
         pytest.skip("no backend is installed")
     jobs = [lambda m=m, k=k: _run_mutated(tmp_path, *m, REFERENCE, str(k)) for k, m in enumerate(MORE_MUTATIONS)]
-    for (name, old, _), r in zip(MORE_MUTATIONS, runner.run_many(jobs)):
-        assert r.verdict == runner.FAIL, f"{name} without {old.strip()}: {r.verdict} {r.reason}"
+    for (name, old, _), r in zip(MORE_MUTATIONS, verdicts.run_many(jobs)):
+        assert r.verdict == results.FAIL, f"{name} without {old.strip()}: {r.verdict} {r.reason}"
 
 
-def _ode_hinge_bounce(bounce=0.5, erp=0.2, cfm=1e-6, dt=1 / 240, duration=1.0) -> C.TraceView:
+def _ode_hinge_bounce(bounce=0.5, erp=0.2, cfm=1e-6, dt=1 / 240, duration=1.0) -> TraceView:
     """hinge_bounce.x3d stepped as ODE does, in the joint angle: semi-implicit Euler, and a stop
     row active on a step that starts past the stop: one-sided, targeting the larger of
     ERP x penetration / h and -bounce x the incoming rate, softened by CFM."""
@@ -390,7 +392,7 @@ def _ode_hinge_bounce(bounce=0.5, erp=0.2, cfm=1e-6, dt=1 / 240, duration=1.0) -
         rate = free
         angle += dt * rate
         rows += [Row(n * dt, "Hinge", "angle", repr(angle)), Row(n * dt, "Hinge", "angleRate", repr(rate))]
-    return C.TraceView(rows)
+    return TraceView(rows)
 
 
 def test_hinge_bounce_expectation_passes_odes_stop_bounce():
@@ -398,17 +400,17 @@ def test_hinge_bounce_expectation_passes_odes_stop_bounce():
     case = C.BY_NAME["hinge_bounce"]
 
     def verdict(**kw):
-        return runner.evaluate(case, "ode", [_ode_hinge_bounce(**kw)], case.runs)
+        return verdicts.evaluate(case, "ode", [_ode_hinge_bounce(**kw)], case.runs)
     ok = verdict()
-    assert ok.verdict == runner.PASS, ok.reason
+    assert ok.verdict == results.PASS, ok.reason
     assert ok.measures[0].error < 0.05 * ok.measures[0].tolerance  # only the stop's CFM yield is left
-    assert verdict(bounce=0.0).verdict == runner.FAIL  # an inelastic stop
-    assert verdict(bounce=0.4).verdict == runner.FAIL and verdict(bounce=0.6).verdict == runner.FAIL
-    assert verdict(cfm=1e-4).verdict == runner.FAIL  # why the scene sets constantForceMix 1e-6
+    assert verdict(bounce=0.0).verdict == results.FAIL  # an inelastic stop
+    assert verdict(bounce=0.4).verdict == results.FAIL and verdict(bounce=0.6).verdict == results.FAIL
+    assert verdict(cfm=1e-4).verdict == results.FAIL  # why the scene sets constantForceMix 1e-6
 
 
 def _ode_spring(soft=lambda m, dt, cfm: cfm / dt, erp=C.SPRING_ERP, cfm=C.SPRING_CFM,
-                settings: C.Settings | None = None) -> C.TraceView:
+                settings: Settings | None = None) -> TraceView:
     """erp_cfm_spring.x3d stepped as ODE does, along the vertical: the free velocity v_free = v - g h,
     then the ball's vertical row (bilateral) with impulse P: v' = v_free + P/m = -(ERP/h) gap - s P,
     s the softness the row's diagonal gets per unit impulse (ODE: CFM/h), so
@@ -428,19 +430,19 @@ def _ode_spring(soft=lambda m, dt, cfm: cfm / dt, erp=C.SPRING_ERP, cfm=C.SPRING
             gamma = soft(m, s.dt, cfm) * m
             v = (-(erp / s.dt) * gap + gamma * (v - C.G * s.dt)) / (1 + gamma)
             gap += s.dt * v
-    return C.TraceView(rows)
+    return TraceView(rows)
 
 
 def test_erp_cfm_spring_expectation_passes_odes_spring():
     case = C.BY_NAME["erp_cfm_spring"]
 
     def result(**kw):
-        return runner.evaluate(case, "ode", [_ode_spring(**kw)], case.runs)
+        return verdicts.evaluate(case, "ode", [_ode_spring(**kw)], case.runs)
     ok = result()
-    assert ok.verdict == runner.PASS, ok.reason
-    assert result(cfm=1e-4).verdict == runner.FAIL and result(erp=0.8).verdict == runner.FAIL
+    assert ok.verdict == results.PASS, ok.reason
+    assert result(cfm=1e-4).verdict == results.FAIL and result(erp=0.8).verdict == results.FAIL
     rigid = result(soft=lambda m, dt, cfm: 0.0)  # a hard constraint: no sag at all
-    assert rigid.verdict == runner.FAIL and not any(m.ok for m in rigid.measures)
+    assert rigid.verdict == results.FAIL and not any(m.ok for m in rigid.measures)
     # softness relative to the row's effective mass 1/m, right at 1 kg only (backends/dart.py's conversion)
     scaled = result(soft=lambda m, dt, cfm: (1 / m + 1) * cfm / (2 * dt))
     assert [m.ok for m in scaled.measures] == [True, False]
@@ -452,14 +454,14 @@ def test_erp_cfm_spring_follows_its_fields(tmp_path, matrix):
     constantForceMix to the default must move it off."""
     case = C.BY_NAME["erp_cfm_spring"]
     light = "LightHold gap - (0, -m g/k, 0), m = 1 kg"
-    found = runner.run_many([lambda b=b: matrix.get((case.name, b)) or runner.run_pair(case, b) for b in INSTALLED])
+    found = verdicts.run_many([lambda b=b: matrix.get((case.name, b)) or verdicts.run_pair(case, b) for b in INSTALLED])
     honouring = [r.backend for r in found if r.measure(light) is not None and r.measure(light).ok]
     if not honouring:
         pytest.skip("no installed backend honours the spring at 1 kg: "
                     + "; ".join(f"{r.backend}: {r.verdict}" for r in found))
     b = honouring[0]
     mutations = [(" errorCorrection='0.2'", ""), (" constantForceMix='1e-5'", "")]
-    results = runner.run_many([lambda m=m, k=k: _run_mutated(tmp_path, "erp_cfm_spring", *m, b, str(k))
+    results = verdicts.run_many([lambda m=m, k=k: _run_mutated(tmp_path, "erp_cfm_spring", *m, b, str(k))
                                for k, m in enumerate(mutations)])
     for (old, _), r in zip(mutations, results):
         m = r.measure(light)
@@ -502,20 +504,20 @@ def test_collision_cases_fail_when_their_fields_are_ignored(tmp_path, matrix):
     """On the first backend that passes a collision case as it is, every reset of its key field
     must make it fail (skipped while no backend passes any)."""
     names = sorted({name for name, _, _ in COLLISION_MUTATIONS})
-    found = {(r.case, r.backend): r for r in runner.run_many(
-        [lambda n=n, b=b: matrix.get((n, b)) or runner.run_pair(C.BY_NAME[n], b) for n in names for b in INSTALLED])}
+    found = {(r.case, r.backend): r for r in verdicts.run_many(
+        [lambda n=n, b=b: matrix.get((n, b)) or verdicts.run_pair(C.BY_NAME[n], b) for n in names for b in INSTALLED])}
     jobs, labels = [], []
     for k, (name, old, new) in enumerate(COLLISION_MUTATIONS):  # on the first backend that passes the case
         for b in INSTALLED:
-            if found[(name, b)].verdict == runner.PASS:
+            if found[(name, b)].verdict == results.PASS:
                 jobs.append(lambda m=(name, old, new), b=b, k=k: _run_mutated(tmp_path, *m, b, f"{b}-{k}"))
                 labels.append((name, old, b))
                 break
     if not jobs:
         pytest.skip("no installed backend passes a collision case yet: "
                     + "; ".join(f"{n}/{b}: {r.verdict}" for (n, b), r in sorted(found.items())))
-    for (name, old, b), r in zip(labels, runner.run_many(jobs)):
-        assert r.verdict == runner.FAIL, f"{name} on {b} with {old.strip()!r} reset: {r.verdict} {r.reason}"
+    for (name, old, b), r in zip(labels, verdicts.run_many(jobs)):
+        assert r.verdict == results.FAIL, f"{name} on {b} with {old.strip()!r} reset: {r.verdict} {r.reason}"
 
 
 def _plane_space(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -524,9 +526,9 @@ def _plane_space(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t1[0], t2[0]
 
 
-def _ode_points(bodies: dict, contacts, settings: C.Settings, gravity=(0.0, -C.G, 0.0), erp=0.8, cfm=1e-4,
+def _ode_points(bodies: dict, contacts, settings: Settings, gravity=(0.0, -C.G, 0.0), erp=0.8, cfm=1e-4,
                 layer=0.0, bounce=0.0, min_bounce=0.1, mu=(0.0, 0.0), speed=(0.0, 0.0), accel=None,
-                sensor=None, iterations=10, layer_target=False) -> C.TraceView:
+                sensor=None, iterations=10, layer_target=False) -> TraceView:
     """Point masses stepped with ODE's contact rule: contacts found from the overlap at a step's
     start, solved in that step with gravity (projected Gauss-Seidel, warm-started from the last
     step's impulses): the normal row targets max(ERP max(depth - layer, 0)/h, bounce x the
@@ -609,16 +611,16 @@ def _ode_points(bodies: dict, contacts, settings: C.Settings, gravity=(0.0, -C.G
         p = p + h * v
         if step % per_frame == 0:
             record(step, found)
-    return C.TraceView(rows)
+    return TraceView(rows)
 
 
-def _evaluate(name: str, trace: C.TraceView) -> runner.Result:
+def _evaluate(name: str, trace: TraceView) -> results.Result:
     case = C.BY_NAME[name]
-    return runner.evaluate(case, "ode-points", [trace], case.runs)
+    return verdicts.evaluate(case, "ode-points", [trace], case.runs)
 
 
 def _bounce_trace(bounce: dict[str, float], min_bounce: float = C.BA_MIN, erp: float = C.BA_ERP,
-                  cfm: float = 1e-4) -> C.TraceView:
+                  cfm: float = 1e-4) -> TraceView:
     """bounce_apex.x3d's balls stepped as ODE does, along the vertical (one contact, no friction):
     a contact on a step that starts overlapping, targeting max(ERP depth / h, e v_in) (the bounce
     where v_in > minBounceSpeed), softened by CFM: v' (1 + gamma) = target + gamma v_free."""
@@ -642,21 +644,21 @@ def _bounce_trace(bounce: dict[str, float], min_bounce: float = C.BA_MIN, erp: f
                     free = (target + gamma * free) / (1 + gamma)
             v = free
             y += h * v
-    return C.TraceView(rows)
+    return TraceView(rows)
 
 
 def test_bounce_apex_expectation_passes_odes_bounce():
     ok = _evaluate("bounce_apex", _bounce_trace({}))
-    assert ok.verdict == runner.PASS, ok.reason
+    assert ok.verdict == results.PASS, ok.reason
     assert len(ok.measures) == 25 and max(m.ratio for m in ok.measures) > 0.1  # not vacuous
-    assert _evaluate("bounce_apex", _bounce_trace({"High05": 0.45, "Low05": 0.45})).verdict == runner.FAIL
+    assert _evaluate("bounce_apex", _bounce_trace({"High05": 0.45, "Low05": 0.45})).verdict == results.FAIL
     slow = _evaluate("bounce_apex", _bounce_trace({}, min_bounce=0.1))  # minBounceSpeed at its default
-    assert slow.verdict == runner.FAIL and "Low08 highest flight" in slow.reason
+    assert slow.verdict == results.FAIL and "Low08 highest flight" in slow.reason
     pushed = _evaluate("bounce_apex", _bounce_trace({}, erp=0.8))  # why the scene sets errorCorrection 0.1
-    assert pushed.verdict == runner.FAIL
+    assert pushed.verdict == results.FAIL
 
 
-def _incline_trace(mu: float = C.INC_MU) -> C.TraceView:
+def _incline_trace(mu: float = C.INC_MU) -> TraceView:
     bodies, walls = {}, []
     for k, (name, (theta, z)) in enumerate(C.INC_BOXES.items()):
         start, _, normal = C.incline_frame(theta, z)
@@ -670,12 +672,12 @@ def _incline_trace(mu: float = C.INC_MU) -> C.TraceView:
 
 def test_incline_expectation_passes_odes_friction():
     ok = _evaluate("incline", _incline_trace())
-    assert ok.verdict == runner.PASS, ok.reason
-    assert _evaluate("incline", _incline_trace(0.45)).verdict == runner.FAIL  # 20 % more slide
-    assert _evaluate("incline", _incline_trace(0.0)).verdict == runner.FAIL
+    assert ok.verdict == results.PASS, ok.reason
+    assert _evaluate("incline", _incline_trace(0.45)).verdict == results.FAIL  # 20 % more slide
+    assert _evaluate("incline", _incline_trace(0.0)).verdict == results.FAIL
 
 
-def _sliding_trace(case: str, boxes: dict, mu=(0.0, 0.0), speed=(0.0, 0.0)) -> C.TraceView:
+def _sliding_trace(case: str, boxes: dict, mu=(0.0, 0.0), speed=(0.0, 0.0)) -> TraceView:
     bodies = {n: (1.0, p0, v0) for n, (p0, v0) in boxes.items()}
     contacts = lambda p: [(-1, k, (0.0, 1.0, 0.0), 0.1 - p[k][1], ("Floor", "Box", "NULL", "B"), p[k])  # noqa: E731
                           for k in range(len(boxes))]
@@ -685,17 +687,17 @@ def _sliding_trace(case: str, boxes: dict, mu=(0.0, 0.0), speed=(0.0, 0.0)) -> C
 def test_friction_expectations_pass_odes_friction_directions():
     boxes = {"Along1": ((2.0, 0.1, -1.0), (-3.0, 0.0, 0.0)), "Along2": ((-2.0, 0.1, -1.0), (0.0, 0.0, 3.0))}
     ok = _evaluate("anisotropic_friction", _sliding_trace("anisotropic_friction", boxes, mu=(0.2, 0.6)))
-    assert ok.verdict == runner.PASS, ok.reason
+    assert ok.verdict == results.PASS, ok.reason
     swapped = _evaluate("anisotropic_friction", _sliding_trace("anisotropic_friction", boxes, mu=(0.6, 0.2)))
-    assert swapped.verdict == runner.FAIL and not any(m.ok for m in swapped.measures)
+    assert swapped.verdict == results.FAIL and not any(m.ok for m in swapped.measures)
     belt = {"Parcel": ((3.0, 0.1, 0.0), (0.0, 0.0, 0.0))}
     ok = _evaluate("conveyor", _sliding_trace("conveyor", belt, mu=(0.5, 0.5), speed=(1.5, 0.0)))
-    assert ok.verdict == runner.PASS, ok.reason
+    assert ok.verdict == results.PASS, ok.reason
     backwards = _evaluate("conveyor", _sliding_trace("conveyor", belt, mu=(0.5, 0.5), speed=(-1.5, 0.0)))
-    assert backwards.verdict == runner.FAIL  # the belt's motion along +x instead of ODE's first direction
+    assert backwards.verdict == results.FAIL  # the belt's motion along +x instead of ODE's first direction
 
 
-def _resting_trace(layer: float = C.RP_LAYER, target: bool = False) -> C.TraceView:
+def _resting_trace(layer: float = C.RP_LAYER, target: bool = False) -> TraceView:
     bodies = {"Sunk": (C.RP_M, (1.0, 0.09, 0.0), (0.0,) * 3), "Touching": (C.RP_M, (-1.0, 0.1, 0.0), (0.0,) * 3)}
 
     def contacts(p):
@@ -713,17 +715,17 @@ def _resting_trace(layer: float = C.RP_LAYER, target: bool = False) -> C.TraceVi
 
 def test_resting_penetration_expectation_passes_odes_surface_layer():
     ok = _evaluate("resting_penetration", _resting_trace())
-    assert ok.verdict == runner.PASS, ok.reason
-    assert _evaluate("resting_penetration", _resting_trace(0.0)).verdict == runner.FAIL
+    assert ok.verdict == results.PASS, ok.reason
+    assert _evaluate("resting_penetration", _resting_trace(0.0)).verdict == results.FAIL
     # an engine that makes the layer a resting depth to reach (not a depth allowed) sinks Touching in too
     target = _evaluate("resting_penetration", _resting_trace(target=True))
-    assert target.verdict == runner.FAIL and "Touching" in target.reason and "Sunk" not in target.reason
+    assert target.verdict == results.FAIL and "Touching" in target.reason and "Sunk" not in target.reason
 
 
-STACK_SHORT = C.Settings(2.0, 1 / 240)  # the case's 10 s in Python PGS would take a minute
+STACK_SHORT = Settings(2.0, 1 / 240)  # the case's 10 s in Python PGS would take a minute
 
 
-def _stack_trace(mu: float = 0.3, iterations: int = 40) -> C.TraceView:
+def _stack_trace(mu: float = 0.3, iterations: int = 40) -> TraceView:
     bodies = {f"Box{j}": (C.BS_M, (0.0, C.BS_HEIGHT * (j - 0.5), 0.0), (0.0,) * 3) for j in range(1, C.BS_N + 1)}
 
     def contacts(p):
@@ -742,14 +744,14 @@ def test_box_stack_expectation_passes_a_converged_contact_solve():
     case = C.BY_NAME["box_stack"]
 
     def verdict(**kw):
-        return runner.evaluate(case, "ode-points", [_stack_trace(**kw)], [STACK_SHORT])
+        return verdicts.evaluate(case, "ode-points", [_stack_trace(**kw)], [STACK_SHORT])
     ok = verdict()
-    assert ok.verdict == runner.PASS, ok.reason
-    assert verdict(mu=0.0).verdict == runner.FAIL
-    assert verdict(iterations=10).verdict == runner.FAIL
+    assert ok.verdict == results.PASS, ok.reason
+    assert verdict(mu=0.0).verdict == results.FAIL
+    assert verdict(iterations=10).verdict == results.FAIL
 
 
-def _filtering_trace(ghost_collides: bool = False) -> C.TraceView:
+def _filtering_trace(ghost_collides: bool = False) -> TraceView:
     bodies = {"Kept": (1.0, C.CF_KEPT, (0.0,) * 3), "Ghost": (1.0, C.CF_GHOST, (0.0,) * 3)}
     touching = (0, 1) if ghost_collides else (0,)
     contacts = lambda p: [(-1, k, (0.0, 1.0, 0.0), 0.1 - p[k][1], ("Floor", "S", "NULL", "B"), p[k])  # noqa: E731
@@ -759,11 +761,11 @@ def _filtering_trace(ghost_collides: bool = False) -> C.TraceView:
 
 def test_collision_filtering_expectation():
     ok = _evaluate("collision_filtering", _filtering_trace())
-    assert ok.verdict == runner.PASS, ok.reason
-    assert _evaluate("collision_filtering", _filtering_trace(True)).verdict == runner.FAIL
+    assert ok.verdict == results.PASS, ok.reason
+    assert _evaluate("collision_filtering", _filtering_trace(True)).verdict == results.FAIL
 
 
-def _sensor_trace(flip_ball_normal=False, swap_names=False, shift=0.0) -> C.TraceView:
+def _sensor_trace(flip_ball_normal=False, swap_names=False, shift=0.0) -> TraceView:
     bodies = {"Block": (C.SG_BLOCK_M, (0.3, 0.1, -0.2), (0.0,) * 3),
               "Ball": (C.SG_BALL_M, (0.35, 0.3, -0.15), (0.0,) * 3)}
 
@@ -783,15 +785,15 @@ def _sensor_trace(flip_ball_normal=False, swap_names=False, shift=0.0) -> C.Trac
 
 def test_sensor_geometry_expectation_reads_the_sensors_rows():
     ok = _evaluate("sensor_geometry", _sensor_trace())
-    assert ok.verdict == runner.PASS, ok.reason
+    assert ok.verdict == results.PASS, ok.reason
     flipped = _evaluate("sensor_geometry", _sensor_trace(flip_ball_normal=True))
-    assert flipped.verdict == runner.FAIL and "contactNormal" in flipped.reason
+    assert flipped.verdict == results.FAIL and "contactNormal" in flipped.reason
     swapped = _evaluate("sensor_geometry", _sensor_trace(swap_names=True))  # names swapped, normal kept
-    assert swapped.verdict == runner.FAIL and "contactNormal" in swapped.reason
-    assert _evaluate("sensor_geometry", _sensor_trace(shift=0.01)).verdict == runner.FAIL
+    assert swapped.verdict == results.FAIL and "contactNormal" in swapped.reason
+    assert _evaluate("sensor_geometry", _sensor_trace(shift=0.01)).verdict == results.FAIL
 
 
-def _cradle_trace(bounce: float = 1.0, touching: bool = False) -> C.TraceView:
+def _cradle_trace(bounce: float = 1.0, touching: bool = False) -> TraceView:
     pitch = 2 * C.NC_R + (0.0 if touching else C.NC_GAP)
     pivots = [(k - 2) * pitch for k in range(C.NC_BALLS)]
     v_hit = math.sqrt(2 * C.G * C.NC_L * (1 - math.cos(C.NC_THETA0)) / (1 + C.NC_I / (C.NC_M * C.NC_L ** 2)))
@@ -811,16 +813,16 @@ def _cradle_trace(bounce: float = 1.0, touching: bool = False) -> C.TraceView:
 
 def test_newtons_cradle_expectation_passes_binary_elastic_impacts():
     ok = _evaluate("newtons_cradle", _cradle_trace())
-    assert ok.verdict == runner.PASS, ok.reason
-    assert _evaluate("newtons_cradle", _cradle_trace(bounce=0.0)).verdict == runner.FAIL
+    assert ok.verdict == results.PASS, ok.reason
+    assert _evaluate("newtons_cradle", _cradle_trace(bounce=0.0)).verdict == results.FAIL
     together = _evaluate("newtons_cradle", _cradle_trace(touching=True))  # ODE's simultaneous impact: 0.4 v
-    assert together.verdict == runner.FAIL
+    assert together.verdict == results.FAIL
 
 
 def test_trace_view_keeps_text_rows_apart():
     """A CollisionSensor writes SFBool, SFNode names and MFString rows: the numbers stay series,
     the rest is text (before, one such row made the whole trace unreadable)."""
-    tv = C.TraceView([Row(0.0, "S", "isActive", "true"), Row(0.0, "S", "contacts[0].body1", "NULL"),
+    tv = TraceView([Row(0.0, "S", "isActive", "true"), Row(0.0, "S", "contacts[0].body1", "NULL"),
                       Row(0.0, "S", "contacts[0].depth", "0.001"), Row(0.5, "S", "isActive", "false")])
     assert tv.series("S", "contacts[0].depth")[1].tolist() == [[0.001]]
     times, values = tv.text("S", "isActive")

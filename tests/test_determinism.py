@@ -7,8 +7,9 @@ from __future__ import annotations
 import pytest
 
 from backends import base
-from conformance import runner
-from conformance.cases import Settings
+from conformance import results
+from conformance.runner import children, verdicts
+from conformance.results import Settings
 
 INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
 SETTINGS = Settings(2.0, 1 / 240, 60.0)
@@ -44,8 +45,8 @@ def twice(tmp, backends: list[str], planar: bool) -> dict:
     scene.write_text(pile_x3d(planar))
     pairs = [(b, k) for b in backends for k in (1, 2)]
     paths = {(b, k): tmp / f"{scene.stem}-{b}-{k}.csv" for b, k in pairs}
-    jobs = [(lambda b=b, k=k: runner.run_child(str(scene), b, SETTINGS, str(paths[b, k]))) for b, k in pairs]
-    return {(b, k): (o, paths[b, k]) for (b, k), o in zip(pairs, runner.run_many(jobs))}
+    jobs = [(lambda b=b, k=k: children.run_child(str(scene), b, SETTINGS, str(paths[b, k]))) for b, k in pairs]
+    return {(b, k): (o, paths[b, k]) for (b, k), o in zip(pairs, verdicts.run_many(jobs))}
 
 
 @pytest.fixture(scope="module")
@@ -53,7 +54,7 @@ def runs(tmp_path_factory):
     """The 3D pile on every installed backend; the planar one where a backend refuses it."""
     tmp = tmp_path_factory.mktemp("pile")
     out = twice(tmp, INSTALLED, planar=False)
-    flat = [b for b in INSTALLED if out[b, 1][0].verdict == runner.UNSUPPORTED]
+    flat = [b for b in INSTALLED if out[b, 1][0].verdict == results.UNSUPPORTED]
     return out | twice(tmp, flat, planar=True) if flat else out
 
 

@@ -10,8 +10,9 @@ import sys
 import pytest
 
 from conftest import ROOT, SCENES
-from conformance import runner
-from conformance.cases import Settings
+from conformance import results
+from conformance.runner import children, probe, verdicts
+from conformance.results import Settings
 from x3d_core.trace import read_trace
 
 from fake_child import fake_python
@@ -19,7 +20,7 @@ from faulty_backends import FAULT_AT
 
 PENDULUM = os.path.join(SCENES, "examples", "pendulum.x3d")
 SETTINGS = Settings(0.5, 1 / 240, 20.0)
-INSTALLED = [n for n, i in runner.backend_table().items() if i.usable]
+INSTALLED = [n for n, i in probe.backend_table().items() if i.usable]
 pytestmark = pytest.mark.skipif(not INSTALLED, reason="no backend installed")
 
 
@@ -29,23 +30,23 @@ def outcomes(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("faults")
     script = f'exec "{sys.executable}" "{os.path.join(ROOT, "tests", "faulty_backends.py")}" "$@"\n'
     mp = pytest.MonkeyPatch()
-    mp.setattr(runner.sys, "executable", fake_python(tmp, script))
+    mp.setattr(children.sys, "executable", fake_python(tmp, script))
     names = ["faulty-segv", "faulty-hang", "faulty-raise", "faulty-nan", "faulty-huge", INSTALLED[0]]
-    jobs = [(lambda n=n: runner.run_child(PENDULUM, n, SETTINGS, str(tmp / f"{n}.csv"),
+    jobs = [(lambda n=n: children.run_child(PENDULUM, n, SETTINGS, str(tmp / f"{n}.csv"),
                                           timeout=6 if n == "faulty-hang" else 120)) for n in names]
     try:
-        results = runner.run_many(jobs, workers=len(jobs))
+        results = verdicts.run_many(jobs, workers=len(jobs))
     finally:
         mp.undo()
     return {n: (o, tmp / f"{n}.csv") for n, o in zip(names, results)}
 
 
 @pytest.mark.parametrize("backend,verdict,reason", [
-    ("faulty-segv", runner.CRASHED, "killed by SIGSEGV"),
-    ("faulty-hang", runner.TIMED_OUT, "no result within 6 s"),
-    ("faulty-raise", runner.ERROR, "RuntimeError: the engine refused to step"),
-    ("faulty-nan", runner.BLEW_UP, f"blew up at t={FAULT_AT:g}: Bob has a non-finite state"),
-    ("faulty-huge", runner.BLEW_UP, f"blew up at t={FAULT_AT:g}: Bob's angular velocity is beyond 1e+12"),
+    ("faulty-segv", results.CRASHED, "killed by SIGSEGV"),
+    ("faulty-hang", results.TIMED_OUT, "no result within 6 s"),
+    ("faulty-raise", results.ERROR, "RuntimeError: the engine refused to step"),
+    ("faulty-nan", results.BLEW_UP, f"blew up at t={FAULT_AT:g}: Bob has a non-finite state"),
+    ("faulty-huge", results.BLEW_UP, f"blew up at t={FAULT_AT:g}: Bob's angular velocity is beyond 1e+12"),
 ])
 def test_a_faulty_engine_gets_its_verdict(outcomes, backend, verdict, reason):
     outcome, _ = outcomes[backend]

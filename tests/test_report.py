@@ -12,7 +12,7 @@ import pytest
 
 from backends import base
 from conftest import ROOT, SCENES
-from conformance import report_command as R
+from conformance.cli import report as R
 from reports.report_page import report_markdown
 
 INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]

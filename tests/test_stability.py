@@ -10,9 +10,10 @@ import sys
 import numpy as np
 import pytest
 
-from conformance import runner
-from conformance import stability as S
-from conformance.cases import TraceView
+from conformance import results
+from conformance.runner import children, probe
+from conformance.analyses import stability as S
+from x3d_core.trace import TraceView
 from conformance.cli import main as cli_main
 from x3d_core.analysis import features
 from x3d_core.load import load
@@ -21,7 +22,7 @@ from x3d_core.world import worlds
 
 from fake_child import fake_python
 
-INFO = runner.backend_table()
+INFO = probe.backend_table()
 INSTALLED = [n for n, i in INFO.items() if i.usable]
 REFERENCE = "mujoco" if "mujoco" in INSTALLED else (INSTALLED[0] if INSTALLED else None)
 G = 9.8
@@ -198,25 +199,25 @@ def test_displacement_and_tunnelling():
 def test_a_crashing_child_is_a_verdict_and_the_rest_still_runs(tmp_path, monkeypatch):
     if REFERENCE is None:
         pytest.skip("no backend is installed")
-    monkeypatch.setattr(runner.sys, "executable", fake_python(tmp_path, f"""case "$*" in
+    monkeypatch.setattr(children.sys, "executable", fake_python(tmp_path, f"""case "$*" in
   *spinning_wheels*) kill -SEGV $$ ;;
   *) exec {sys.executable} "$@" ;;
 esac
 """))
     cases = [S.BY_NAME["spinning_wheel_finite"], S.BY_NAME["thin_wall_impact"]]
     crashed, real = S.run_suite(cases, [REFERENCE], [1 / 60])
-    assert crashed.verdict == runner.CRASHED and "SIGSEGV" in crashed.reason and not crashed.figures
+    assert crashed.verdict == results.CRASHED and "SIGSEGV" in crashed.reason and not crashed.figures
     assert real.verdict in (S.TUNNELLED, S.STOPPED) and real.figures
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals and shell scripts")
 @pytest.mark.parametrize("script,verdict,at", [
-    ("sleep 30\n", runner.TIMED_OUT, None),
-    ("echo 's.x3d: fake: blew up by t=0.35: MuJoCo found a huge acceleration' >&2; exit 1\n", runner.BLEW_UP, 0.35),
-    ("echo 's.x3d: unsupported by fake: not planar' >&2; exit 3\n", runner.UNSUPPORTED, None),
+    ("sleep 30\n", results.TIMED_OUT, None),
+    ("echo 's.x3d: fake: blew up by t=0.35: MuJoCo found a huge acceleration' >&2; exit 1\n", results.BLEW_UP, 0.35),
+    ("echo 's.x3d: unsupported by fake: not planar' >&2; exit 3\n", results.UNSUPPORTED, None),
 ])
 def test_children_that_do_not_finish_keep_their_verdict(tmp_path, monkeypatch, script, verdict, at):
-    monkeypatch.setattr(runner.sys, "executable", fake_python(tmp_path, script))
+    monkeypatch.setattr(children.sys, "executable", fake_python(tmp_path, script))
     r = S.run_one(S.BY_NAME["thin_wall_impact"], "fake", 1 / 60, timeout=0.5)
     assert (r.verdict, r.at) == (verdict, at) and r.reason
 

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 from conftest import SCENES
 
-from conformance import runner
-from conformance import sweep as S
+from conformance import results
+from conformance.analyses import sweep as S
 from conformance.cli import main as cli_main
-from conformance.sweep_job import with_collection_fields
-from conformance.sweep_metrics import Positions, comparison_interval, pareto, window_error
+from conformance.analyses.sweep_job import with_collection_fields
+from conformance.analyses.sweep_metrics import Positions, comparison_interval, pareto, window_error
 from x3d_core.load import load
 
 BACKEND = "mujoco"  # a dependency, installed wherever the project is
@@ -92,7 +92,7 @@ def test_sweep_command_writes_json_markdown_and_plot(tmp_path):
     points = doc["points"]
     assert [(p["dt_label"], p["iterations"], p["prefer_accuracy"]) for p in points] == \
         [("1/60", 10, False), ("1/240", 10, False)]
-    assert all(p["verdict"] == runner.PASS and 0 < p["wall_per_sim_s"] < p["simulation_per_sim_s"] for p in points)
+    assert all(p["verdict"] == results.PASS and 0 < p["wall_per_sim_s"] < p["simulation_per_sim_s"] for p in points)
     # semi-implicit Euler's position error is first order: a quarter of the step, a quarter of the error
     assert points[1]["error"] / points[0]["error"] == pytest.approx(0.25, rel=0.05)
     assert points[1]["pareto_scene"] or points[0]["pareto_scene"]

@@ -12,7 +12,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from conformance import x_ite
+from conformance.browsers.x_ite import harness as x_ite
 from conformance.cli import main as cli_main
 from conftest import SCENES
 from x3d_core.trace import read_trace

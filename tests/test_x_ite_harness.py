@@ -11,10 +11,10 @@ import textwrap
 
 import pytest
 
-from conformance import x_ite
+from conformance.browsers.x_ite import harness as x_ite
 from conformance.cli import main as cli_main
 from conformance.cases import CASES
-from conformance.x_ite_conformance import probe_fields, without
+from conformance.browsers.x_ite.judge import probe_fields, without
 from conftest import SCENES
 from reports.report_page import report_markdown
 from reports.x_ite_text import render

@@ -94,3 +94,9 @@ def twist_angle(q: np.ndarray, axis: np.ndarray) -> np.ndarray:
     proj = np.sum(q[..., 1:] * axis, axis=-1)
     angle = 2.0 * np.arctan2(proj, q[..., 0])
     return (angle + np.pi) % (2 * np.pi) - np.pi
+
+
+def angle_between(q1: np.ndarray, q2: np.ndarray) -> np.ndarray:
+    """The angle of q1 * conj(q2), accurate for small angles (no acos)."""
+    d = multiply(q1, conjugate(q2))
+    return 2.0 * np.arctan2(np.linalg.norm(d[..., 1:], axis=-1), np.abs(d[..., 0]))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import csv
 from dataclasses import dataclass
+from collections.abc import Sequence
 from typing import Any, Callable, Iterator, NamedTuple
 
 import numpy as np
@@ -148,3 +149,55 @@ def read_trace(path: str) -> list[Row]:
         if tuple(header) != HEADER:
             raise ValueError(f"{path}:1: header is {','.join(header)!r}, expected {','.join(HEADER)!r}")
         return [Row(float(t), n, fld, v) for t, n, fld, v in r]
+
+
+class TraceView:
+    """A trace's rows grouped by (node, field): times, and values as float arrays."""
+
+    def __init__(self, rows: Sequence[Row]):
+        groups: dict[tuple[str, str], tuple[list[float], list[list[float]]]] = {}
+        texts: dict[tuple[str, str], tuple[list[float], list[str]]] = {}
+        for r in rows:
+            try:
+                values = [float(x) for x in r.value.split()]
+            except ValueError:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
+                t, s = texts.setdefault((r.node, r.field), ([], []))
+                t.append(r.time)
+                s.append(r.value)
+                continue
+            t, v = groups.setdefault((r.node, r.field), ([], []))
+            t.append(r.time)
+            v.append(values)
+        self._series = {k: (np.array(t), np.array(v, dtype=np.float64)) for k, (t, v) in groups.items()}
+        self._text = {k: (np.array(t), s) for k, (t, s) in texts.items()}
+
+    def text(self, node: str, fld: str) -> tuple[np.ndarray, list[str]]:
+        """(times (n,), values as written) of an output that is not numbers: SFBool, SFNode, MFString."""
+        try:
+            return self._text[(node, fld)]
+        except KeyError:
+            raise KeyError(f"the trace has no {node}.{fld} text rows") from None
+
+    def keys(self) -> list[tuple[str, str]]:
+        return list(self._series)
+
+    def series(self, node: str, fld: str) -> tuple[np.ndarray, np.ndarray]:
+        """(times (n,), values (n, width)) of one output."""
+        try:
+            return self._series[(node, fld)]
+        except KeyError:
+            raise KeyError(f"the trace has no {node}.{fld} rows") from None
+
+    def at(self, time: float) -> dict[tuple[str, str], np.ndarray]:
+        """Every output's value at one frame time (exact match)."""
+        out = {}
+        for k, (t, v) in self._series.items():
+            hit = np.flatnonzero(t == time)
+            if hit.size:
+                out[k] = v[hit[0]]
+        return out
+
+    def bodies(self) -> list[str]:
+        """The nodes that have both a position and an orientation: the bodies, in trace order."""
+        keys = set(self._series)
+        return [n for n, f in self._series if f == "position" and (n, "orientation") in keys]

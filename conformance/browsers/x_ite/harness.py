@@ -25,9 +25,9 @@ from dataclasses import dataclass, field
 
 from x3d_core import atomic
 from x3d_core.model import Scene
-from x3d_core.world import node_names, worlds
+from x3d_core.world import worlds
 
-HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "x_ite")
+HERE = os.path.dirname(os.path.abspath(__file__))
 CHROMIUM = os.environ.get("X3DRBP_CHROMIUM", "/usr/bin/chromium")
 INSTALL = "make x-ite-install"
 # GL performance notes SwiftShader prints on every page: noise, not the scene's messages

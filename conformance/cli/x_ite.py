@@ -29,12 +29,11 @@ from x3d_core import atomic
 from x3d_core.load import load
 from x3d_core.model import LoadError
 
-from . import cases as C
-from . import runner
-from .compare_command import _thresholds
-from .conformance_command import _names
-from .x_ite import CHROMIUM, HERE, NotRecordable, Recording, outputs, record, step, unavailable
-from .x_ite_conformance import run_cases
+from conformance.cli import options
+from conformance import cases as C
+from conformance.runner import children, probe
+from conformance.browsers.x_ite.harness import CHROMIUM, HERE, NotRecordable, Recording, outputs, record, step, unavailable
+from conformance.browsers.x_ite.judge import run_cases
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -53,10 +52,10 @@ def _say(text: str) -> None:
 def cmd_cases(args: argparse.Namespace) -> int:
     from reports.x_ite_text import render  # reports render results: imported when there are some
     try:
-        chosen = C.select(_names(args.cases) or None)
-        info = runner.backend_table()
-        backends = [b for b in runner.named_backends(_names(args.against), info) if info[b].usable]
-        thresholds = _thresholds(args.threshold)
+        chosen = C.select(options.names(args.cases) or None)
+        info = probe.backend_table()
+        backends = [b for b in probe.named_backends(options.names(args.against), info) if info[b].usable]
+        thresholds = options.thresholds(args.threshold)
     except (KeyError, ValueError) as e:  # an unknown case, backend or threshold
         _say(str(e.args[0]))
         return EXIT_USAGE
@@ -135,7 +134,7 @@ def add_command(sub) -> None:
                    help="divergence thresholds, as for x3drbp compare")
     c.add_argument("--out", default=os.path.join("out", "x_ite"), metavar="DIR",
                    help="folder for x_ite.json, x_ite.md, traces/ and recordings/ (default out/x_ite)")
-    c.add_argument("--timeout", type=_positive, default=runner.DEFAULT_TIMEOUT, metavar="S",
+    c.add_argument("--timeout", type=_positive, default=children.DEFAULT_TIMEOUT, metavar="S",
                    help="seconds per run, for X_ITE's and each backend's")
     c.set_defaults(func=cmd_cases)
     r = modes.add_parser("record", help="X_ITE's trace of a scene, for x3drbp validate")
@@ -143,5 +142,5 @@ def add_command(sub) -> None:
     r.add_argument("--trace", required=True, metavar="OUT.csv")
     r.add_argument("--frame-rate", type=_positive, default=60.0, metavar="F", help="frames per second (default 60)")
     r.add_argument("--duration", type=_positive, default=5.0, metavar="S", help="seconds (default 5)")
-    r.add_argument("--timeout", type=_positive, default=runner.DEFAULT_TIMEOUT, metavar="S")
+    r.add_argument("--timeout", type=_positive, default=children.DEFAULT_TIMEOUT, metavar="S")
     r.set_defaults(func=cmd_record)

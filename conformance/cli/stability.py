@@ -23,59 +23,60 @@ from fractions import Fraction
 from reports.stability_table import markdown
 from x3d_core import atomic
 
-from . import runner
-from . import stability as S
-from .conformance_command import _dt_label, _names
+from conformance.cli import options
+from conformance import results
+from conformance.runner import probe
+from conformance.analyses import stability as S
 
 EXIT_OK, EXIT_USAGE = 0, 2
 
 
 def _dts(values: list[str] | None) -> list[float]:
     """Steps as fractions (1/240) or decimals, in the order given."""
-    dts = list(dict.fromkeys(float(Fraction(v)) for v in _names(values))) or list(S.DEFAULT_DTS)
+    dts = list(dict.fromkeys(float(Fraction(v)) for v in options.names(values))) or list(S.DEFAULT_DTS)
     if any(dt <= 0 for dt in dts):
         raise ValueError("steps must be positive")
     return dts
 
 
-def to_json(results: list[S.StabilityResult], cases: list[S.HardCase], backends: list[str], dts: list[float],
-            info: dict[str, runner.BackendInfo], jobs: int, wall_s: float) -> dict:
+def to_json(outcomes: list[S.StabilityResult], cases: list[S.HardCase], backends: list[str], dts: list[float],
+            info: dict[str, results.BackendInfo], jobs: int, wall_s: float) -> dict:
     return {
         "generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "backends": {n: {"version": i.version, "unavailable": i.unavailable, "run": n in backends}
                      for n, i in info.items()},
-        "dts": [{"dt": dt, "label": _dt_label(dt)} for dt in dts],
+        "dts": [{"dt": dt, "label": results.dt_label(dt)} for dt in dts],
         "jobs": jobs, "wall_s": round(wall_s, 1),
         "cases": [{"name": c.name, "scene": os.path.relpath(c.path, S.ROOT), "stresses": c.stresses,
                    "duration": c.duration, "held": c.held,
                    "monitors": [{"monitor": type(m).__name__, **vars(m)} for m in c.monitors]} for c in cases],
-        "results": [r.to_json() for r in results],
+        "results": [r.to_json() for r in outcomes],
     }
 
 
 def cmd_stability(args: argparse.Namespace) -> int:
     try:
-        cases = S.select(_names(args.cases))
+        cases = S.select(options.names(args.cases))
         dts = _dts(args.dts)
     except (KeyError, ValueError, ZeroDivisionError) as e:
         print(f"x3drbp stability: {e.args[0] if isinstance(e, KeyError) else e}", file=sys.stderr)
         return EXIT_USAGE
-    info = runner.backend_table(args.timeout)
+    info = probe.backend_table(args.timeout)
     try:
-        backends = runner.named_backends(_names(args.backends), info)
+        backends = probe.named_backends(options.names(args.backends), info)
     except ValueError as e:
         print(f"x3drbp stability: {e}", file=sys.stderr)
         return EXIT_USAGE
     runnable = [b for b in backends if info[b].usable]
     jobs = max(1, args.jobs or os.cpu_count() or 1)
     started = time.perf_counter()
-    results = S.run_suite(cases, runnable, dts, args.timeout, jobs)
+    outcomes = S.run_suite(cases, runnable, dts, args.timeout, jobs)
     wall_s = time.perf_counter() - started
     for b in backends:  # named on the command line but not installed: say so in every cell
         if not info[b].usable:
-            results += [S.StabilityResult(c.name, b, dt, runner.ERROR, reason=f"backend unavailable: "
+            outcomes += [S.StabilityResult(c.name, b, dt, results.ERROR, reason=f"backend unavailable: "
                                           f"{info[b].unavailable}") for c in cases for dt in dts]
-    data = to_json(results, cases, backends, dts, info, jobs, wall_s)
+    data = to_json(outcomes, cases, backends, dts, info, jobs, wall_s)
     text = markdown(data)
     os.makedirs(args.out, exist_ok=True)
     atomic.write_json(os.path.join(args.out, "stability.json"), data)
@@ -94,7 +95,7 @@ def add_command(sub) -> None:
                    help=f"cases to run, comma-separated (default: all: {', '.join(S.BY_NAME)})")
     p.add_argument("--dts", action="append", metavar="LIST",
                    help="physics steps, comma-separated, as 1/240 or 0.004 (default "
-                        f"{','.join(_dt_label(dt) for dt in S.DEFAULT_DTS)})")
+                        f"{','.join(results.dt_label(dt) for dt in S.DEFAULT_DTS)})")
     p.add_argument("--out", default=os.path.join("out", "stability"), metavar="DIR",
                    help="folder for stability.md and stability.json (default out/stability)")
     p.add_argument("--timeout", type=float, default=S.DEFAULT_TIMEOUT, metavar="S",

@@ -33,9 +33,9 @@ import time
 from backends import base
 from x3d_core import atomic
 
-from . import cases as C
-from . import runner
-from .conformance_command import _names
+from conformance.cli import options
+from conformance import cases as C
+from conformance.runner import probe
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 EXAMPLES = os.path.join(C.ROOT, "scenes", "examples")
@@ -59,7 +59,7 @@ def _steps(out: str, backends: list[str], quick: bool, x_ite: bool) -> list[tupl
 
 def _run(argv: list[str], log: str) -> int:
     """One x3drbp command in this process, its output into the log."""
-    from .cli import main  # the command line registers this module: imported when used
+    from conformance.cli import main  # the command line registers this module: imported when used
     with open(log, "a", encoding="utf-8") as f, contextlib.redirect_stdout(f), contextlib.redirect_stderr(f):
         print(f"$ x3drbp {' '.join(argv)}", flush=True)
         try:
@@ -91,9 +91,9 @@ def features(matrix: dict, backends: list[str]) -> dict:
 
 def cmd_report(args: argparse.Namespace) -> int:
     from reports.report_page import write_report  # reports read results; imported when there are some
-    info = runner.backend_table()
+    info = probe.backend_table()
     try:
-        backends = [b for b in runner.named_backends(_names(args.backends), info) if info[b].usable]
+        backends = [b for b in probe.named_backends(options.names(args.backends), info) if info[b].usable]
     except ValueError as e:
         print(f"x3drbp report: {e}", file=sys.stderr)
         return EXIT_USAGE

@@ -1,4 +1,4 @@
-"""The x3drbp command line."""
+"""`x3drbp check`: load and validate scenes, and say what each uses."""
 
 from __future__ import annotations
 
@@ -10,17 +10,8 @@ from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.paths import scene_files
 
-from .compare_command import add_command as add_compare
-from .conformance_command import add_command as add_conformance
-from .report_command import add_command as add_report
-from .run_command import add_commands
-from .stability_command import add_command as add_stability
-from .sweep_command import add_command as add_sweep
-from .validate_command import add_command as add_validate
-from .x_ite_command import add_command as add_x_ite
 
-
-def _check(args: argparse.Namespace) -> int:
+def cmd_check(args: argparse.Namespace) -> int:
     files = scene_files(args.paths)
     if not files:
         print("x3drbp check: no X3D files (.x3d, .x3dv, .x3dj) under the given paths", file=sys.stderr)
@@ -55,27 +46,8 @@ def _check(args: argparse.Namespace) -> int:
     return 1 if failed else 0
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="x3drbp", description=__doc__)
-    sub = parser.add_subparsers(dest="command", required=True)
+def add_command(sub) -> None:
     check = sub.add_parser("check", help="load and validate X3D files; summarize what each scene uses")
     check.add_argument("paths", nargs="+", help="files, or folders searched for .x3d/.x3dv/.x3dj files")
     check.add_argument("-q", "--quiet", action="store_true", help="print errors only")
-    check.set_defaults(func=_check)
-    add_commands(sub)
-    add_compare(sub)
-    add_conformance(sub)
-    add_stability(sub)
-    add_sweep(sub)
-    add_report(sub)
-    add_validate(sub)
-    add_x_ite(sub)
-    args = parser.parse_args(argv)
-    try:
-        return args.func(args)
-    except KeyboardInterrupt:
-        return 130
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+    check.set_defaults(func=cmd_check)

@@ -27,14 +27,15 @@ from reports.validate_text import render
 from x3d_core import atomic
 from x3d_core.trace import Row
 
-from . import runner
-from .cases import Case, TraceView
-from .compare import DEFAULT_THRESHOLDS
-from .compare_command import _thresholds
-from .conformance_command import _names
-from .run_command import load_scene
-from .trace_check import Problem, check_trace
-from .validate import Validation, check_case, compare_with_backends, find_case
+from conformance.cli import options
+from conformance import results
+from conformance.runner import children, probe
+from conformance.cases import Case
+from x3d_core.trace import TraceView
+from conformance.analyses.compare import DEFAULT_THRESHOLDS
+from conformance.analyses.trace_check import Problem, check_trace
+from conformance.analyses.validation import check_case, compare_with_backends, find_case
+from conformance.results import Validation
 
 EXIT_CONFORMS, EXIT_DOES_NOT, EXIT_UNREADABLE = 0, 1, 2
 MAX_SHOWN = 20  # problems printed; the rest counted
@@ -65,14 +66,14 @@ def _coverage(path: str, rows: list[Row], case: Case | None, k: int) -> list[Pro
 
 def cmd_validate(args: argparse.Namespace) -> int:
     try:
-        thresholds = _thresholds(args.threshold)
+        thresholds = options.thresholds(args.threshold)
     except ValueError as e:
         return _usage(str(e))
     for name in ("dt", "timeout"):
         value = getattr(args, name)
         if value is not None and not (math.isfinite(value) and value > 0):
             return _usage(f"--{name} must be a positive number, not {value:g}")
-    scene = load_scene(args.scene)
+    scene = options.load_scene(args.scene)
     if scene is None:
         return EXIT_UNREADABLE
     case = find_case(args.scene)
@@ -92,11 +93,11 @@ def cmd_validate(args: argparse.Namespace) -> int:
     result = None
     if case is not None:
         result = check_case(case, [TraceView(r) for r in traces], args.dt)
-        if result.verdict == runner.ERROR:
+        if result.verdict == results.ERROR:
             return _unreadable([f"{', '.join(args.trace)}: case {case.name}: {result.reason}"])
-    info = runner.backend_table(args.timeout)
+    info = probe.backend_table(args.timeout)
     try:
-        backends = runner.named_backends(_names(args.against), info)
+        backends = probe.named_backends(options.names(args.against), info)
     except ValueError as e:
         return _usage(str(e))
     dt = args.dt or 1.0 / 240.0
@@ -125,6 +126,6 @@ def add_command(sub) -> None:
                         f"(default position={DEFAULT_THRESHOLDS['position']:g},"
                         f"orientation={DEFAULT_THRESHOLDS['orientation']:g})")
     p.add_argument("--json", metavar="OUT.json", help="write the full result, per-frame series included")
-    p.add_argument("--timeout", type=float, default=runner.DEFAULT_TIMEOUT, metavar="S",
-                   help=f"time limit per backend run in seconds (default {runner.DEFAULT_TIMEOUT:g})")
+    p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per backend run in seconds (default {children.DEFAULT_TIMEOUT:g})")
     p.set_defaults(func=cmd_validate)

@@ -28,31 +28,14 @@ import sys
 from reports.compare_text import render
 from x3d_core import atomic
 
-from . import runner
-from .cases import Settings
-from .compare import DEFAULT_THRESHOLDS, UNITS, Comparison, compare_all
-from .compare_runs import run_backends
-from .conformance_command import _names
-from .run_command import add_run_settings, load_scene
+from conformance.cli import options
+from conformance.runner import children, probe
+from conformance.results import Settings
+from conformance.analyses.compare import DEFAULT_THRESHOLDS, compare_all
+from conformance.results import Comparison
+from conformance.analyses.compare_runs import run_backends
 
 EXIT_OK, EXIT_NOTHING_COMPARED, EXIT_USAGE = 0, 1, 2
-
-
-def _thresholds(values: list[str] | None) -> dict[str, float]:
-    """KIND=VALUE items over the defaults; ValueError naming what is wrong."""
-    out = dict(DEFAULT_THRESHOLDS)
-    for item in _names(values):
-        kind, _, text = item.partition("=")
-        if kind not in out:
-            raise ValueError(f"unknown threshold {kind!r}; known: {', '.join(out)}")
-        try:
-            value = float(text)
-        except ValueError:
-            value = math.nan
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"threshold {kind} must be a positive number of {UNITS[kind]}, not {text!r}")
-        out[kind] = value
-    return out
 
 
 def _usage(message: str) -> int:
@@ -62,19 +45,19 @@ def _usage(message: str) -> int:
 
 def cmd_compare(args: argparse.Namespace) -> int:
     try:
-        thresholds = _thresholds(args.threshold)
+        thresholds = options.thresholds(args.threshold)
     except ValueError as e:
         return _usage(str(e))
     for name in ("duration", "dt", "frame_rate", "timeout"):
         value = getattr(args, name)
         if not (math.isfinite(value) and value > 0):
             return _usage(f"--{name.replace('_', '-')} must be a positive number, not {value:g}")
-    scene = load_scene(args.scene)
+    scene = options.load_scene(args.scene)
     if scene is None:
         return EXIT_NOTHING_COMPARED
-    info = runner.backend_table(args.timeout)
+    info = probe.backend_table(args.timeout)
     try:
-        backends = runner.named_backends(_names(args.backends), info)
+        backends = probe.named_backends(options.names(args.backends), info)
     except ValueError as e:
         return _usage(str(e))
     if len(backends) < 2:
@@ -104,7 +87,7 @@ def add_command(sub) -> None:
     p.add_argument("scene")
     p.add_argument("--backends", action="append", metavar="LIST",
                    help="backends to run, comma-separated (default: every installed one)")
-    add_run_settings(p)
+    options.add_run_settings(p)
     p.add_argument("--threshold", action="append", metavar="KIND=VALUE",
                    help="divergence thresholds, comma-separated: position=M, orientation=RAD "
                         f"(default position={DEFAULT_THRESHOLDS['position']:g},"
@@ -112,8 +95,8 @@ def add_command(sub) -> None:
     p.add_argument("--json", metavar="OUT.json", help="write the full result, per-frame series included")
     p.add_argument("--rerun", metavar="OUT.rrd",
                    help="write a rerun recording of the runs and their divergence (open it with `rerun OUT.rrd`)")
-    p.add_argument("--timeout", type=float, default=runner.DEFAULT_TIMEOUT, metavar="S",
-                   help=f"time limit per run in seconds (default {runner.DEFAULT_TIMEOUT:g})")
+    p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per run in seconds (default {children.DEFAULT_TIMEOUT:g})")
     p.add_argument("--jobs", type=int, default=1, metavar="N",
                    help="runs in parallel (default 1: runs that share cores skew each other's real-time factor)")
     p.set_defaults(func=cmd_compare)

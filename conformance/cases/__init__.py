@@ -47,9 +47,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from x3d_core import rotation as R
-from x3d_core.trace import Row
+from x3d_core.trace import TraceView
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from conformance.results import Measure, Settings
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENES = os.path.join(ROOT, "scenes", "conformance")
 ROUNDING = 1e-9
 ROUNDING_ANGLE = 1e-7  # rad
@@ -57,96 +59,6 @@ _STEP_SLACK = 1e-9  # as x3d_core.evaluator: a frame within 1e-9 step of a step 
 
 
 # -- what a case is -----------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class Settings:
-    """One run: simulated seconds, physics step, frames per second (None: a frame after
-    every step, for expectations that must see every state)."""
-    duration: float
-    dt: float
-    frame_rate: float | None = 60.0
-
-    @property
-    def rate(self) -> float:
-        return 1.0 / self.dt if self.frame_rate is None else self.frame_rate
-
-    def with_dt(self, dt: float) -> Settings:
-        return Settings(self.duration, dt, self.frame_rate)
-
-    def args(self) -> list[str]:
-        """The `x3drbp run` options (repr keeps every digit of the step)."""
-        return ["--duration", repr(self.duration), "--dt", repr(self.dt), "--frame-rate", repr(self.rate)]
-
-
-@dataclass(frozen=True)
-class Measure:
-    """One measured error and the tolerance it is held to (same unit)."""
-    quantity: str
-    error: float
-    tolerance: float
-    unit: str = ""
-
-    def __post_init__(self) -> None:  # plain floats (numpy scalars do not go to JSON)
-        object.__setattr__(self, "error", float(self.error))
-        object.__setattr__(self, "tolerance", float(self.tolerance))
-
-    @property
-    def ok(self) -> bool:
-        return bool(math.isfinite(self.error) and self.error <= self.tolerance)
-
-    @property
-    def ratio(self) -> float:
-        if not math.isfinite(self.error):
-            return math.inf
-        return self.error / self.tolerance if self.tolerance > 0 else (0.0 if self.error == 0 else math.inf)
-
-
-class TraceView:
-    """A trace's rows grouped by (node, field): times, and values as float arrays."""
-
-    def __init__(self, rows: Sequence[Row]):
-        groups: dict[tuple[str, str], tuple[list[float], list[list[float]]]] = {}
-        texts: dict[tuple[str, str], tuple[list[float], list[str]]] = {}
-        for r in rows:
-            try:
-                values = [float(x) for x in r.value.split()]
-            except ValueError:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
-                t, s = texts.setdefault((r.node, r.field), ([], []))
-                t.append(r.time)
-                s.append(r.value)
-                continue
-            t, v = groups.setdefault((r.node, r.field), ([], []))
-            t.append(r.time)
-            v.append(values)
-        self._series = {k: (np.array(t), np.array(v, dtype=np.float64)) for k, (t, v) in groups.items()}
-        self._text = {k: (np.array(t), s) for k, (t, s) in texts.items()}
-
-    def text(self, node: str, fld: str) -> tuple[np.ndarray, list[str]]:
-        """(times (n,), values as written) of an output that is not numbers: SFBool, SFNode, MFString."""
-        try:
-            return self._text[(node, fld)]
-        except KeyError:
-            raise KeyError(f"the trace has no {node}.{fld} text rows") from None
-
-    def keys(self) -> list[tuple[str, str]]:
-        return list(self._series)
-
-    def series(self, node: str, fld: str) -> tuple[np.ndarray, np.ndarray]:
-        """(times (n,), values (n, width)) of one output."""
-        try:
-            return self._series[(node, fld)]
-        except KeyError:
-            raise KeyError(f"the trace has no {node}.{fld} rows") from None
-
-    def at(self, time: float) -> dict[tuple[str, str], np.ndarray]:
-        """Every output's value at one frame time (exact match)."""
-        out = {}
-        for k, (t, v) in self._series.items():
-            hit = np.flatnonzero(t == time)
-            if hit.size:
-                out[k] = v[hit[0]]
-        return out
-
 
 Expectation = Callable[[Sequence[TraceView], Sequence[Settings]], list[Measure]]
 
@@ -189,16 +101,6 @@ def _max_norm(a: np.ndarray) -> float:
     a = np.asarray(a, dtype=np.float64)
     n = np.linalg.norm(a.reshape(len(a), -1), axis=1) if a.ndim > 1 else np.abs(a)
     return float(np.max(n)) if n.size else math.nan
-
-
-def quaternions(rotations: np.ndarray) -> np.ndarray:
-    return R.from_axis_angle(rotations)
-
-
-def rotation_angle_between(q1: np.ndarray, q2: np.ndarray) -> np.ndarray:
-    """The angle of q1 * conj(q2), accurate for small angles (no acos)."""
-    d = R.multiply(q1, R.conjugate(q2))
-    return 2.0 * np.arctan2(np.linalg.norm(d[..., 1:], axis=-1), np.abs(d[..., 0]))
 
 
 def agm(a: float, b: float) -> float:
@@ -356,7 +258,7 @@ def _torque_free_expect(traces: Sequence[TraceView], settings: Sequence[Settings
     t, rot = tr.series("Tumbler", "orientation")
     _, w = tr.series("Tumbler", "angularVelocity")
     b = torque_free_bounds()
-    mats = R.matrix(quaternions(rot))
+    mats = R.matrix(R.from_axis_angle(rot))
     i_world = mats @ TF_INERTIA @ np.swapaxes(mats, 1, 2)
     lw = np.einsum("nij,nj->ni", i_world, w)
     energy = 0.5 * np.einsum("ni,ni->n", w, lw)
@@ -402,7 +304,7 @@ def _constant_torque_expect(traces: Sequence[TraceView], settings: Sequence[Sett
     q_exact = R.from_axis_angle(np.column_stack([np.zeros((len(tp), 2)), np.ones(len(tp)), 0.5 * alpha * tp ** 2]))
     T = float(tp[-1])
     return [Measure("Spun.angularVelocity", _max_norm(w - w_exact), ROUNDING * (1 + alpha * T), "rad/s"),
-            Measure("Spun.orientation", float(np.max(rotation_angle_between(quaternions(rot), q_exact))),
+            Measure("Spun.orientation", float(np.max(R.angle_between(R.from_axis_angle(rot), q_exact))),
                     0.5 * alpha * T * s.dt + ROUNDING_ANGLE, "rad")]
 
 
@@ -864,7 +766,7 @@ def _dp_energy(tr: TraceView) -> tuple[np.ndarray, np.ndarray]:
         _, v = tr.series(name, "linearVelocity")
         _, w = tr.series(name, "angularVelocity")
         _, rot = tr.series(name, "orientation")
-        mats = R.matrix(quaternions(rot))
+        mats = R.matrix(R.from_axis_angle(rot))
         i_world = mats @ DP_INERTIA[name] @ np.swapaxes(mats, 1, 2)
         total = total + m * (G * p[:, 1] + 0.5 * np.einsum("ni,ni->n", v, v)) + \
             0.5 * np.einsum("ni,nij,nj->n", w, i_world, w)
@@ -1317,8 +1219,8 @@ def _stack_expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> 
         _, rot = tr.series(f"Box{j}", "orientation")
         out.append(Measure(f"Box{j} |position - start|", _max_norm(p - start),
                            vertical + sideways + ROUNDING * (1 + float(np.linalg.norm(start))), "m"))
-        out.append(Measure(f"Box{j} rotation angle", float(np.max(rotation_angle_between(
-            quaternions(rot), np.array([1.0, 0.0, 0.0, 0.0])))), tilt + ROUNDING_ANGLE, "rad"))
+        out.append(Measure(f"Box{j} rotation angle", float(np.max(R.angle_between(
+            R.from_axis_angle(rot), np.array([1.0, 0.0, 0.0, 0.0])))), tilt + ROUNDING_ANGLE, "rad"))
     return out
 
 

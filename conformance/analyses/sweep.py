@@ -32,12 +32,13 @@ from collections.abc import Sequence
 from concurrent.futures import as_completed
 from dataclasses import asdict, dataclass
 
-from . import cases as C
-from . import runner
-from .conformance_command import _dt_label
-from .distribute import executor
-from .sweep_job import Job, JobResult, run_job
-from .sweep_metrics import comparison_interval, pareto, window_error
+from conformance import cases as C
+from conformance import results
+from conformance.results import Settings
+from conformance.runner import children, probe
+from conformance.analyses.distribute import executor
+from conformance.analyses.sweep_job import Job, JobResult, run_job
+from conformance.analyses.sweep_metrics import comparison_interval, pareto, window_error
 
 REFINEMENT = 8  # the fine-step reference's step: the finest swept over this
 DEFAULT_SCENES = ("pendulum_period", "projectile", "bounce_apex",
@@ -54,7 +55,7 @@ class Target:
     """A scene to sweep and how its error is measured."""
     name: str
     scene: str  # relative to the project root where it is under it
-    settings: C.Settings  # duration and frames (the step is swept)
+    settings: Settings  # duration and frames (the step is swept)
     case: str | None  # closed form: this case's convergence measure; None: fine-step reference
     quantity: str
 
@@ -71,7 +72,7 @@ def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_
     if interval > window:
         raise ValueError(f"the steps have no common multiple within the {window:g} s window "
                          f"(the shortest is {interval:g} s): choose steps like 1/60, 1/240, 1/1000")
-    fine = C.Settings(window, min(dts), 1.0 / interval)
+    fine = Settings(window, min(dts), 1.0 / interval)
     out = []
     for name in names:
         case = C.BY_NAME.get(name)
@@ -114,13 +115,13 @@ print("x3drbp-declared " + json.dumps({n: [base.load(n).support(f).support is no
 """
 
 
-def backend_plans(names: Sequence[str], timeout: float = runner.DEFAULT_TIMEOUT
+def backend_plans(names: Sequence[str], timeout: float = children.DEFAULT_TIMEOUT
                   ) -> tuple[dict[str, BackendPlan], dict[str, str]]:
     """What each usable named backend (default: every one) honours of FIELDS, asked in a child
-    process (importing an engine can crash) once runner.backend_table has said which engines
+    process (importing an engine can crash) once probe.backend_table has said which engines
     load; and why the others cannot run. ValueError naming unknown backends."""
-    info = runner.backend_table(timeout)
-    named = runner.named_backends(names, info) if names else list(info)  # unusable ones listed as skipped
+    info = probe.backend_table(timeout)
+    named = probe.named_backends(names, info) if names else list(info)  # unusable ones listed as skipped
     usable = [n for n in named if info[n].usable]
     skipped = {n: info[n].unavailable or "" for n in named if not info[n].usable}
     if not usable:
@@ -152,7 +153,7 @@ class Point:
 
     def to_json(self) -> dict:
         d = asdict(self)
-        d["dt_label"] = _dt_label(self.dt)
+        d["dt_label"] = results.dt_label(self.dt)
         d["error"] = None if self.error is None or not math.isfinite(self.error) else self.error
         return d
 
@@ -180,7 +181,7 @@ class Sweep:
 
 
 def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequence[float],
-              iterations: Sequence[int], accuracy: Sequence[bool], timeout: float = runner.DEFAULT_TIMEOUT,
+              iterations: Sequence[int], accuracy: Sequence[bool], timeout: float = children.DEFAULT_TIMEOUT,
               scheduler: str | None = None, workers: int | None = None, progress: bool = False) -> Sweep:
     """Every target on every planned backend at every step and variation, on the executor."""
     keyed: list[tuple[Point | tuple[str, str], Job]] = []
@@ -217,12 +218,12 @@ def _fill(p: Point, job: Job, res: JobResult, reference: tuple[Job, JobResult] |
         return
     ref_job, ref = reference  # a run kept for its positions always has its reference
     if ref.positions is None:
-        p.verdict, p.reason = runner.ERROR, f"the reference run (dt {ref_job.settings.dt:g}) {ref.verdict}: {ref.reason}"
+        p.verdict, p.reason = results.ERROR, f"the reference run (dt {ref_job.settings.dt:g}) {ref.verdict}: {ref.reason}"
         return
     try:
         p.error = window_error(res.positions, ref.positions, job.settings.duration)
     except ValueError as e:
-        p.verdict, p.reason = runner.ERROR, str(e)
+        p.verdict, p.reason = results.ERROR, str(e)
 
 
 def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, progress: bool) -> list[JobResult]:

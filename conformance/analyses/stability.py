@@ -54,12 +54,15 @@ from x3d_core.load import load
 from x3d_core.trace import read_trace
 from x3d_core.world import worlds
 
-from . import runner
-from .cases import ROOT, Settings, TraceView, quaternions
+from conformance import results
+from conformance.runner import children, verdicts
+from conformance.cases import ROOT
+from conformance.results import Settings
+from x3d_core.trace import TraceView
 
 SCENES = os.path.join(ROOT, "scenes", "stability")
 DEFAULT_DTS = (1 / 60, 1 / 240)
-DEFAULT_TIMEOUT = runner.DEFAULT_TIMEOUT
+DEFAULT_TIMEOUT = children.DEFAULT_TIMEOUT
 
 SURVIVED, STOPPED = "survived", "stopped"
 ENERGY, MOMENTUM, JOINT, DRIFT, TUNNELLED = ("energy grew past bound", "momentum drifted past bound",
@@ -133,7 +136,7 @@ class Motion:
         def stack(fld: str) -> np.ndarray:
             return np.stack([view.series(m.names[r], fld)[1] for r in rows], axis=1)
         t = view.series(m.names[rows[0]], "position")[0]
-        mats = R.matrix(quaternions(stack("orientation")))
+        mats = R.matrix(R.from_axis_angle(stack("orientation")))
         com = stack("position") + np.einsum("fbij,bj->fbi", mats, m.com[rows])
         i_world = mats @ m.inertia[rows] @ np.swapaxes(mats, -1, -2)
         return cls(t, com, stack("linearVelocity"), stack("angularVelocity"), i_world, m.mass[rows])
@@ -358,7 +361,7 @@ _BLEW_UP_AT = re.compile(r"blew up (?:at|by) t=([-+0-9.eE]+)")
 
 
 def run_one(case: HardCase, backend: str, dt: float, timeout: float = DEFAULT_TIMEOUT) -> StabilityResult:
-    """One (case, backend, dt) in a child process (runner.run_child), judged here."""
+    """One (case, backend, dt) in a child process (children.run_child), judged here."""
     started = time.perf_counter()
 
     def result(verdict: str, reason: str = "", at: float | None = None,
@@ -367,25 +370,25 @@ def run_one(case: HardCase, backend: str, dt: float, timeout: float = DEFAULT_TI
                                time.perf_counter() - started)
 
     if not os.path.exists(case.path):
-        return result(runner.ERROR, f"no scene file {case.path}")
+        return result(results.ERROR, f"no scene file {case.path}")
     with tempfile.TemporaryDirectory(prefix="x3drbp-stab-") as tmp:
         path = os.path.join(tmp, "trace.csv")
-        out = runner.run_child(case.path, backend, Settings(case.duration, dt), path, timeout)
-        if out.verdict == runner.BLEW_UP:
+        out = children.run_child(case.path, backend, Settings(case.duration, dt), path, timeout)
+        if out.verdict == results.BLEW_UP:
             hit = _BLEW_UP_AT.search(out.reason)  # the reason less the child's "SCENE: BACKEND: "
-            return result(runner.BLEW_UP, out.reason[hit.start():] if hit else out.reason,
+            return result(results.BLEW_UP, out.reason[hit.start():] if hit else out.reason,
                           float(hit.group(1)) if hit else None)
         if out.verdict is not None:
             return result(out.verdict, out.reason)
         try:
             view = TraceView(read_trace(path))
         except (OSError, ValueError) as e:
-            return result(runner.ERROR, f"unreadable trace: {e}")
+            return result(results.ERROR, f"unreadable trace: {e}")
     try:
         verdict, at, reason, figures = judge(case, view, model(case.path))
     except (KeyError, ValueError, IndexError) as e:
         msg = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
-        return result(runner.ERROR, f"the monitors could not read the trace: {msg}")
+        return result(results.ERROR, f"the monitors could not read the trace: {msg}")
     return result(verdict, reason, at, figures)
 
 
@@ -393,5 +396,5 @@ def run_suite(cases: Sequence[HardCase], backends: Sequence[str], dts: Sequence[
               timeout: float = DEFAULT_TIMEOUT, workers: int | None = None) -> list[StabilityResult]:
     """Every case on every backend at every dt, in parallel; results case-, then dt-, then
     backend-major."""
-    return runner.run_many([lambda c=c, b=b, dt=dt: run_one(c, b, dt, timeout)
+    return verdicts.run_many([lambda c=c, b=b, dt=dt: run_one(c, b, dt, timeout)
                             for c in cases for dt in dts for b in backends], workers)

@@ -2,7 +2,7 @@
 gets wrong, each measured by the suite's ordinary checks (`x3drbp validate`'s, unchanged).
 
 - Each case's runs are recorded in X_ITE at the case's frame rate and duration
-  (conformance.x_ite), and judged as any browser's traces are (conformance.validate): the
+  (conformance.browsers.x_ite.harness), and judged as any browser's traces are (conformance.analyses.validation): the
   case's expectation at the step X_ITE takes, and every backend run at that step.
 - A case it passes is RIGHT.
 - A case it fails is probed: for each field the case exercises (Case.exercises, where the
@@ -31,13 +31,14 @@ from lxml import etree
 
 from x3d_core import schema
 from x3d_core.load import load
-from x3d_core.trace import read_trace
+from x3d_core.trace import TraceView
 
-from . import runner
-from .cases import Case, TraceView
-from .trace_check import check_trace
-from .validate import TraceComparison, Validation, check_case, compare_with_backends
-from .x_ite import NotRecordable, Recording, outputs, record, step
+from conformance import results
+from conformance.cases import Case
+from conformance.analyses.trace_check import check_trace
+from conformance.analyses.validation import check_case, compare_with_backends
+from conformance.results import TraceComparison, Validation
+from conformance.browsers.x_ite.harness import NotRecordable, Recording, outputs, record, step
 
 RIGHT, IGNORES, WRONG, ERROR = "right", "ignores", "wrong", "error"
 NAME = "x_ite"  # X_ITE's name beside the backends' in comparisons and recordings
@@ -90,7 +91,7 @@ def without(scene: str, node_type: str, fld: str, out: str) -> bool:
     return bool(changed)
 
 
-def _failing(result: runner.Result) -> str:
+def _failing(result: results.Result) -> str:
     bad = [m for m in result.measures if not m.ok]
     if not bad:
         return result.reason or result.verdict
@@ -120,7 +121,7 @@ def _prepare(case: Case, folder: str) -> _Case:
     return c
 
 
-def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, runner.BackendInfo],
+def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, results.BackendInfo],
            thresholds: Mapping[str, float], timeout: float, recordings: str | None) -> None:
     case = c.case
     wall = sum(r.wall_s or 0.0 for r in c.runs)
@@ -148,7 +149,7 @@ def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, runner.BackendI
     comparisons = [compare_with_backends(case.path, r.out, rows, dt, backends, info, thresholds, timeout, NAME)
                    for r, rows in zip(c.runs, rows_of)]
     v = Validation(case.path, [r.out for r in c.runs], dict(thresholds), result, comparisons)
-    verdict = RIGHT if result.verdict == runner.PASS else WRONG
+    verdict = RIGHT if result.verdict == results.PASS else WRONG
     detail = "" if verdict == RIGHT else _failing(result)
     c.verdict = CaseVerdict(case.name, verdict, detail, dt, agreeing=v.agreeing(), wall_s=wall, messages=messages, validation=v.to_json())
     parted = [b for b in comparisons[0].pairs if comparisons[0].verdict(b) != "agrees"]
@@ -187,7 +188,7 @@ def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
             c.verdict.verdict, c.verdict.ignored = IGNORES, ignored
 
 
-def run_cases(cases: Sequence[Case], folder: str, backends: Sequence[str], info: Mapping[str, runner.BackendInfo],
+def run_cases(cases: Sequence[Case], folder: str, backends: Sequence[str], info: Mapping[str, results.BackendInfo],
               thresholds: Mapping[str, float], timeout: float, recordings: str | None,
               progress: Callable[[str], None] = lambda _: None) -> list[CaseVerdict]:
     """Every case through X_ITE in one browser, judged; traces and probe scenes in `folder`."""

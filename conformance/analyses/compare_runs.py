@@ -1,7 +1,7 @@
 """One scene on several backends for `x3drbp compare`, each run in its own child process.
 
-Each run is runner.run_child's `x3drbp run` with its time limit, so that a crash, a
-timeout, a blow-up or a refusal becomes that backend's verdict (runner.classify) and the
+Each run is children.run_child's `x3drbp run` with its time limit, so that a crash, a
+timeout, a blow-up or a refusal becomes that backend's verdict (children.classify) and the
 other backends still compare. The child times the simulation itself (plan, engine
 build, steps, state readback: `x3drbp run --timing`), which the real-time factor divides
 by; the whole child's wall time (interpreter start, imports, load, trace writing) is
@@ -16,11 +16,11 @@ import tempfile
 import time
 from collections.abc import Mapping, Sequence
 
-from x3d_core.trace import read_trace
+from x3d_core.trace import TraceView, read_trace
 
-from . import runner
-from .cases import Settings, TraceView
-from .compare import RAN, BackendRun
+from conformance import results
+from conformance.results import RAN, BackendRun, Settings
+from conformance.runner import children, verdicts
 
 
 def _simulation_wall(path: str) -> float | None:
@@ -32,24 +32,24 @@ def _simulation_wall(path: str) -> float | None:
 
 
 def run_backend(scene: str, backend: str, settings: Settings, folder: str,
-                timeout: float = runner.DEFAULT_TIMEOUT) -> tuple[BackendRun, TraceView | None]:
+                timeout: float = children.DEFAULT_TIMEOUT) -> tuple[BackendRun, TraceView | None]:
     """Run the scene on one backend; the trace parsed, or None with the verdict that stopped it."""
     trace, timing = (os.path.join(folder, f"{backend}{suffix}") for suffix in (".csv", ".timing.json"))
     started = time.perf_counter()
-    out = runner.run_child(os.path.abspath(scene), backend, settings, trace, timeout, extra=("--timing", timing))
+    out = children.run_child(os.path.abspath(scene), backend, settings, trace, timeout, extra=("--timing", timing))
     child_s = time.perf_counter() - started
     if out.verdict is not None:
         return BackendRun(backend, out.verdict, out.reason, child_wall_s=child_s), None
     try:
         view = TraceView(read_trace(trace))
     except (OSError, ValueError) as e:
-        return BackendRun(backend, runner.ERROR, f"unreadable trace: {e}", child_wall_s=child_s), None
+        return BackendRun(backend, results.ERROR, f"unreadable trace: {e}", child_wall_s=child_s), None
     return BackendRun(backend, RAN, simulated_s=settings.duration, simulation_wall_s=_simulation_wall(timing),
                       child_wall_s=child_s), view
 
 
 def run_backends(scene: str, backends: Sequence[str], settings: Settings,
-                 info: Mapping[str, runner.BackendInfo], timeout: float = runner.DEFAULT_TIMEOUT,
+                 info: Mapping[str, results.BackendInfo], timeout: float = children.DEFAULT_TIMEOUT,
                  jobs: int = 1) -> list[tuple[BackendRun, TraceView | None]]:
     """Every backend's run in the given order, `jobs` at a time; a backend `info` marks
     unavailable gets that as its error without a run."""
@@ -57,8 +57,8 @@ def run_backends(scene: str, backends: Sequence[str], settings: Settings,
         def one(name: str) -> tuple[BackendRun, TraceView | None]:
             i = info.get(name)
             if i is not None and not i.usable:
-                return BackendRun(name, runner.ERROR, f"backend unavailable: {i.unavailable}"), None
+                return BackendRun(name, results.ERROR, f"backend unavailable: {i.unavailable}"), None
             run, view = run_backend(scene, name, settings, folder, timeout)
             run.version = i.version if i is not None else None
             return run, view
-        return runner.run_many([lambda b=b: one(b) for b in backends], jobs)
+        return verdicts.run_many([lambda b=b: one(b) for b in backends], jobs)

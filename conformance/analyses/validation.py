@@ -4,10 +4,10 @@ Two judgements, each reusing what judges x3drbp's own backends:
 
 - the conformance case, where the scene is one (conformance.cases.CASES, matched by
   path): its expectation on their trace(s), one per run of the case, in the case's order,
-  a verdict per measure (runner.evaluate);
+  a verdict per measure (verdicts.evaluate);
 - the backends: each runs the scene with the settings read off their trace (duration: the
   last time; frame rate: the median spacing of the times; dt: 1/240 unless given), and
-  their trace is compared with each run as two backends are (conformance.compare): body
+  their trace is compared with each run as two backends are (conformance.analyses.compare): body
   position and orientation divergence, joint outputs. A backend agrees when the pair has
   a frame in common and every divergence stays within its threshold (joint outputs: the
   threshold of their unit).
@@ -24,19 +24,18 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 
 import numpy as np
 
-from x3d_core.trace import Row
+from x3d_core.trace import Row, TraceView
 
-from . import runner
-from .cases import CASES, Case, Settings, TraceView
-from .compare import BackendRun, PairComparison, compare_pair
-from .compare_runs import run_backends
+from conformance import results
+from conformance.runner import verdicts
+from conformance.cases import CASES, Case
+from conformance.results import THEIRS, Settings, TraceComparison
+from conformance.analyses.compare import compare_pair
+from conformance.analyses.compare_runs import run_backends
 
-THEIRS = "theirs"  # their trace's name in comparisons
-AGREES, DIFFERS = "agrees", "differs"
 # their frame times within this of a backend's frame time are that frame: a browser that
 # sums 1/60 each frame drifts by ~1e-13 s, far below any frame period
 SNAP = 1e-6  # s
@@ -75,76 +74,14 @@ def _frame_times(view: TraceView) -> np.ndarray:
     return np.unique(np.concatenate([view.series(*k)[0] for k in view.keys()] or [np.empty(0)]))
 
 
-def agrees(pair: PairComparison) -> bool:
-    """Every divergence of their trace from the backend's within its threshold."""
-    d = (pair.position, pair.orientation)
-    return bool(pair.times.size and pair.bodies and all(x.max is not None and x.max <= x.threshold for x in d)
-                and all(j.ratio <= 1.0 for j in pair.joints))
-
-
-@dataclass
-class TraceComparison:
-    """One of their traces against every backend's run with the settings read off it."""
-    trace: str
-    settings: Settings
-    runs: list[BackendRun]
-    pairs: dict[str, PairComparison]  # by backend, for those that ran
-    views: dict[str, TraceView] = field(default_factory=dict, repr=False)  # their runs, for recordings
-
-    def verdict(self, backend: str) -> str:
-        """AGREES, DIFFERS, or the run's verdict where it did not run."""
-        pair = self.pairs.get(backend)
-        if pair is None:
-            return next(r.verdict for r in self.runs if r.backend == backend)
-        return AGREES if agrees(pair) else DIFFERS
-
-    def to_json(self) -> dict:
-        s = self.settings
-        return {"trace": self.trace, "duration": s.duration, "dt": s.dt, "frame_rate": s.frame_rate,
-                "runs": [dict(r.to_json(), comparison=self.verdict(r.backend)) for r in self.runs],
-                "pairs": [p.to_json() for p in self.pairs.values()]}
-
-
-@dataclass
-class Validation:
-    scene: str
-    traces: list[str]
-    thresholds: dict[str, float]
-    case: runner.Result | None  # the case's expectation on their traces, where the scene is a case
-    comparisons: list[TraceComparison] = field(default_factory=list)
-
-    @property
-    def backends(self) -> list[str]:
-        return [r.backend for r in self.comparisons[0].runs] if self.comparisons else []
-
-    def agreeing(self) -> list[str]:
-        """The backends that agree with their every trace."""
-        return [b for b in self.backends if all(c.verdict(b) == AGREES for c in self.comparisons)]
-
-    @property
-    def rule(self) -> str:
-        return "the case's expectation" if self.case is not None else "agreement with one backend"
-
-    @property
-    def conforms(self) -> bool:
-        if self.case is not None:
-            return self.case.verdict == runner.PASS
-        return bool(self.agreeing())
-
-    def to_json(self) -> dict:
-        return {"scene": self.scene, "traces": self.traces, "thresholds": self.thresholds, "rule": self.rule,
-                "conforms": self.conforms, "case": None if self.case is None else self.case.to_json(),
-                "agreeing": self.agreeing(), "comparisons": [c.to_json() for c in self.comparisons]}
-
-
-def check_case(case: Case, views: Sequence[TraceView], dt: float | None) -> runner.Result:
+def check_case(case: Case, views: Sequence[TraceView], dt: float | None) -> results.Result:
     """The case's expectation on their traces (its runs' settings, at their dt if given)."""
     settings = [Settings(s.duration, dt or s.dt, s.frame_rate) for s in case.runs]
-    return runner.evaluate(case, THEIRS, views, settings)
+    return verdicts.evaluate(case, THEIRS, views, settings)
 
 
 def compare_with_backends(scene: str, trace: str, rows: Sequence[Row], dt: float, backends: Sequence[str],
-                          info: Mapping[str, runner.BackendInfo], thresholds: Mapping[str, float],
+                          info: Mapping[str, results.BackendInfo], thresholds: Mapping[str, float],
                           timeout: float, name: str = THEIRS) -> TraceComparison:
     """Each backend's run of the scene, with the settings of their trace, against it (their
     trace goes by `name` in the pairs)."""

@@ -19,12 +19,14 @@ import numpy as np
 from x3d_core import atomic
 from x3d_core.load import load
 from x3d_core.model import LoadError
-from x3d_core.trace import read_trace
+from x3d_core.trace import TraceView, read_trace
 from x3d_core.xml_writer import write_xml
 
-from . import cases as C
-from . import runner
-from .sweep_metrics import Positions
+from conformance import cases as C
+from conformance import results
+from conformance.results import Settings
+from conformance.runner import children, verdicts
+from conformance.analyses.sweep_metrics import Positions
 
 MEASURED = "measured"  # the run ended well; its error is against a finer-step run, no tolerance
 
@@ -33,11 +35,11 @@ MEASURED = "measured"  # the run ended well; its error is against a finer-step r
 class Job:
     scene: str  # relative to the project root (or absolute)
     backend: str
-    settings: C.Settings
+    settings: Settings
     iterations: int | None = None  # written into every RigidBodyCollection; None keeps the file's
     prefer_accuracy: bool | None = None  # likewise
     case: str | None = None  # judge the run by this case and return its convergence measure; None: positions
-    timeout: float = runner.DEFAULT_TIMEOUT
+    timeout: float = children.DEFAULT_TIMEOUT
 
 
 @dataclass
@@ -65,7 +67,7 @@ def with_collection_fields(src: str, dst: str, iterations: int | None, prefer_ac
     atomic.write_bytes(dst, write_xml(scene))
 
 
-def positions(view: C.TraceView) -> Positions:
+def positions(view: TraceView) -> Positions:
     """Every body's position series from a trace (bodies in the trace's order)."""
     keys = [node for node, fld in view.keys() if fld == "position"]
     series = [view.series(node, "position") for node in keys]
@@ -86,28 +88,28 @@ def run_job(job: Job) -> JobResult:
             try:
                 with_collection_fields(scene, copy, job.iterations, job.prefer_accuracy)
             except (OSError, LoadError) as e:
-                return JobResult(runner.ERROR, f"the scene could not be rewritten: {e}")
+                return JobResult(results.ERROR, f"the scene could not be rewritten: {e}")
             scene = copy
         trace, timing = os.path.join(tmp, "trace.csv"), os.path.join(tmp, "timing.json")
-        out = runner.run_child(scene, job.backend, job.settings, trace, job.timeout, extra=("--timing", timing))
+        out = children.run_child(scene, job.backend, job.settings, trace, job.timeout, extra=("--timing", timing))
         if out.verdict is not None:
             return JobResult(out.verdict, out.reason)
         try:
             with open(timing, encoding="utf-8") as f:
                 times = json.load(f)
             step_s, simulation_s = float(times["step_wall_s"]), float(times["simulation_wall_s"])
-            view = C.TraceView(read_trace(trace))
+            view = TraceView(read_trace(trace))
         except (OSError, ValueError, KeyError) as e:
-            return JobResult(runner.ERROR, f"unreadable trace or timing: {e}")
+            return JobResult(results.ERROR, f"unreadable trace or timing: {e}")
     if job.case is None:
         try:
             return JobResult(MEASURED, "", step_s, simulation_s, positions=positions(view))
         except ValueError as e:
-            return JobResult(runner.ERROR, str(e), step_s, simulation_s)
+            return JobResult(results.ERROR, str(e), step_s, simulation_s)
     case = C.BY_NAME[job.case]
-    result = runner.evaluate(case, job.backend, [view], [job.settings])
+    result = verdicts.evaluate(case, job.backend, [view], [job.settings])
     measure = result.measure(case.convergence) if case.convergence else None
     if measure is None:
-        return JobResult(result.verdict if result.verdict == runner.ERROR else runner.ERROR,
+        return JobResult(result.verdict if result.verdict == results.ERROR else results.ERROR,
                          result.reason or f"no {case.convergence} measure", step_s, simulation_s)
     return JobResult(result.verdict, result.reason, step_s, simulation_s, measure.error, measure.unit)

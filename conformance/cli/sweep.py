@@ -28,9 +28,9 @@ from fractions import Fraction
 
 from x3d_core import atomic
 
-from . import runner
-from . import sweep as S
-from .conformance_command import _names
+from conformance.cli import options
+from conformance.runner import children
+from conformance.analyses import sweep as S
 
 EXIT_OK, EXIT_USAGE = 0, 2
 ACCURACY = {"both": (False, True), "false": (False,), "true": (True,)}
@@ -38,7 +38,7 @@ ACCURACY = {"both": (False, True), "false": (False,), "true": (True,)}
 
 def _dts(values: list[str] | None) -> list[float]:
     """Steps as fractions (1/240) or decimals, finest last."""
-    dts = [float(Fraction(v)) for v in _names(values)] or list(S.DEFAULT_DTS)
+    dts = [float(Fraction(v)) for v in options.names(values)] or list(S.DEFAULT_DTS)
     if any(dt <= 0 for dt in dts):
         raise ValueError("steps must be positive")
     return sorted(set(dts), reverse=True)
@@ -70,9 +70,9 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], plans: dict[str, S.BackendPl
 def cmd_sweep(args: argparse.Namespace) -> int:
     try:
         dts = _dts(args.dts)
-        iterations = sorted({int(v) for v in _names(args.iterations)} or set(S.DEFAULT_ITERATIONS))
-        chosen = S.targets(_names(args.scenes) or list(S.DEFAULT_SCENES), dts, args.window)
-        plans, skipped = S.backend_plans(_names(args.backends), args.timeout)
+        iterations = sorted({int(v) for v in options.names(args.iterations)} or set(S.DEFAULT_ITERATIONS))
+        chosen = S.targets(options.names(args.scenes) or list(S.DEFAULT_SCENES), dts, args.window)
+        plans, skipped = S.backend_plans(options.names(args.backends), args.timeout)
     except ValueError as e:
         print(f"x3drbp sweep: {e}", file=sys.stderr)
         return EXIT_USAGE
@@ -123,7 +123,7 @@ def add_command(sub) -> None:
                    help="a Dask scheduler (tcp://host:8786) to run on; default: local processes")
     p.add_argument("--workers", type=int, default=None, metavar="N",
                    help="local processes (default: the number of CPUs; ignored with --scheduler)")
-    p.add_argument("--timeout", type=float, default=runner.DEFAULT_TIMEOUT, metavar="S",
-                   help=f"time limit per run in seconds (default {runner.DEFAULT_TIMEOUT:g})")
+    p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per run in seconds (default {children.DEFAULT_TIMEOUT:g})")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no markdown on stdout")
     p.set_defaults(func=cmd_sweep)

@@ -11,10 +11,10 @@ from x3d_core import atomic
 from x3d_core.analysis import run_features
 from x3d_core.engine import BlewUp, Engine, Simulation, Unsupported
 from x3d_core.evaluator import RunSettings, run
-from x3d_core.load import load
-from x3d_core.model import LoadError, Scene
-from x3d_core.trace import Trace
+from x3d_core.trace import Trace, TraceView
 from x3d_core.world import World, worlds
+
+from conformance.cli import options
 
 EXIT_OK, EXIT_ERROR, EXIT_UNSUPPORTED = 0, 1, 3
 
@@ -43,24 +43,6 @@ class _TimedSteps:
         return getattr(self._sim, name)
 
 
-def load_scene(path: str) -> Scene | None:
-    """The scene, or None after printing why it does not load to stderr: one line per
-    error, never a traceback (commands that run a scene exit 1 then)."""
-    try:
-        scene = load(path)
-    except LoadError as e:
-        for d in e.diagnostics:
-            print(d, file=sys.stderr)
-        return None
-    except Exception as e:  # a bug of ours, never the file's fault: still one line
-        print(f"{path}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it",
-              file=sys.stderr)
-        return None
-    for d in scene.errors:
-        print(d, file=sys.stderr)
-    return None if scene.errors else scene
-
-
 def _write_trace(trace: Trace, path: str | None) -> None:
     """The trace to path (atomically), else to standard output."""
     if path:
@@ -70,7 +52,7 @@ def _write_trace(trace: Trace, path: str | None) -> None:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    scene = load_scene(args.scene)
+    scene = options.load_scene(args.scene)
     if scene is None:
         return EXIT_ERROR
     try:
@@ -111,7 +93,6 @@ def cmd_run(args: argparse.Namespace) -> int:
     _write_trace(trace, args.trace)
     if args.rerun:
         from reports.rerun_recording import write_recording  # rerun is imported when a recording is asked for
-        from .cases import TraceView
         write_recording(args.rerun, scene, [(args.backend, TraceView(trace.rows))])
     if args.timing:
         atomic.write_json(args.timing, {"simulation_wall_s": simulation_s, "step_wall_s": clock.step_s}, indent=None)
@@ -130,18 +111,11 @@ def cmd_backends(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def add_run_settings(p: argparse.ArgumentParser) -> None:
-    """--duration, --dt, --frame-rate: how a scene is run (`x3drbp run` and the commands that run it)."""
-    p.add_argument("--duration", type=float, default=1.0, help="simulated seconds (default 1)")
-    p.add_argument("--dt", type=float, default=1.0 / 240.0, help="physics step in seconds (default 1/240)")
-    p.add_argument("--frame-rate", type=float, default=60.0, help="frames per second (default 60)")
-
-
 def add_commands(sub) -> None:
     r = sub.add_parser("run", help="run a scene on one backend and write its event trace")
     r.add_argument("scene")
     r.add_argument("--backend", required=True, help=f"one of {', '.join(base.ENGINES)}")
-    add_run_settings(r)
+    options.add_run_settings(r)
     r.add_argument("--trace", help="write the trace CSV here (default: standard output)")
     r.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording of the run (open it with `rerun OUT.rrd`)")
     r.add_argument("--timing", metavar="FILE", help="write the simulation's wall time (plan, engine build, "

@@ -1,0 +1,97 @@
+"""`x3drbp conformance`: every conformance case on every backend, as a matrix.
+
+    x3drbp conformance [--backends LIST] [--cases NAMES] [--out DIR] [--convergence]
+                       [--timeout S] [--jobs N] [--keep-traces]
+
+Writes DIR/matrix.md and DIR/matrix.json (DIR defaults to out/conformance) and prints the
+markdown. Exit status 0 whatever the verdicts (they are results, not errors); 2 on bad
+usage (an unknown case or backend name). With --convergence it also runs each closed-form
+case at dt = 1/60, 1/120, 1/240, 1/480 per backend and reports the error per dt and the
+fitted order (the slope of log error against log dt).
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import sys
+
+from reports.matrix_table import markdown
+from x3d_core import atomic
+
+from conformance.cli import options
+from conformance import cases as C
+from conformance import results
+from conformance.runner import children, probe, verdicts
+
+EXIT_OK, EXIT_USAGE = 0, 2
+
+
+def to_json(outcomes: list[results.Result], cases: list[C.Case], backends: list[str],
+            info: dict[str, results.BackendInfo], convergence: list[results.Convergence] | None = None) -> dict:
+    return {
+        "generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "backends": {n: {"version": i.version, "unavailable": i.unavailable, "run": n in backends}
+                     for n, i in info.items()},
+        "cases": [{"name": c.name, "scene": os.path.relpath(c.path, C.ROOT), "checks": c.checks,
+                   "runs": [{"duration": s.duration, "dt": s.dt, "frame_rate": s.rate} for s in c.runs],
+                   "convergence": c.convergence} for c in cases],
+        "results": [r.to_json() for r in outcomes],
+        "convergence": None if convergence is None else [cv.to_json() for cv in convergence],
+    }
+
+
+def cmd_conformance(args: argparse.Namespace) -> int:
+    try:
+        cases = C.select(options.names(args.cases))
+    except KeyError as e:
+        print(f"x3drbp conformance: {e.args[0]}", file=sys.stderr)
+        return EXIT_USAGE
+    info = probe.backend_table(args.timeout)
+    try:
+        backends = probe.named_backends(options.names(args.backends), info)
+    except ValueError as e:
+        print(f"x3drbp conformance: {e}", file=sys.stderr)
+        return EXIT_USAGE
+    if not backends:
+        print("x3drbp conformance: no backend is available here: "
+              + "; ".join(f"{n}: {i.unavailable}" for n, i in info.items()), file=sys.stderr)
+    keep = os.path.join(args.out, "traces") if args.keep_traces else None
+    runnable = [b for b in backends if info[b].usable]
+    outcomes = verdicts.run_matrix(cases, runnable, args.timeout, args.jobs, keep=keep)
+    for b in backends:  # named on the command line but not installed: say so in every cell
+        if not info[b].usable:
+            outcomes += [results.Result(c.name, b, results.ERROR, f"backend unavailable: {info[b].unavailable}")
+                        for c in cases]
+    order = {(c.name, b): k for k, (c, b) in enumerate((c, b) for c in cases for b in backends)}
+    outcomes.sort(key=lambda r: order[(r.case, r.backend)])
+    convergence = None
+    if args.convergence:
+        convergence = verdicts.run_convergence(cases, runnable, C.CONVERGENCE_DTS, args.timeout, args.jobs)
+    text = markdown(outcomes, [(c.name, c.checks) for c in cases], backends, info, convergence)
+    os.makedirs(args.out, exist_ok=True)
+    atomic.write_text(os.path.join(args.out, "matrix.md"), text)
+    atomic.write_json(os.path.join(args.out, "matrix.json"), to_json(outcomes, cases, backends, info, convergence))
+    sys.stdout.write(text)
+    print(f"\nwrote {os.path.join(args.out, 'matrix.md')} and matrix.json")
+    return EXIT_OK
+
+
+def add_command(sub) -> None:
+    p = sub.add_parser("conformance", help="run the conformance cases on the backends and write the matrix",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--backends", action="append", metavar="LIST",
+                   help="backends to run, comma-separated (default: every installed one)")
+    p.add_argument("--cases", action="append", metavar="NAMES",
+                   help=f"cases to run, comma-separated (default: all: {', '.join(C.BY_NAME)})")
+    p.add_argument("--out", default=os.path.join("out", "conformance"), metavar="DIR",
+                   help="folder for matrix.md and matrix.json (default out/conformance)")
+    p.add_argument("--convergence", action="store_true",
+                   help="also run each closed-form case at dt = 1/60, 1/120, 1/240, 1/480 and fit the order")
+    p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per run in seconds (default {children.DEFAULT_TIMEOUT:g})")
+    p.add_argument("--jobs", type=int, default=None, metavar="N",
+                   help="runs in parallel (default: the number of CPUs)")
+    p.add_argument("--keep-traces", action="store_true", help="keep every run's trace under DIR/traces")
+    p.set_defaults(func=cmd_conformance)

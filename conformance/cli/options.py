@@ -1,0 +1,62 @@
+"""What several commands parse the same way: lists of names, thresholds, run settings, a scene."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+
+from x3d_core.load import load
+from x3d_core.model import LoadError, Scene
+
+from conformance.analyses.compare import DEFAULT_THRESHOLDS, UNITS
+
+
+def names(values: list[str] | None) -> list[str]:
+    """Comma- or space-separated names, the option possibly given several times."""
+    out: list[str] = []
+    for v in values or []:
+        out.extend(n for n in v.replace(",", " ").split() if n)
+    return list(dict.fromkeys(out))
+
+
+def thresholds(values: list[str] | None) -> dict[str, float]:
+    """KIND=VALUE items over the defaults; ValueError naming what is wrong."""
+    out = dict(DEFAULT_THRESHOLDS)
+    for item in names(values):
+        kind, _, text = item.partition("=")
+        if kind not in out:
+            raise ValueError(f"unknown threshold {kind!r}; known: {', '.join(out)}")
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"threshold {kind} must be a positive number of {UNITS[kind]}, not {text!r}")
+        out[kind] = value
+    return out
+
+
+def add_run_settings(p: argparse.ArgumentParser) -> None:
+    """--duration, --dt, --frame-rate: how a scene is run (`x3drbp run` and the commands that run it)."""
+    p.add_argument("--duration", type=float, default=1.0, help="simulated seconds (default 1)")
+    p.add_argument("--dt", type=float, default=1.0 / 240.0, help="physics step in seconds (default 1/240)")
+    p.add_argument("--frame-rate", type=float, default=60.0, help="frames per second (default 60)")
+
+
+def load_scene(path: str) -> Scene | None:
+    """The scene, or None after printing why it does not load to stderr: one line per
+    error, never a traceback (commands that run a scene exit 1 then)."""
+    try:
+        scene = load(path)
+    except LoadError as e:
+        for d in e.diagnostics:
+            print(d, file=sys.stderr)
+        return None
+    except Exception as e:  # a bug of ours, never the file's fault: still one line
+        print(f"{path}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it",
+              file=sys.stderr)
+        return None
+    for d in scene.errors:
+        print(d, file=sys.stderr)
+    return None if scene.errors else scene

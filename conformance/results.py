@@ -1,0 +1,414 @@
+"""The results of x3drbp's runs and analyses, as plain data: what reports/ reads.
+
+Verdicts, the run settings and measures of conformance cases, a case's result and its
+convergence study, the backends found, comparisons of runs, and validations of another
+implementation's traces. Each type turns to JSON (to_json) and, where a report reads it
+back from a file, from JSON. Nothing here runs anything.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from x3d_core import schema
+from x3d_core.trace import TraceView
+
+def dt_label(dt: float) -> str:
+    """A step as people write it: 1/240, else its %g."""
+    inv = 1.0 / dt
+    return f"1/{round(inv)}" if abs(inv - round(inv)) < 1e-6 * inv else f"{dt:g}"
+
+
+
+# -- conformance verdicts ----------------------------------------------------------------
+
+PASS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR = (
+    "pass", "fail", "unsupported", "crashed", "timed out", "blew up", "error")
+VERDICTS = (PASS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR)
+
+
+@dataclass(frozen=True)
+class Settings:
+    """One run: simulated seconds, physics step, frames per second (None: a frame after
+    every step, for expectations that must see every state)."""
+    duration: float
+    dt: float
+    frame_rate: float | None = 60.0
+
+    @property
+    def rate(self) -> float:
+        return 1.0 / self.dt if self.frame_rate is None else self.frame_rate
+
+    def with_dt(self, dt: float) -> Settings:
+        return Settings(self.duration, dt, self.frame_rate)
+
+    def args(self) -> list[str]:
+        """The `x3drbp run` options (repr keeps every digit of the step)."""
+        return ["--duration", repr(self.duration), "--dt", repr(self.dt), "--frame-rate", repr(self.rate)]
+
+
+@dataclass(frozen=True)
+class Measure:
+    """One measured error and the tolerance it is held to (same unit)."""
+    quantity: str
+    error: float
+    tolerance: float
+    unit: str = ""
+
+    def __post_init__(self) -> None:  # plain floats (numpy scalars do not go to JSON)
+        object.__setattr__(self, "error", float(self.error))
+        object.__setattr__(self, "tolerance", float(self.tolerance))
+
+    @property
+    def ok(self) -> bool:
+        return bool(math.isfinite(self.error) and self.error <= self.tolerance)
+
+    @property
+    def ratio(self) -> float:
+        if not math.isfinite(self.error):
+            return math.inf
+        return self.error / self.tolerance if self.tolerance > 0 else (0.0 if self.error == 0 else math.inf)
+
+
+@dataclass
+class Result:
+    case: str
+    backend: str
+    verdict: str
+    reason: str = ""  # why it is not a pass: failing measures, the declared reason, the error
+    measures: list[Measure] = field(default_factory=list)
+    wall_s: float = 0.0
+    dt: float | None = None  # the step of the (first) run
+
+    def worst(self) -> Measure | None:
+        return max(self.measures, key=lambda m: m.ratio) if self.measures else None
+
+    def measure(self, quantity: str) -> Measure | None:
+        return next((m for m in self.measures if m.quantity == quantity), None)
+
+    def to_json(self) -> dict:
+        return {"case": self.case, "backend": self.backend, "verdict": self.verdict, "reason": self.reason,
+                "dt": self.dt, "wall_s": round(self.wall_s, 3),
+                "measures": [{"quantity": m.quantity, "error": _finite_or_str(m.error),
+                              "tolerance": _finite_or_str(m.tolerance), "unit": m.unit, "ok": m.ok}
+                             for m in self.measures]}
+
+
+def _finite_or_str(x: float) -> float | str:
+    return x if math.isfinite(x) else str(x)
+
+
+@dataclass
+class Convergence:
+    case: str
+    backend: str
+    quantity: str
+    dts: list[float]
+    results: list[Result]  # one per dt
+    expected_order: float | None = None
+
+    def errors(self) -> list[float | None]:
+        out = []
+        for r in self.results:
+            m = r.measure(self.quantity)
+            out.append(m.error if m is not None and r.verdict in (PASS, FAIL) else None)
+        return out
+
+    def order(self) -> float | None:
+        return fitted_order(self.dts, self.errors())
+
+    def to_json(self) -> dict:
+        return {"case": self.case, "backend": self.backend, "quantity": self.quantity,
+                "expected_order": self.expected_order,
+                "points": [{"dt": dt, "error": (None if e is None else _finite_or_str(e)), "verdict": r.verdict,
+                            "reason": r.reason if r.verdict not in (PASS, FAIL) else ""}
+                           for dt, e, r in zip(self.dts, self.errors(), self.results)],
+                "order": self.order()}
+
+
+# errors below this are rounding: they carry no order (a scheme exact for the case)
+ORDER_FLOOR = 1e-11
+
+
+def fitted_order(dts: Sequence[float], errors: Sequence[float | None]) -> float | None:
+    """Least-squares slope of log(error) against log(dt) over the finite errors above
+    ORDER_FLOOR; None with fewer than two such points (exact to rounding, or no data)."""
+    pts = [(math.log(dt), math.log(e)) for dt, e in zip(dts, errors)
+           if e is not None and math.isfinite(e) and e > ORDER_FLOOR]
+    if len(pts) < 2:
+        return None
+    mx = sum(x for x, _ in pts) / len(pts)
+    my = sum(y for _, y in pts) / len(pts)
+    sxx = sum((x - mx) ** 2 for x, _ in pts)
+    return sum((x - mx) * (y - my) for x, y in pts) / sxx if sxx > 0 else None
+
+
+@dataclass
+class BackendInfo:
+    name: str
+    version: str | None = None
+    unavailable: str | None = None  # why it cannot be used here
+
+    @property
+    def usable(self) -> bool:
+        return self.unavailable is None
+
+
+# -- comparisons of runs -----------------------------------------------------------------
+
+POSITION, ORIENTATION = "position", "orientation"
+RAN = "ran"  # a backend's verdict when it wrote its trace (else one of VERDICTS)
+_SI = {"length": "m", "speed": "m/s", "angle": "rad", "angular_rate": "rad/s", None: "1"}
+
+
+def _joint_outputs() -> dict[str, str]:
+    """Every joint output field (of any joint type) and its SI unit, from the node definitions."""
+    out = {}
+    for t in schema.NODE_TYPES.values():
+        if not t.abstract and t.is_a("X3DRigidJointNode"):
+            out.update({f.name: _SI[f.unit] for f in t.fields.values() if f.access == "outputOnly"})
+    return out
+
+
+JOINT_OUTPUTS = _joint_outputs()
+
+
+def _floats(a: np.ndarray) -> list[float]:
+    return [float(x) for x in np.asarray(a).tolist()]
+
+
+@dataclass
+class Crossing:
+    """The first frame at which a body's divergence passed the threshold."""
+    time: float
+    bodies: list[str]  # every body over the threshold at that frame, the worst first
+    values: list[float]  # their divergences
+
+    def to_json(self) -> dict:
+        return {"time": self.time, "bodies": [{"body": b, "value": v} for b, v in zip(self.bodies, self.values)]}
+
+    @classmethod
+    def from_json(cls, d: dict) -> Crossing:
+        return cls(d["time"], [x["body"] for x in d["bodies"]], [x["value"] for x in d["bodies"]])
+
+
+@dataclass
+class Divergence:
+    """One quantity (position or orientation) between two runs. The series are per frame
+    (the pair's times) and per body (the pair's bodies); the scalars are None when the
+    runs share no body or no frame."""
+    quantity: str
+    unit: str
+    threshold: float
+    rms: float | None = None  # over every frame and body
+    max: float | None = None
+    max_time: float | None = None
+    max_body: str | None = None
+    first_over: Crossing | None = None
+    frame_rms: np.ndarray = field(default_factory=lambda: np.empty(0))  # over bodies
+    frame_max: np.ndarray = field(default_factory=lambda: np.empty(0))
+    body_rms: np.ndarray = field(default_factory=lambda: np.empty(0))  # over frames
+    body_max: np.ndarray = field(default_factory=lambda: np.empty(0))
+
+    def to_json(self) -> dict:
+        return {"quantity": self.quantity, "unit": self.unit, "threshold": self.threshold,
+                "rms": self.rms, "max": self.max, "max_time": self.max_time, "max_body": self.max_body,
+                "first_over": None if self.first_over is None else self.first_over.to_json(),
+                "frame_rms": _floats(self.frame_rms), "frame_max": _floats(self.frame_max),
+                "body_rms": _floats(self.body_rms), "body_max": _floats(self.body_max)}
+
+    @classmethod
+    def from_json(cls, d: dict) -> Divergence:
+        first = d["first_over"]
+        return cls(d["quantity"], d["unit"], d["threshold"], d["rms"], d["max"], d["max_time"], d["max_body"],
+                   None if first is None else Crossing.from_json(first),
+                   *(np.asarray(d[k], dtype=np.float64) for k in ("frame_rms", "frame_max", "body_rms", "body_max")))
+
+
+@dataclass
+class JointDifference:
+    """One joint output field of one joint, between two runs."""
+    node: str
+    field: str
+    unit: str
+    threshold: float  # the threshold its unit is held to
+    rms: float
+    max: float
+    max_time: float
+
+    @property
+    def ratio(self) -> float:
+        return self.max / self.threshold
+
+    def to_json(self) -> dict:
+        return {"node": self.node, "field": self.field, "unit": self.unit, "threshold": self.threshold,
+                "rms": self.rms, "max": self.max, "max_time": self.max_time}
+
+    @classmethod
+    def from_json(cls, d: dict) -> JointDifference:
+        return cls(d["node"], d["field"], d["unit"], d["threshold"], d["rms"], d["max"], d["max_time"])
+
+
+@dataclass
+class PairComparison:
+    """Two backends' runs of one scene, compared at the frame times both recorded."""
+    a: str
+    b: str
+    times: np.ndarray
+    bodies: list[str]  # in both traces
+    only_in_a: list[str]
+    only_in_b: list[str]
+    position: Divergence
+    orientation: Divergence
+    joints: list[JointDifference]  # every joint output both traces hold
+    joints_only_in_a: list[str]  # NODE.field
+    joints_only_in_b: list[str]
+
+    def worst_joint(self) -> JointDifference | None:
+        """The joint output furthest past (or nearest to) the threshold of its unit."""
+        return max(self.joints, key=lambda j: j.ratio, default=None)
+
+    def to_json(self) -> dict:
+        return {"a": self.a, "b": self.b, "times": _floats(self.times), "bodies": self.bodies,
+                "only_in_a": self.only_in_a, "only_in_b": self.only_in_b,
+                "position": self.position.to_json(), "orientation": self.orientation.to_json(),
+                "joints": [j.to_json() for j in self.joints],
+                "joints_only_in_a": self.joints_only_in_a, "joints_only_in_b": self.joints_only_in_b}
+
+    @classmethod
+    def from_json(cls, d: dict) -> PairComparison:
+        return cls(d["a"], d["b"], np.asarray(d["times"], dtype=np.float64), d["bodies"], d["only_in_a"],
+                   d["only_in_b"], Divergence.from_json(d["position"]), Divergence.from_json(d["orientation"]),
+                   [JointDifference.from_json(j) for j in d["joints"]], d["joints_only_in_a"], d["joints_only_in_b"])
+
+
+@dataclass
+class BackendRun:
+    """One backend's run: its verdict, and how fast it simulated when it ran."""
+    backend: str
+    verdict: str  # RAN, or the runner's verdict (unsupported, crashed, timed out, blew up, error)
+    reason: str = ""
+    version: str | None = None
+    simulated_s: float | None = None
+    simulation_wall_s: float | None = None  # the simulation alone, as the child timed it
+    child_wall_s: float | None = None  # the whole child process: start, imports, load, run, trace writing
+
+    @property
+    def realtime_basis(self) -> str | None:
+        """Which wall time the real-time factor divides by: 'simulation' or 'child'."""
+        if self.simulated_s is None:
+            return None
+        return "simulation" if self.simulation_wall_s else ("child" if self.child_wall_s else None)
+
+    @property
+    def realtime_factor(self) -> float | None:
+        basis = self.realtime_basis
+        if basis is None:
+            return None
+        wall = self.simulation_wall_s if basis == "simulation" else self.child_wall_s
+        return self.simulated_s / wall
+
+    def to_json(self) -> dict:
+        return {"backend": self.backend, "verdict": self.verdict, "reason": self.reason, "version": self.version,
+                "simulated_s": self.simulated_s, "simulation_wall_s": self.simulation_wall_s,
+                "child_wall_s": self.child_wall_s, "realtime_factor": self.realtime_factor,
+                "realtime_basis": self.realtime_basis}
+
+    @classmethod
+    def from_json(cls, d: dict) -> BackendRun:
+        return cls(d["backend"], d["verdict"], d["reason"], d["version"], d["simulated_s"],
+                   d["simulation_wall_s"], d["child_wall_s"])
+
+
+@dataclass
+class Comparison:
+    """One scene on several backends: every run's verdict and every pair that both ran."""
+    scene: str
+    duration: float
+    dt: float
+    frame_rate: float
+    thresholds: dict[str, float]
+    runs: list[BackendRun]
+    pairs: list[PairComparison]
+
+    def to_json(self) -> dict:
+        return {"scene": self.scene, "duration": self.duration, "dt": self.dt, "frame_rate": self.frame_rate,
+                "thresholds": self.thresholds, "runs": [r.to_json() for r in self.runs],
+                "pairs": [p.to_json() for p in self.pairs]}
+
+    @classmethod
+    def from_json(cls, d: dict) -> Comparison:
+        return cls(d["scene"], d["duration"], d["dt"], d["frame_rate"], dict(d["thresholds"]),
+                   [BackendRun.from_json(r) for r in d["runs"]], [PairComparison.from_json(p) for p in d["pairs"]])
+
+
+# -- validation of another implementation's traces -------------------------------------
+
+AGREES, DIFFERS = "agrees", "differs"
+THEIRS = "theirs"  # their trace's name in comparisons
+
+
+def agrees(pair: PairComparison) -> bool:
+    """Every divergence of their trace from the backend's within its threshold."""
+    d = (pair.position, pair.orientation)
+    return bool(pair.times.size and pair.bodies and all(x.max is not None and x.max <= x.threshold for x in d)
+                and all(j.ratio <= 1.0 for j in pair.joints))
+
+
+@dataclass
+class TraceComparison:
+    """One of their traces against every backend's run with the settings read off it."""
+    trace: str
+    settings: Settings
+    runs: list[BackendRun]
+    pairs: dict[str, PairComparison]  # by backend, for those that ran
+    views: dict[str, TraceView] = field(default_factory=dict, repr=False)  # their runs, for recordings
+
+    def verdict(self, backend: str) -> str:
+        """AGREES, DIFFERS, or the run's verdict where it did not run."""
+        pair = self.pairs.get(backend)
+        if pair is None:
+            return next(r.verdict for r in self.runs if r.backend == backend)
+        return AGREES if agrees(pair) else DIFFERS
+
+    def to_json(self) -> dict:
+        s = self.settings
+        return {"trace": self.trace, "duration": s.duration, "dt": s.dt, "frame_rate": s.frame_rate,
+                "runs": [dict(r.to_json(), comparison=self.verdict(r.backend)) for r in self.runs],
+                "pairs": [p.to_json() for p in self.pairs.values()]}
+
+
+@dataclass
+class Validation:
+    scene: str
+    traces: list[str]
+    thresholds: dict[str, float]
+    case: Result | None  # the case's expectation on their traces, where the scene is a case
+    comparisons: list[TraceComparison] = field(default_factory=list)
+
+    @property
+    def backends(self) -> list[str]:
+        return [r.backend for r in self.comparisons[0].runs] if self.comparisons else []
+
+    def agreeing(self) -> list[str]:
+        """The backends that agree with their every trace."""
+        return [b for b in self.backends if all(c.verdict(b) == AGREES for c in self.comparisons)]
+
+    @property
+    def rule(self) -> str:
+        return "the case's expectation" if self.case is not None else "agreement with one backend"
+
+    @property
+    def conforms(self) -> bool:
+        if self.case is not None:
+            return self.case.verdict == PASS
+        return bool(self.agreeing())
+
+    def to_json(self) -> dict:
+        return {"scene": self.scene, "traces": self.traces, "thresholds": self.thresholds, "rule": self.rule,
+                "conforms": self.conforms, "case": None if self.case is None else self.case.to_json(),
+                "agreeing": self.agreeing(), "comparisons": [c.to_json() for c in self.comparisons]}

@@ -1,0 +1,99 @@
+"""Which backends are here: the registry asked in a child process.
+
+Importing an engine can crash the interpreter; the suite must survive that too.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from collections.abc import Sequence
+
+from conformance.results import BackendInfo
+from conformance.runner.children import DEFAULT_TIMEOUT, ROOT, classify
+
+_PROBE = """
+import json, sys
+from backends import base
+only = sys.argv[1:]
+if only:  # one engine alone (after a probe of all of them died)
+    found = {}
+    for name in only:
+        try:
+            found[name] = base.load(name)
+        except Exception as e:
+            found[name] = f"{type(e).__name__}: {e}"
+else:
+    try:
+        found = base.available()
+    except Exception:  # base.available() catches ImportError only: go engine by engine
+        found = {}
+        for name in base.ENGINES:
+            try:
+                found[name] = base.load(name)
+            except Exception as e:
+                found[name] = f"{type(e).__name__}: {e}"
+out = {}
+for name, b in found.items():
+    if isinstance(b, str):
+        out[name] = {"unavailable": b}
+    else:
+        try:
+            out[name] = {"version": str(b.version())}
+        except Exception as e:  # a backend whose engine imports but cannot say its version
+            out[name] = {"unavailable": f"version() failed: {type(e).__name__}: {e}"}
+print("\\nx3drbp-probe " + json.dumps(out))  # engines may print on import (pybullet does)
+"""
+
+
+def _probe(names: Sequence[str], timeout: float) -> tuple[dict, str]:
+    """Run the probe in a child: (what it reported, why it reported nothing)."""
+    try:
+        done = subprocess.run([sys.executable, "-c", _PROBE, *names], cwd=ROOT, capture_output=True, text=True,
+                              timeout=timeout, stdin=subprocess.DEVNULL)
+    except subprocess.TimeoutExpired:
+        return {}, f"the backend probe gave no answer within {timeout:g} s"
+    found = [ln for ln in done.stdout.splitlines() if ln.startswith("x3drbp-probe ")]
+    if done.returncode == 0 and found:
+        try:
+            return json.loads(found[-1].split(" ", 1)[1]), ""
+        except json.JSONDecodeError:
+            pass
+    return {}, classify(done.returncode, done.stderr).reason or "the backend probe printed nothing"
+
+
+def named_backends(names: Sequence[str], info: dict[str, BackendInfo]) -> list[str]:
+    """The backends a command line names, in its order (default: every usable one);
+    ValueError naming any the registry does not know."""
+    unknown = [n for n in names if n not in info]
+    if unknown:
+        raise ValueError(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}")
+    return list(names) or [n for n, i in info.items() if i.usable]
+
+
+def backend_table(timeout: float = DEFAULT_TIMEOUT) -> dict[str, BackendInfo]:
+    """backends.base.available(), asked in a child process: importing an engine can crash,
+    and the suite must survive that too. Should the probe of all engines die, each engine
+    is probed alone, so that one broken engine does not hide the others. Every name in
+    base.ENGINES gets an entry."""
+    from backends import base  # the registry itself imports no engine
+    data, why = _probe([], timeout)
+    if not data:
+        whys = {}
+        for name in base.ENGINES:
+            one, whys[name] = _probe([name], timeout)
+            data.update(one)
+    else:
+        whys = {}
+    out = {}
+    for name in dict.fromkeys([*base.ENGINES, *data]):
+        d = data.get(name)
+        if d is None:
+            out[name] = BackendInfo(name, unavailable=whys.get(name) or why or "not reported by base.available()")
+        else:
+            why_not = d.get("unavailable")
+            if why_not and why_not.startswith("unavailable: "):  # base.available()'s own wording
+                why_not = why_not[len("unavailable: "):]
+            out[name] = BackendInfo(name, d.get("version"), why_not)
+    return out

@@ -1,0 +1,117 @@
+"""Runs conformance cases on backends, each run in its own process, and gives verdicts.
+
+Each (case, backend) runs `python -m conformance.cli run SCENE --backend NAME ... --trace TMP`
+in a child process with a time limit, so that an engine's segfault or endless loop is a
+verdict, not a lost suite. The expectation is evaluated here, in the parent, on the trace
+the child wrote. Verdicts:
+
+- pass: every measured error within its tolerance;
+- fail: some error beyond its tolerance (each Measure says which, by how much);
+- unsupported: the backend refused a feature the scene needs (exit 3; the reason is the
+  backend's own, from the child's stderr);
+- crashed: the child died by a signal (negative return code), or raised an uncaught exception;
+- timed out: no result within the time limit (the child's process group is killed);
+- blew up: a body's state became non-finite (the evaluator says 'blew up');
+- error: the run could not start for reasons that are not the engine's: the scene does not
+  load, the backend is unknown or not installed, the trace lacks what the expectation reads.
+
+Pairs run in parallel, at most os.cpu_count() at a time. The pool is of threads, each
+waiting on its child process: the children are the processes that do the work, and a
+thread pool spares a second interpreter per pair and any pickling.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from typing import TypeVar
+
+from x3d_core.trace import TraceView, read_trace
+
+from conformance.cases import Case
+from conformance.results import ERROR, FAIL, PASS, Convergence, Result, Settings
+from conformance.runner.children import DEFAULT_TIMEOUT, run_child
+
+T = TypeVar("T")  # what run_many's jobs return
+
+
+def evaluate(case: Case, backend: str, traces: Sequence[TraceView], settings: Sequence[Settings]) -> Result:
+    """Apply the case's expectation to traces already read."""
+    dt = settings[0].dt if settings else None
+    try:
+        measures = case.expect(traces, settings)
+    except (KeyError, ValueError, IndexError) as e:
+        msg = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
+        return Result(case.name, backend, ERROR, f"the expectation could not read the trace: {msg}", dt=dt)
+    failing = [m for m in measures if not m.ok]
+    if not failing:
+        return Result(case.name, backend, PASS, "", measures, dt=dt)
+    reason = "; ".join(f"{m.quantity}: error {m.error:.3g}{' ' + m.unit if m.unit else ''} > tolerance "
+                       f"{m.tolerance:.3g}" for m in failing)
+    return Result(case.name, backend, FAIL, reason, measures, dt=dt)
+
+
+def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
+             settings: Sequence[Settings] | None = None, keep: str | None = None) -> Result:
+    """Run one case on one backend (every run of the case, one child each) and judge it.
+    `settings` overrides the case's runs (convergence studies); `keep`, a folder, keeps the
+    traces there as CASE-BACKEND[-k].csv."""
+    settings = tuple(settings or case.runs)
+    started = time.perf_counter()
+    dt = settings[0].dt
+    if not os.path.exists(case.path):
+        return Result(case.name, backend, ERROR, f"no scene file {case.path}", dt=dt)
+    with tempfile.TemporaryDirectory(prefix="x3drbp-conf-") as tmp:
+        folder = keep or tmp
+        os.makedirs(folder, exist_ok=True)
+        traces = []
+        for k, s in enumerate(settings):
+            suffix = f"-{k}" if len(settings) > 1 else ""
+            path = os.path.join(folder, f"{case.name}-{backend}{suffix}.csv")
+            if os.path.exists(path):
+                os.unlink(path)
+            out = run_child(case.path, backend, s, path, timeout)
+            if out.verdict is not None:
+                return Result(case.name, backend, out.verdict, out.reason, dt=dt,
+                              wall_s=time.perf_counter() - started)
+            try:
+                traces.append(TraceView(read_trace(path)))
+            except (OSError, ValueError) as e:
+                return Result(case.name, backend, ERROR, f"unreadable trace: {e}", dt=dt,
+                              wall_s=time.perf_counter() - started)
+        result = evaluate(case, backend, traces, settings)
+    result.wall_s = time.perf_counter() - started
+    return result
+
+
+def run_many(jobs: Sequence[Callable[[], T]], workers: int | None = None) -> list[T]:
+    """Run independent jobs in parallel (results in the jobs' order)."""
+    workers = max(1, min(workers or os.cpu_count() or 1, len(jobs) or 1))
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        return list(pool.map(lambda job: job(), jobs))
+
+
+def run_matrix(cases: Sequence[Case], backends: Sequence[str], timeout: float = DEFAULT_TIMEOUT,
+               workers: int | None = None, keep: str | None = None) -> list[Result]:
+    """Every case on every backend; results case-major."""
+    jobs = [(lambda c=c, b=b: run_pair(c, b, timeout, keep=keep)) for c in cases for b in backends]
+    return run_many(jobs, workers)
+
+
+def run_convergence(cases: Sequence[Case], backends: Sequence[str], dts: Sequence[float],
+                    timeout: float = DEFAULT_TIMEOUT, workers: int | None = None) -> list[Convergence]:
+    """Each closed-form case (one with a `convergence` quantity) at every dt, per backend."""
+    chosen = [c for c in cases if c.convergence]
+    keys = [(c, b, dt) for c in chosen for b in backends for dt in dts]
+    results = run_many([(lambda c=c, b=b, dt=dt: run_pair(c, b, timeout, settings=c.at_dt(dt)))
+                        for c, b, dt in keys], workers)
+    out = []
+    for i in range(0, len(keys), len(dts)):
+        c, b, _ = keys[i]
+        out.append(Convergence(c.name, b, c.convergence, list(dts), results[i:i + len(dts)], c.expected_order))
+    return out
+
+
