@@ -158,6 +158,15 @@ class BackendInfo:
         return self.unavailable is None
 
 
+@dataclass(frozen=True)
+class Expected:
+    """A verdict pinned for one (case, backend): conformance/expectations says how."""
+    verdict: str
+    failing: tuple[str, ...] = ()  # fail: the measures beyond tolerance, sorted
+    reason: str = ""  # unsupported: the backend's reason
+    why: str = ""  # a person's word on it
+
+
 # -- comparisons of runs -----------------------------------------------------------------
 
 POSITION, ORIENTATION = "position", "orientation"

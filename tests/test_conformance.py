@@ -2,8 +2,9 @@
 
 The (case, backend) tests run through conformance.runner, each pair in its own child
 process; the pairs this session selected are run together in parallel, once, by the
-`matrix` fixture. Known failures are backend bugs recorded with their measurement
-(strict xfail: fixing the backend turns them into an XPASS failure, to be removed here).
+`matrix` fixture. Each result must be exactly its pin in conformance/expectations
+(verdict, failing measures, refusal reason): regenerate the pins with `x3drbp
+expectations` when a change is meant.
 """
 
 from __future__ import annotations
@@ -17,7 +18,8 @@ import pytest
 
 from conformance import cases as C
 from conformance import results
-from conformance.results import Settings
+from conformance import expectations
+from conformance.results import Expected, Settings
 from conformance.runner import children, probe, verdicts
 from conformance.cli import main as cli_main
 from x3d_core.analysis import features
@@ -30,71 +32,13 @@ INFO = probe.backend_table()
 INSTALLED = [n for n, i in INFO.items() if i.usable]
 REFERENCE = "mujoco" if "mujoco" in INSTALLED else (INSTALLED[0] if INSTALLED else None)
 
-# (case, backend) -> the measured failure of a backend bug not yet fixed (or of an approximation
-# the backend declares, which the case measures): a strict xfail, so the fix shows up as XPASS
-# and the entry must go.
-KNOWN_FAILURES: dict[tuple[str, str], str] = {
-    ("erp_cfm_spring", "mujoco"): "loop equalities use solref (2 dt, 1), not ERP/CFM: both weights sag 2.53e-5 m, "
-                                  "whatever their mass (m g/k = 2.04e-6 m at 1 kg, 8.18e-6 m at 4 kg)",
-    ("erp_cfm_spring", "dart"): "CFM converted as CFM/(2 dt), exact at a unit effective mass only: 1 kg sags "
-                                "m g/k exactly, 4 kg sags 5.11e-6 m instead of 8.18e-6 m",
-    # the collision cases (measured on the backends as committed in 6b9921f)
-    ("bounce_apex", "mujoco"): "declared: restitution as a spring-damper and no minBounceSpeed threshold: Low08 "
-                               "still bounces at 0.447 m/s (< 0.5) to 6.3 mm (bound 0.17 mm); High05's first apex "
-                               "0.012 m off e^2 h0 (tolerance 6.6e-3); 10 measures out",
-    ("anisotropic_friction", "bullet"): "declared (anisotropic friction 'within 1%'): Along1 (mu1 0.2) off "
-                                        "v0 - mu1 g t by 0.037 m/s (tolerance 2 mu g h = 0.016)",
-    ("anisotropic_friction", "mujoco"): "declared (convex contact model: sliding boxes hop): Along1 0.105 m/s, "
-                                        "Along2 0.164 m/s off v0 - mu g t (tolerances 0.016, 0.049)",
-    ("conveyor", "mujoco"): "declared (friction cone's sliding softness): 0.0419 m/s behind -mu g t at the end of "
-                            "the ramp (t = 0.3 s; tolerance 0.0409), on the belt's speed after",
-    ("resting_penetration", "bullet"): "declared (contactSlop: the layer is a resting depth): Touching sinks to "
-                                       "the full 0.01 m (ODE leaves it at its landing depth, ~0)",
-    ("box_stack", "bullet"): "static friction creeps under the sideways load (not declared): in 10 s Box1 "
-                             "5.8 mm, Box5 29.8 mm along +x, tilts to 0.015 rad (bounds 1.2 / 4.0 mm, 0.9 mrad)",
-    ("sensor_geometry", "mujoco"): "MuJoCo's damped hard contact rests deeper: |depth| 2.9e-4 m (bound g h^2 + "
-                                   "softness = 1.8e-4 m)",
-    ("newtons_cradle", "mujoco"): "declared (restitution as a spring-damper): the strikers keep 3.3% of the "
-                                  "impact speed (bound 2.7%); Ball5 leaves within 0.4% of it",
-    # ODE itself: preferAccuracy FALSE is its quick-step solver, whose 10 sweeps (iterations' default) leave
-    # joint rows unconverged; each of these but ball_chain and double_pendulum_energy passes with dWorldStep
-    ("pendulum_period", "ode"): "quick-step, 10 iterations: Bob.period 0.00303 s off (tolerance 0.00239); "
-                                "dWorldStep gives 0.01 of the tolerance",
-    ("hinge_limits", "ode"): "quick-step, 10 iterations: the arm passes minAngle by 0.228 rad (tolerance 0.0141) and "
-                             "bounces off the stop, ending 0.535 rad from it (100 sweeps: 0.054 rad past; dWorldStep "
-                             "holds it within 3.2e-4 rad)",
-    ("hinge_bounce", "ode"): "quick-step, 10 iterations: angleRate after the impact 2.09 rad/s off -0.5 x the speed "
-                             "before (tolerance 0.0424), the impact 0.499 rad past minAngle; dWorldStep passes (0.028)",
-    ("erp_cfm_spring", "ode"): "quick-step, 10 iterations: the sag misses m g/k by 5.0e-9 m (tolerances 2.0e-9, "
-                               "2.4e-9 m), short of the spring's equilibrium; dWorldStep gives it to 2e-16 m",
-    ("box_stack", "ode"): "quick-step, 10 iterations: the stack shears under the sideways load, Box5 0.96 m from its "
-                          "start after 10 s (bound 4.0 mm); dWorldStep holds every box within 0.7 mm",
-    ("ball_chain", "ode"): "ODE's joints carry the scene's CFM 1e-4 (X3D's default) and correct drift by ERP 0.8 a "
-                           "step: anchors 4.0e-4 m apart (tolerance 3.63e-4), quick-step and dWorldStep alike",
-    ("double_pendulum_energy", "ode"): "ODE's joints carry the scene's CFM 1e-4 (X3D's default): the first step "
-                                       "gives w 9% and 45% off h q''(0) (Upper 3.97e-4, Lower 2.38e-3 rad/s; "
-                                       "tolerance 2e-7); with CFM 0 and dWorldStep it is exact to 1e-11. Energy "
-                                       "passes (0.0071 J, bound 0.571 J)",
-    # pymunk: Chipmunk's sequential impulses, iterations (10) sweeps over rows solved one at a time
-    ("hinge_limits", "pymunk"): "Chipmunk's solver, 10 iterations: the stop (RotaryLimitJoint, moment 0.001 about "
-                                "the arm's centre) fights the pivot holding the arm at 1 m (1000x the moment): the "
-                                "pivot gives, the arm leaves minAngle by 1.75 rad and ends 2.54 rad from it "
-                                "(tolerance 0.0141); 1000 iterations hold it within 0.0042 rad",
-    ("double_pendulum_energy", "pymunk"): "Chipmunk's solver, 10 iterations, does not converge the two pivots in "
-                                          "the first step: Lower's w 8.56e-7 rad/s off h q''(0) (tolerance 2.51e-7)",
-    ("box_stack", "pymunk"): "Chipmunk's solver, 10 iterations: static friction creeps under the sideways load, in "
-                             "10 s Box1 13.5 mm, Box5 108 mm, tilting to 6.4 mrad (bounds 1.2 / 4.0 mm, 4.3 mrad)",
-}
+# every verdict is pinned (conformance/expectations/BACKEND.toml): the test fails on any
+# difference, a fail that starts passing or a case a backend starts refusing alike
+PINS = {b: expectations.load(b) for b in INSTALLED}
 
 
 def _pairs():
-    out = []
-    for c in C.CASES:
-        for b in INSTALLED:
-            marks = ()
-            if (c.name, b) in KNOWN_FAILURES:
-                marks = (pytest.mark.xfail(strict=True, reason=KNOWN_FAILURES[(c.name, b)]),)
-            out.append(pytest.param(c, b, id=f"{c.name}-{b}", marks=marks))
+    out = [pytest.param(c, b, id=f"{c.name}-{b}") for c in C.CASES for b in INSTALLED]
     return out or [pytest.param(None, None, id="no-backend",
                                 marks=pytest.mark.skip(reason="no backend is installed: "
                                                        + "; ".join(f"{n}: {i.unavailable}" for n, i in INFO.items())))]
@@ -116,10 +60,11 @@ def matrix(request):
 @pytest.mark.parametrize("case,backend", _pairs())
 def test_case_on_backend(case, backend, matrix):
     r = matrix.get((case.name, backend)) or verdicts.run_pair(case, backend)
-    assert r.verdict in (results.PASS, results.UNSUPPORTED), f"{case.name} on {backend}: {r.verdict}: {r.reason}"
+    pin = PINS[backend].get(case.name, Expected(results.PASS))
+    assert expectations.mismatch(r, pin) is None, expectations.mismatch(r, pin)
     if r.verdict == results.UNSUPPORTED:
         assert r.reason.strip(), "an unsupported verdict must carry the backend's reason"
-    else:
+    if r.verdict == results.PASS:
         assert r.measures and all(m.ok for m in r.measures)
 
 

@@ -7,6 +7,7 @@ import argparse
 from conformance.cli.check import add_command as add_check
 from conformance.cli.compare import add_command as add_compare
 from conformance.cli.conformance import add_command as add_conformance
+from conformance.cli.expectations import add_command as add_expectations
 from conformance.cli.report import add_command as add_report
 from conformance.cli.run import add_commands
 from conformance.cli.stability import add_command as add_stability
@@ -23,6 +24,7 @@ def main(argv: list[str] | None = None) -> int:
     add_commands(sub)
     add_compare(sub)
     add_conformance(sub)
+    add_expectations(sub)
     add_stability(sub)
     add_sweep(sub)
     add_report(sub)

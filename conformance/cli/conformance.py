@@ -81,17 +81,10 @@ def cmd_conformance(args: argparse.Namespace) -> int:
 def add_command(sub) -> None:
     p = sub.add_parser("conformance", help="run the conformance cases on the backends and write the matrix",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--backends", action="append", metavar="LIST",
-                   help="backends to run, comma-separated (default: every installed one)")
-    p.add_argument("--cases", action="append", metavar="NAMES",
-                   help=f"cases to run, comma-separated (default: all: {', '.join(C.BY_NAME)})")
+    options.add_matrix_options(p, "run", list(C.BY_NAME), children.DEFAULT_TIMEOUT)
     p.add_argument("--out", default=os.path.join("out", "conformance"), metavar="DIR",
                    help="folder for matrix.md and matrix.json (default out/conformance)")
     p.add_argument("--convergence", action="store_true",
                    help="also run each closed-form case at dt = 1/60, 1/120, 1/240, 1/480 and fit the order")
-    p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
-                   help=f"time limit per run in seconds (default {children.DEFAULT_TIMEOUT:g})")
-    p.add_argument("--jobs", type=int, default=None, metavar="N",
-                   help="runs in parallel (default: the number of CPUs)")
     p.add_argument("--keep-traces", action="store_true", help="keep every run's trace under DIR/traces")
     p.set_defaults(func=cmd_conformance)

@@ -60,3 +60,15 @@ def load_scene(path: str) -> Scene | None:
     for d in scene.errors:
         print(d, file=sys.stderr)
     return None if scene.errors else scene
+
+
+def add_matrix_options(p: argparse.ArgumentParser, verb: str, case_names: list[str], timeout: float) -> None:
+    """--backends, --cases, --timeout, --jobs: the commands that run cases on backends."""
+    p.add_argument("--backends", action="append", metavar="LIST",
+                   help=f"backends to {verb}, comma-separated (default: every installed one)")
+    p.add_argument("--cases", action="append", metavar="NAMES",
+                   help=f"cases to {verb}, comma-separated (default: all: {', '.join(case_names)})")
+    p.add_argument("--timeout", type=float, default=timeout, metavar="S",
+                   help=f"time limit per run in seconds (default {timeout:g})")
+    p.add_argument("--jobs", type=int, default=None, metavar="N",
+                   help="runs in parallel (default: the number of CPUs)")

@@ -89,17 +89,10 @@ def cmd_stability(args: argparse.Namespace) -> int:
 def add_command(sub) -> None:
     p = sub.add_parser("stability", help="run the hard cases per backend and step size: survived or what gave way",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--backends", action="append", metavar="LIST",
-                   help="backends to run, comma-separated (default: every installed one)")
-    p.add_argument("--cases", action="append", metavar="NAMES",
-                   help=f"cases to run, comma-separated (default: all: {', '.join(S.BY_NAME)})")
+    options.add_matrix_options(p, "run", list(S.BY_NAME), S.DEFAULT_TIMEOUT)
     p.add_argument("--dts", action="append", metavar="LIST",
                    help="physics steps, comma-separated, as 1/240 or 0.004 (default "
                         f"{','.join(results.dt_label(dt) for dt in S.DEFAULT_DTS)})")
     p.add_argument("--out", default=os.path.join("out", "stability"), metavar="DIR",
                    help="folder for stability.md and stability.json (default out/stability)")
-    p.add_argument("--timeout", type=float, default=S.DEFAULT_TIMEOUT, metavar="S",
-                   help=f"time limit per run in seconds (default {S.DEFAULT_TIMEOUT:g})")
-    p.add_argument("--jobs", type=int, default=None, metavar="N",
-                   help="runs in parallel (default: the number of CPUs)")
     p.set_defaults(func=cmd_stability)

@@ -1,0 +1,83 @@
+"""`x3drbp expectations`: pin every conformance verdict from a run, or check the pins.
+
+    x3drbp expectations [--backends LIST] [--cases NAMES] [--check] [--readme FILE]
+                        [--timeout S] [--jobs N]
+
+Runs the cases on the backends and rewrites conformance/expectations/BACKEND.toml for
+each backend that ran (a `why` is kept while its verdict holds; cases not run keep their
+pins), then README's matrix from every file. Prints each pin that changed. With --check
+it writes nothing and exits 1 when any verdict differs from its pin: what CI of an
+engine's adapter runs. Exit 2 on bad usage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from backends import base
+from reports.expectations_table import markdown, replace_section
+from x3d_core import atomic
+
+from conformance import cases as C
+from conformance import expectations as E
+from conformance.cli import options
+from conformance.runner import children, probe, verdicts
+
+EXIT_OK, EXIT_CHANGED, EXIT_USAGE = 0, 1, 2
+README = os.path.join(C.ROOT, "README.md")
+
+
+def write_readme(path: str) -> None:
+    """README's matrix from the pinned verdicts of every backend x3drbp ships."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    table = markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.ENGINES})
+    new = replace_section(text, table)
+    if new != text:
+        atomic.write_text(path, new)
+
+
+def cmd_expectations(args: argparse.Namespace) -> int:
+    try:
+        cases = C.select(options.names(args.cases))
+    except KeyError as e:
+        print(f"x3drbp expectations: {e.args[0]}", file=sys.stderr)
+        return EXIT_USAGE
+    info = probe.backend_table(args.timeout)
+    try:
+        backends = [b for b in probe.named_backends(options.names(args.backends), info) if info[b].usable]
+    except ValueError as e:
+        print(f"x3drbp expectations: {e}", file=sys.stderr)
+        return EXIT_USAGE
+    outcomes = verdicts.run_matrix(cases, backends, args.timeout, args.jobs)
+    changed = 0
+    for b in backends:
+        old = E.load(b)
+        mine = [r for r in outcomes if r.backend == b]
+        for r in mine:
+            why = E.mismatch(r, old.get(r.case, E.Expected(E.PASS)))
+            if why:
+                changed += 1
+                print(f"changed: {why}")
+        if args.check:
+            continue
+        new = {k: v for k, v in old.items() if k not in {r.case for r in mine}} | E.regenerate(mine, old)
+        atomic.write_text(E.path(b), E.dumps(b, info[b].version or "", new))
+    print(f"{changed} verdict(s) differ from their pins on {', '.join(backends) or 'no backend'}")
+    if args.check:
+        return EXIT_CHANGED if changed else EXIT_OK
+    if args.readme:
+        write_readme(args.readme)
+    return EXIT_OK
+
+
+def add_command(sub) -> None:
+    p = sub.add_parser("expectations", help="pin every conformance verdict per backend from a run (or --check them)",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    options.add_matrix_options(p, "pin", list(C.BY_NAME), children.DEFAULT_TIMEOUT)
+    p.add_argument("--check", action="store_true", help="write nothing; exit 1 when a verdict differs from its pin")
+    p.add_argument("--readme", default=README if os.path.exists(README) else None, metavar="FILE",
+                   help="the README whose matrix to regenerate (default: the project's)")
+    p.set_defaults(func=cmd_expectations)

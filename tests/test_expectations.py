@@ -1,0 +1,88 @@
+"""The pinned verdicts: their files, how a result is held to its pin, and README's matrix."""
+
+from __future__ import annotations
+
+import os
+
+import pytest
+
+from backends import base
+from conformance import cases as C
+from conformance import expectations as E
+from conformance.cli import main as cli_main
+from conformance.cli.expectations import write_readme
+from conformance.results import FAIL, PASS, UNSUPPORTED, Expected, Measure, Result
+from reports.expectations_table import BEGIN, END, markdown, replace_section
+
+from conftest import ROOT
+
+
+def _fail(case: str, *bad: str) -> Result:
+    return Result(case, "engine", FAIL, "measured", [Measure(q, 2.0, 1.0) for q in bad] + [Measure("ok", 0.0, 1.0)])
+
+
+def test_every_pin_names_a_case_and_parses():
+    for b in base.ENGINES:
+        pins = E.load(b)
+        assert set(pins) <= set(C.BY_NAME), (b, set(pins) - set(C.BY_NAME))
+        for case, e in pins.items():
+            assert e.verdict != PASS
+            assert (e.verdict == FAIL) == bool(e.failing), (b, case)
+            assert (e.verdict == UNSUPPORTED) == bool(e.reason), (b, case)
+            if e.verdict == FAIL:
+                assert e.why, f"{b}: {case}: a pinned fail says why"
+
+
+def test_a_result_must_be_its_pin_exactly():
+    pin = E.pinned(_fail("c", "a", "b"), "why")
+    assert pin == Expected(FAIL, ("a", "b"), why="why")
+    assert E.mismatch(_fail("c", "b", "a"), pin) is None
+    assert "fails on a, pinned a, b" in E.mismatch(_fail("c", "a"), pin)
+    assert "expected fail, got pass" in E.mismatch(Result("c", "engine", PASS), pin)
+    refused = Result("c", "engine", UNSUPPORTED, "X.y: why not")
+    assert "expected pass, got unsupported" in E.mismatch(refused, Expected(PASS))
+    assert "pinned 'X.y: other'" in E.mismatch(refused, Expected(UNSUPPORTED, reason="X.y: other"))
+
+
+def test_regenerating_keeps_a_why_only_while_it_holds():
+    old = {"c": Expected(FAIL, ("a",), why="a is slow"), "d": Expected(FAIL, ("a",), why="gone")}
+    new = E.regenerate([_fail("c", "a"), _fail("d", "b"), Result("e", "engine", PASS)], old)
+    assert new == {"c": Expected(FAIL, ("a",), why="a is slow"), "d": Expected(FAIL, ("b",))}
+
+
+def test_files_round_trip_and_bad_files_are_named(tmp_path):
+    table = {"c": Expected(FAIL, ("x \"quoted\"", "y"), why="w\nz"), "d": Expected(UNSUPPORTED, reason="F.g: no")}
+    (tmp_path / "engine.toml").write_text(E.dumps("engine", "1.0", table))
+    assert E.load("engine", str(tmp_path)) == table
+    assert E.load("absent", str(tmp_path)) == {}
+    (tmp_path / "bad.toml").write_text('[c]\nverdict = "pass"\n')
+    with pytest.raises(ValueError, match=r"bad.toml: \[c\]: verdict must be one of"):
+        E.load("bad", str(tmp_path))
+
+
+def test_readme_matrix_is_the_pins_rendered(tmp_path):
+    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
+        readme = f.read()
+    table = markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.ENGINES})
+    assert replace_section(readme, table) == readme, "README's matrix is stale: run `x3drbp expectations`"
+    copy = tmp_path / "README.md"
+    copy.write_text(readme.replace(table, "typed by hand\n"))
+    write_readme(str(copy))
+    assert copy.read_text() == readme
+    with pytest.raises(ValueError, match="no matrix markers"):
+        replace_section("no markers", table)
+    assert BEGIN in readme and END in readme
+
+
+def test_check_reports_a_verdict_that_left_its_pin(tmp_path, monkeypatch, capsys):
+    installed = [b for b in ("mujoco", "bullet") if not isinstance(base.available().get(b), str)]
+    if not installed:
+        pytest.skip("neither mujoco nor bullet is installed")
+    b = installed[0]
+    monkeypatch.setattr(E, "FOLDER", str(tmp_path))
+    (tmp_path / f"{b}.toml").write_text(E.dumps(b, "x", {"free_fall": Expected(FAIL, ("Ball.position",), why="w")}))
+    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall", "--check"]) == 1
+    assert "free_fall on " + b + ": expected fail, got pass" in capsys.readouterr().out
+    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall,gravity_off", "--readme", ""]) == 0
+    assert E.load(b, str(tmp_path)) == {}
+    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall", "--check"]) == 0
