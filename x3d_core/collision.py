@@ -30,13 +30,18 @@ The rules (clause 37.4), as x3drbp reads them:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from . import rotation as R
 from .applied import applied
 from .model import Node, Route
-from .world import STATIC, World
+
+if TYPE_CHECKING:  # world builds its collision plan here: World is only a type to this module
+    from .world import World
+
+STATIC = -1  # body index of the static environment (a NULL body, or a fixed RigidBody)
 
 KINDS = ("box", "sphere", "cylinder", "cone", "mesh", "heightfield")
 

@@ -13,11 +13,11 @@ from typing import Any
 import numpy as np
 
 from . import rotation as R
+from .collision import STATIC, plan
 from .model import Node, Scene
 
 JOINT_TYPES = ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint", "UniversalJoint",
                "MotorJoint")
-STATIC = -1  # body index of the static environment (a NULL body, or a fixed RigidBody)
 
 
 @dataclass
@@ -118,7 +118,6 @@ def node_names(scene: Scene) -> dict[int, str]:
 
 
 def worlds(scene: Scene) -> list[World]:
-    from .collision import plan  # collision builds on World
     names = node_names(scene)
     out = [_world(c, names) for c in scene.of_type("RigidBodyCollection") if c.get("enabled")]
     sensors = [s for s in scene.of_type("CollisionSensor") if s.get("enabled")]

@@ -30,6 +30,7 @@ def main(argv: list[str] | None = None) -> int:
     add_report(sub)
     add_validate(sub)
     add_x_ite(sub)
+    parser.set_defaults(main=main)  # `x3drbp report` runs the other commands through it
     args = parser.parse_args(argv)
     try:
         return args.func(args)

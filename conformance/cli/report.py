@@ -29,6 +29,7 @@ import json
 import os
 import sys
 import time
+from collections.abc import Callable
 
 from backends import base
 from x3d_core import atomic
@@ -57,9 +58,8 @@ def _steps(out: str, backends: list[str], quick: bool, x_ite: bool) -> list[tupl
     return [s for s in steps if not (quick and s[0] == "sweep") and (x_ite or s[0] != "x_ite")]
 
 
-def _run(argv: list[str], log: str) -> int:
-    """One x3drbp command in this process, its output into the log."""
-    from conformance.cli import main  # the command line registers this module: imported when used
+def _run(main: Callable[[list[str]], int], argv: list[str], log: str) -> int:
+    """One x3drbp command in this process (`main`, the command line's own), its output into the log."""
     with open(log, "a", encoding="utf-8") as f, contextlib.redirect_stdout(f), contextlib.redirect_stderr(f):
         print(f"$ x3drbp {' '.join(argv)}", flush=True)
         try:
@@ -111,7 +111,7 @@ def cmd_report(args: argparse.Namespace) -> int:
         log = os.path.join(logs, f"{step}.log")
         open(log, "w").close()
         print(f"report: {step} ...", end="", file=sys.stderr, flush=True)
-        codes = [_run(argv, log) for argv in commands]
+        codes = [_run(args.main, argv, log) for argv in commands]
         if step == "compare":  # a scene that compares nothing is a result; a usage error is not
             bad = [c for c in codes if c == EXIT_USAGE]
         else:
