@@ -20,7 +20,7 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 report: $(STAMP)
-	$(VENV)/bin/x3drbp check -q scenes
+	$(VENV)/bin/x3drbp check -q conformance/cases scenes
 	$(VENV)/bin/x3drbp report --out out/report
 
 test: $(STAMP)
@@ -35,7 +35,7 @@ x-ite-install:
 	cd $(X_ITE) && npm ci --no-audit --no-fund --loglevel=error
 
 x-ite: $(STAMP) x-ite-install
-	$(VENV)/bin/x3drbp check -q scenes
+	$(VENV)/bin/x3drbp check -q conformance/cases scenes
 	$(VENV)/bin/x3drbp report --x-ite --out out/report
 
 test-x-ite: $(STAMP) x-ite-install

@@ -9,3 +9,9 @@ SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared"))
 CORPUS = os.path.join(SHARED, "corpus")
 UOM = os.path.join(SHARED, "reference", "X3dUnifiedObjectModel-4.0.xml")
 SCENES = os.path.join(ROOT, "scenes")
+CASES = os.path.join(ROOT, "conformance", "cases")  # a folder per conformance case
+
+
+def case_scene(name: str) -> str:
+    """The scene of conformance case NAME: conformance/cases/NAME/NAME.x3d."""
+    return os.path.join(CASES, name, f"{name}.x3d")

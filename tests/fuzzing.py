@@ -13,7 +13,7 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 
-from conftest import CORPUS, SCENES
+from conftest import CASES, CORPUS, SCENES
 from x3d_core.load import load
 from x3d_core.model import LoadError
 
@@ -38,7 +38,7 @@ class Finding:
 
 def seeds() -> list[str]:
     """The corpus files and the bundled scenes, every encoding."""
-    found = [p for root in (CORPUS, SCENES) for p in glob.glob(os.path.join(root, "**", "*"), recursive=True)
+    found = [p for root in (CORPUS, SCENES, CASES) for p in glob.glob(os.path.join(root, "**", "*"), recursive=True)
              if p.endswith(SUFFIXES) and os.path.getsize(p) <= SEED_BYTES]
     return sorted(found)
 

@@ -11,12 +11,21 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import re
+import shutil
 import sys
 
 import numpy as np
 import pytest
 
 from conformance import cases as C
+from conformance.cases import CaseError
+from conformance.cases import (bounce_apex as BA, box_stack as BS, erp_cfm_spring as SPRING, hinge_bounce as BOUNCE,
+                               incline as INC, newtons_cradle as NC, resting_penetration as RP, sensor_geometry as SG)
+from conformance.cases.closed_forms import GHOST_START, KEPT_START, G, ballistic, ellipk
+from conformance.cases.case import Case, Mutation
+from conformance.cases.pendulum_period import pendulum_period
 from conformance import results
 from conformance import expectations
 from conformance.results import Expected, Settings
@@ -81,11 +90,11 @@ def test_scene_is_clean_and_exercises_its_fields(case):
 
 
 def test_elliptic_integral_by_agm():
-    assert C.ellipk(0.0) == pytest.approx(math.pi / 2, rel=1e-15)
-    assert C.ellipk(math.sin(math.radians(15))) == pytest.approx(1.5981420021120, rel=1e-12)  # tables
-    assert C.ellipk(math.sin(math.radians(45))) == pytest.approx(1.8540746773013719, rel=1e-12)
+    assert ellipk(0.0) == pytest.approx(math.pi / 2, rel=1e-15)
+    assert ellipk(math.sin(math.radians(15))) == pytest.approx(1.5981420021120, rel=1e-12)  # tables
+    assert ellipk(math.sin(math.radians(45))) == pytest.approx(1.8540746773013719, rel=1e-12)
     # small amplitude: the period tends to 2 pi sqrt(I_p / (m g L))
-    assert C.pendulum_period(1e-6) == pytest.approx(2 * math.pi * math.sqrt(1.001 / 9.81), rel=1e-12)
+    assert pendulum_period(1e-6) == pytest.approx(2 * math.pi * math.sqrt(1.001 / 9.81), rel=1e-12)
 
 
 # -- the verdict machinery ----------------------------------------------------------------
@@ -177,13 +186,13 @@ def test_nonexistent_backend_is_an_error():
 
 def test_nonexistent_and_broken_scenes_are_errors(tmp_path):
     base = C.BY_NAME["free_fall"]
-    missing = C.Case("missing", str(tmp_path / "nope.x3d"), "", base.runs, base.expect)
+    missing = Case("missing", str(tmp_path / "nope.x3d"), "", base.runs, base.expect)
     r = verdicts.run_pair(missing, REFERENCE or "mujoco")
     assert r.verdict == results.ERROR and "nope.x3d" in r.reason
     broken = tmp_path / "broken.x3d"
     broken.write_text("<X3D version='4.0'><Scene><RigidBodyCollection><RigidBody mass='0'/>"
                       "</RigidBodyCollection></Scene></X3D>")
-    r = verdicts.run_pair(C.Case("broken", str(broken), "", base.runs, base.expect), REFERENCE or "mujoco")
+    r = verdicts.run_pair(Case("broken", str(broken), "", base.runs, base.expect), REFERENCE or "mujoco")
     assert r.verdict == results.ERROR and "mass" in r.reason
 
 
@@ -206,51 +215,12 @@ def test_deliberately_wrong_expectation_fails():
     if REFERENCE is None:
         pytest.skip("no backend is installed")
     base = C.BY_NAME["free_fall"]
-    wrong = C.Case("free_fall_wrong", base.scene, "free fall expected at g = 5", base.runs,
-                   C.ballistic("Ball", (0, 10, 0), (0, 0, 0), (0, -5.0, 0)))
+    wrong = Case("free_fall_wrong", base.path, "free fall expected at g = 5", base.runs,
+                   ballistic("Ball", (0, 10, 0), (0, 0, 0), (0, -5.0, 0)))
     r = verdicts.run_pair(wrong, REFERENCE)
     assert r.verdict == results.FAIL
     v = r.measure("Ball.linearVelocity")
     assert v.error == pytest.approx(4.81, rel=1e-9) and v.error > v.tolerance
-
-
-# scene edits that stand for a backend ignoring the field (its default instead)
-MUTATIONS = [
-    ("free_fall", " gravity='0 -9.81 0'", ""),
-    ("projectile", " linearVelocity='3 4 1'", ""),
-    ("pendulum_period", "inertia='0.001 0 0 0 0.001 0 0 0 0.001'", ""),
-    ("torque_free", "inertia='0.2 0.03 0.01 0.03 0.15 -0.02 0.01 -0.02 0.1'", "inertia='0.2 0 0 0 0.15 0 0 0 0.1'"),
-    ("constant_force", "forces='4 0 0, 0 0 -2'", "forces='4 0 0'"),
-    ("constant_torque", " torques='0 0 0.15, 0 0 0.25'", ""),
-    ("gravity_off", " useGlobalGravity='false'", ""),
-    ("damping", " linearDampingFactor='0.01'", ""),
-    ("slider_stops", " maxSeparation='0.3'", ""),
-    ("hinge_limits", " minAngle='-0.6'", ""),
-    # no backend supports stopBounce: without it the reference backend runs the scene, and fails
-    ("hinge_bounce", " stopBounce='0.5'", ""),
-    ("motor_speed", " maxTorque2='0.2'", ""),
-    ("motor_joint_torque", " axis1Torque='0.6'", ""),
-    ("double_pendulum_energy", " inertia='0.05 0 0 0 0.05 0 0 0 0.08'", ""),
-    # erp_cfm_spring: see test_erp_cfm_spring_follows_its_fields (the reference backend fails it as it is)
-]
-
-
-def test_each_case_fails_when_its_field_is_ignored(tmp_path):
-    if REFERENCE is None:
-        pytest.skip("no backend is installed")
-    jobs, names = [], []
-    for name, old, new in MUTATIONS:
-        case = C.BY_NAME[name]
-        with open(case.path, encoding="utf-8") as f:
-            text = f.read()
-        assert text.count(old) == 1, (name, old)
-        path = tmp_path / f"{name}.x3d"
-        path.write_text(text.replace(old, new))
-        mutated = C.Case(name, str(path), case.checks, case.runs, case.expect)
-        jobs.append(lambda m=mutated: verdicts.run_pair(m, REFERENCE))
-        names.append(name)
-    for name, r in zip(names, verdicts.run_many(jobs)):
-        assert r.verdict == results.FAIL, f"{name} with its field at the default: {r.verdict} {r.reason}"
 
 
 def test_fitted_order():
@@ -280,7 +250,7 @@ def test_convergence_reports_errors_and_order():
     if REFERENCE is None:
         pytest.skip("no backend is installed")
     case = C.BY_NAME["free_fall"]
-    short = C.Case(case.name, case.scene, case.checks, (Settings(0.5, 1 / 240),), case.expect,
+    short = Case(case.name, case.path, case.checks, (Settings(0.5, 1 / 240),), case.expect,
                    convergence=case.convergence, expected_order=1.0)
     (cv,) = verdicts.run_convergence([short], [REFERENCE], [1 / 60, 1 / 120, 1 / 240])
     errors = cv.errors()
@@ -289,46 +259,160 @@ def test_convergence_reports_errors_and_order():
     assert cv.to_json()["order"] == cv.order()
 
 
-# -- the cases added with hinge_bounce, motor_speed, motor_joint_torque, erp_cfm_spring and
-# double_pendulum_energy: more fields reset, and reference traces for what no backend runs
+# -- mutations: every case fails when what it checks is ignored -------------------------
 
-def _run_mutated(tmp_path, name: str, old: str, new: str, backend: str, tag: str) -> results.Result:
-    case = C.BY_NAME[name]
+@pytest.mark.parametrize("case", C.CASES, ids=lambda c: c.name)
+def test_every_case_declares_mutations_that_apply_once(case):
+    assert case.mutations, "a case declares at least one mutation (Case.mutations), a scene edit it must catch"
     with open(case.path, encoding="utf-8") as f:
         text = f.read()
-    assert text.count(old) == 1, (name, old)
-    path = tmp_path / f"{name}-{tag}.x3d"
-    path.write_text(text.replace(old, new))
-    return verdicts.run_pair(C.Case(name, str(path), case.checks, case.runs, case.expect), backend)
+    for m in case.mutations:
+        assert m.old or m.runs, f"{m}: neither a scene edit nor other runs"
+        if m.old:
+            assert text.count(m.old) == 1, (case.name, m.old)
+            assert m.apply(text) != text
 
 
-MORE_MUTATIONS = [
-    ("motor_speed", " desiredAngularVelocity2='4'", ""),
-    ("motor_joint_torque", " autoCalc='true'", ""),  # motor1AngleRate is then the user's (0)
-    ("double_pendulum_energy", "DEF='Lower' mass='1.5'", "DEF='Lower'"),
-    ("double_pendulum_energy", " anchorPoint='0.5 -0.8660254037844386 0'", ""),
-]
+def _mutated(case: Case, k: int, folder) -> Case:
+    """The case with its k-th mutation: its scene edited (written into folder), or its runs replaced."""
+    m = case.mutations[k]
+    with open(case.path, encoding="utf-8") as f:
+        text = m.apply(f.read())
+    path = folder / f"{case.name}-{k}.x3d"
+    path.write_text(text, encoding="utf-8")
+    return Case(case.name, str(path), case.checks, m.runs or case.runs, case.expect)
 
 
-def test_new_cases_fail_when_other_fields_are_ignored(tmp_path):
+def _judged_on(found: dict[str, results.Result]) -> tuple[str | None, str]:
+    """Where a case's mutations are judged, from its results as it is on each backend, and how:
+    "pass": the reference backend, or else the first that passes the case; every mutation must
+    make it FAIL there. "measures": where no backend passes it (erp_cfm_spring: the reference
+    misses its spring), the first on which some measures pass; every mutation must make one of
+    them fail. "refused": else, where the reference backend refuses it (hinge_bounce: it does
+    not support stopBounce), the reference, which runs the mutated scene without the field, and
+    must FAIL there. (None, the verdicts) where none of these holds."""
+    order = [REFERENCE] + [b for b in INSTALLED if b != REFERENCE]
+    for b in order:
+        if found[b].verdict == results.PASS:
+            return b, "pass"
+    for b in order:
+        if found[b].verdict == results.FAIL and any(m.ok for m in found[b].measures):
+            return b, "measures"
+    if found[REFERENCE].verdict == results.UNSUPPORTED:
+        return REFERENCE, "refused"
+    return None, "; ".join(f"{b}: {r.verdict}" for b, r in found.items())
+
+
+@pytest.fixture(scope="module")
+def mutated_runs(request, matrix, tmp_path_factory):
+    """For every case this session's mutation tests selected: (backend, how, the case's result
+    there as it is, each mutation's result), all run in parallel once."""
+    wanted = [item.callspec.params["case"] for item in request.session.items
+              if getattr(item, "originalname", None) == "test_case_fails_when_mutated" and hasattr(item, "callspec")]
+    pairs = [(c, b) for c in wanted for b in INSTALLED]
+    found: dict[str, dict[str, results.Result]] = {}
+    for (c, b), r in zip(pairs, verdicts.run_many(
+            [lambda c=c, b=b: matrix.get((c.name, b)) or verdicts.run_pair(c, b) for c, b in pairs])):
+        found.setdefault(c.name, {})[b] = r
+    folder = tmp_path_factory.mktemp("mutated")
+    plans, jobs = {}, []
+    for c in wanted:
+        b, how = _judged_on(found[c.name])
+        plans[c.name] = (b, how, found[c.name].get(b))
+        if b is not None:
+            jobs += [(c.name, lambda m=_mutated(c, k, folder), b=b: verdicts.run_pair(m, b))
+                     for k in range(len(c.mutations))]
+    ran: dict[str, list[results.Result]] = {}
+    for (name, _), r in zip(jobs, verdicts.run_many([j for _, j in jobs])):
+        ran.setdefault(name, []).append(r)
+    return {name: (*plan, ran.get(name, [])) for name, plan in plans.items()}
+
+
+@pytest.mark.parametrize("case", C.CASES, ids=lambda c: c.name)
+def test_case_fails_when_mutated(case, mutated_runs):
     if REFERENCE is None:
         pytest.skip("no backend is installed")
-    jobs = [lambda m=m, k=k: _run_mutated(tmp_path, *m, REFERENCE, str(k)) for k, m in enumerate(MORE_MUTATIONS)]
-    for (name, old, _), r in zip(MORE_MUTATIONS, verdicts.run_many(jobs)):
-        assert r.verdict == results.FAIL, f"{name} without {old.strip()}: {r.verdict} {r.reason}"
+    backend, how, as_it_is, mutated = mutated_runs[case.name]
+    if backend is None:
+        pytest.skip(f"no installed backend to judge {case.name}'s mutations on: {how}")
+    for m, r in zip(case.mutations, mutated, strict=True):
+        what = f"{case.name} on {backend}, {m.old.strip()!r} -> {m.new.strip()!r}"
+        what += f" and runs {m.runs}" if m.runs else ""
+        if how == "measures":
+            kept = [x.quantity for x in as_it_is.measures if x.ok]
+            lost = [q for q in kept if r.measure(q) is not None and not r.measure(q).ok]
+            assert lost, f"{what}: what passes as it is ({'; '.join(kept)}) still passes: {r.verdict} {r.reason}"
+        else:
+            assert r.verdict == results.FAIL, f"{what}: {r.verdict} {r.reason}"
 
+
+# -- discovery: a case is a folder --------------------------------------------------------
+
+CASE_MODULE = """
+from conformance.cases.case import Case
+from conformance.cases.closed_forms import G, ballistic
+from conformance.results import Settings
+
+CASE = Case("{name}", "{name}.x3d", "free fall, elsewhere", (Settings(0.5, 1 / 240),),
+            ballistic("Ball", (0, 10, 0), (0, 0, 0), (0, -G, 0)), mutations=((" gravity='0 -9.81 0'", ""),))
+"""
+
+
+def _case_folder(root, name: str, module: str | None = CASE_MODULE) -> None:
+    folder = root / name
+    folder.mkdir()
+    shutil.copyfile(C.BY_NAME["free_fall"].path, folder / f"{name}.x3d")
+    if module is not None:
+        folder.joinpath("__init__.py").write_text(module.format(name=name), encoding="utf-8")
+
+
+def test_cases_are_the_folders_found_sorted():
+    names = [c.name for c in C.CASES]
+    assert names == sorted(names) and len(names) == 28 and set(C.BY_NAME) == set(names)
+    assert all(c.path == os.path.join(os.path.dirname(C.__file__), c.name, f"{c.name}.x3d") for c in C.CASES)
+    assert C.discover() == C.CASES
+    assert [c.name for c in C.select(["projectile", "free_fall"])] == ["projectile", "free_fall"]
+    with pytest.raises(KeyError, match=r"unknown case\(s\) nope; known: anisotropic_friction, ball_chain, "):
+        C.select(["free_fall", "nope"])
+
+
+def test_a_case_written_elsewhere_is_discovered_and_runs(tmp_path):
+    _case_folder(tmp_path, "fall_again")
+    (case,) = C.discover(str(tmp_path))
+    assert case.name == "fall_again" and case.path == str(tmp_path / "fall_again" / "fall_again.x3d")
+    assert case.mutations == (Mutation(" gravity='0 -9.81 0'", ""),)
+    if REFERENCE is not None:
+        assert verdicts.run_pair(case, REFERENCE).verdict == results.PASS
+
+
+@pytest.mark.parametrize("module,message", [
+    ("raise RuntimeError('half-written')", "the case does not import: RuntimeError: half-written"),
+    ("from conformance.cases.closed_forms import no_such_helper", "the case does not import: ImportError"),
+    ("CASE = 'free_fall'", "defines no CASE = Case(...)"),
+    (CASE_MODULE.replace('"{name}"', '"other_name"'), "the case is named 'other_name', not after its folder"),
+    (None, "a case folder needs an __init__.py defining CASE"),
+])
+def test_a_broken_case_folder_is_named(tmp_path, module, message):
+    _case_folder(tmp_path, "good")
+    _case_folder(tmp_path, "broken", module)
+    with pytest.raises(CaseError, match=re.escape(str(tmp_path / "broken"))) as e:
+        C.discover(str(tmp_path))
+    assert message in str(e.value)
+
+
+# -- reference traces for what no backend runs: ODE's stop bounce and its soft joints
 
 def _ode_hinge_bounce(bounce=0.5, erp=0.2, cfm=1e-6, dt=1 / 240, duration=1.0) -> TraceView:
-    """hinge_bounce.x3d stepped as ODE does, in the joint angle: semi-implicit Euler, and a stop
+    """BOUNCE.x3d stepped as ODE does, in the joint angle: semi-implicit Euler, and a stop
     row active on a step that starts past the stop: one-sided, targeting the larger of
     ERP x penetration / h and -bounce x the incoming rate, softened by CFM."""
-    i_p = C.BOUNCE_I + C.BOUNCE_M * C.BOUNCE_L ** 2
+    i_p = BOUNCE.BOUNCE_I + BOUNCE.BOUNCE_M * BOUNCE.BOUNCE_L ** 2
     angle = rate = 0.0
     rows = [Row(0.0, "Hinge", "angle", "0"), Row(0.0, "Hinge", "angleRate", "0")]
     for n in range(1, round(duration / dt) + 1):
-        free = rate - dt * C.BOUNCE_M * C.G * C.BOUNCE_L * math.cos(angle) / i_p
-        if angle <= C.BOUNCE_MIN:
-            target = -(erp / dt) * (angle - C.BOUNCE_MIN)
+        free = rate - dt * BOUNCE.BOUNCE_M * G * BOUNCE.BOUNCE_L * math.cos(angle) / i_p
+        if angle <= BOUNCE.BOUNCE_MIN:
+            target = -(erp / dt) * (angle - BOUNCE.BOUNCE_MIN)
             if rate < 0:
                 target = max(target, -bounce * rate)
             if free < target:  # the row pushes: rate = target - CFM x force, force = I_p (rate - free) / h
@@ -354,16 +438,16 @@ def test_hinge_bounce_expectation_passes_odes_stop_bounce():
     assert verdict(cfm=1e-4).verdict == results.FAIL  # why the scene sets constantForceMix 1e-6
 
 
-def _ode_spring(soft=lambda m, dt, cfm: cfm / dt, erp=C.SPRING_ERP, cfm=C.SPRING_CFM,
+def _ode_spring(soft=lambda m, dt, cfm: cfm / dt, erp=SPRING.SPRING_ERP, cfm=SPRING.SPRING_CFM,
                 settings: Settings | None = None) -> TraceView:
-    """erp_cfm_spring.x3d stepped as ODE does, along the vertical: the free velocity v_free = v - g h,
+    """SPRING.x3d stepped as ODE does, along the vertical: the free velocity v_free = v - g h,
     then the ball's vertical row (bilateral) with impulse P: v' = v_free + P/m = -(ERP/h) gap - s P,
     s the softness the row's diagonal gets per unit impulse (ODE: CFM/h), so
     v' (1 + s m) = -(ERP/h) gap + s m v_free; then gap += h v'."""
     s = settings or C.BY_NAME["erp_cfm_spring"].runs[0]
     rows = []
     per_frame = round(1 / (s.rate * s.dt))
-    for name, (m, anchor) in C.SPRING_WEIGHTS.items():
+    for name, (m, anchor) in SPRING.SPRING_WEIGHTS.items():
         gap = v = 0.0
         a = " ".join(repr(float(x)) for x in anchor)
         for n in range(round(s.duration / s.dt) + 1):
@@ -373,7 +457,7 @@ def _ode_spring(soft=lambda m, dt, cfm: cfm / dt, erp=C.SPRING_ERP, cfm=C.SPRING
                 rows += [Row(t, f"{name}Hold", "body1AnchorPoint", " ".join(repr(float(x)) for x in lower)),
                          Row(t, f"{name}Hold", "body2AnchorPoint", a)]
             gamma = soft(m, s.dt, cfm) * m
-            v = (-(erp / s.dt) * gap + gamma * (v - C.G * s.dt)) / (1 + gamma)
+            v = (-(erp / s.dt) * gap + gamma * (v - G * s.dt)) / (1 + gamma)
             gap += s.dt * v
     return TraceView(rows)
 
@@ -393,77 +477,8 @@ def test_erp_cfm_spring_expectation_passes_odes_spring():
     assert [m.ok for m in scaled.measures] == [True, False]
 
 
-def test_erp_cfm_spring_follows_its_fields(tmp_path, matrix):
-    """The reference backend fails erp_cfm_spring as it is, so resetting a field there shows
-    nothing: on a backend whose 1 kg weight meets m g/k, resetting errorCorrection or
-    constantForceMix to the default must move it off."""
-    case = C.BY_NAME["erp_cfm_spring"]
-    light = "LightHold gap - (0, -m g/k, 0), m = 1 kg"
-    found = verdicts.run_many([lambda b=b: matrix.get((case.name, b)) or verdicts.run_pair(case, b) for b in INSTALLED])
-    honouring = [r.backend for r in found if r.measure(light) is not None and r.measure(light).ok]
-    if not honouring:
-        pytest.skip("no installed backend honours the spring at 1 kg: "
-                    + "; ".join(f"{r.backend}: {r.verdict}" for r in found))
-    b = honouring[0]
-    mutations = [(" errorCorrection='0.2'", ""), (" constantForceMix='1e-5'", "")]
-    results = verdicts.run_many([lambda m=m, k=k: _run_mutated(tmp_path, "erp_cfm_spring", *m, b, str(k))
-                               for k, m in enumerate(mutations)])
-    for (old, _), r in zip(mutations, results):
-        m = r.measure(light)
-        assert m is not None and not m.ok, f"{b} without {old.strip()}: {r.verdict} {r.reason}"
-
-
-# -- the collision cases: their fields reset on a backend that runs them, and ODE's contact
-# rule itself (as the point-mass stepper below) for while no backend does
-
-COLLISION_MUTATIONS = [
-    ("bounce_apex", " bounce='0.8'", ""),
-    ("bounce_apex", "bounce='0.8' minBounceSpeed='0.5'", "bounce='0.8'"),  # e = 0.8 bounces at 0.447 m/s then
-    ("incline", " frictionCoefficients='0.5 0.5'", ""),
-    ("anisotropic_friction", "appliedParameters='\"BOUNCE\" \"FRICTION_COEFFICIENT-2\"'",
-     "appliedParameters='\"BOUNCE\"'"),
-    ("anisotropic_friction", " frictionCoefficients='0.2 0.6'", ""),
-    ("conveyor", " surfaceSpeed='1.5 0'", ""),
-    ("conveyor", "\n          appliedParameters='\"SPEED-1\"'", ""),
-    ("resting_penetration", " contactSurfaceThickness='0.01'", ""),
-    ("box_stack", " frictionCoefficients='0.3 0.3'", ""),
-    ("collision_filtering", "<CollidableShape containerField='collidables' USE='KeptShape'/>", ""),  # emptied
-    ("collision_filtering", "<CollidableShape containerField='collidables' USE='KeptShape'/>",
-     "<CollidableShape containerField='collidables' USE='KeptShape'/>"
-     "<CollidableShape containerField='collidables' USE='GhostShape'/>"),  # every body collides
-    ("routed_contacts", "<ROUTE fromNode='Sensor' fromField='contacts' toNode='World' toField='set_contacts'/>",
-     ""),  # nothing collides
-    ("sensor_geometry", "<Sphere radius='0.1'/>", "<Sphere/>"),
-    ("sensor_geometry", "<CollisionCollection USE='Contacts' containerField='collider'/>", ""),
-    ("newtons_cradle", " bounce='1'", ""),
-]
-
-
-def test_collision_mutations_apply_once():
-    for name, old, _ in COLLISION_MUTATIONS:
-        with open(C.BY_NAME[name].path, encoding="utf-8") as f:
-            assert f.read().count(old) == 1, (name, old)
-
-
-def test_collision_cases_fail_when_their_fields_are_ignored(tmp_path, matrix):
-    """On the first backend that passes a collision case as it is, every reset of its key field
-    must make it fail (skipped while no backend passes any)."""
-    names = sorted({name for name, _, _ in COLLISION_MUTATIONS})
-    found = {(r.case, r.backend): r for r in verdicts.run_many(
-        [lambda n=n, b=b: matrix.get((n, b)) or verdicts.run_pair(C.BY_NAME[n], b) for n in names for b in INSTALLED])}
-    jobs, labels = [], []
-    for k, (name, old, new) in enumerate(COLLISION_MUTATIONS):  # on the first backend that passes the case
-        for b in INSTALLED:
-            if found[(name, b)].verdict == results.PASS:
-                jobs.append(lambda m=(name, old, new), b=b, k=k: _run_mutated(tmp_path, *m, b, f"{b}-{k}"))
-                labels.append((name, old, b))
-                break
-    if not jobs:
-        pytest.skip("no installed backend passes a collision case yet: "
-                    + "; ".join(f"{n}/{b}: {r.verdict}" for (n, b), r in sorted(found.items())))
-    for (name, old, b), r in zip(labels, verdicts.run_many(jobs)):
-        assert r.verdict == results.FAIL, f"{name} on {b} with {old.strip()!r} reset: {r.verdict} {r.reason}"
-
+# -- the collision cases: ODE's contact rule itself (as the point-mass stepper below), which
+# no backend follows in every detail
 
 def _plane_space(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     from x3d_core.collision import friction_directions
@@ -471,7 +486,7 @@ def _plane_space(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return t1[0], t2[0]
 
 
-def _ode_points(bodies: dict, contacts, settings: Settings, gravity=(0.0, -C.G, 0.0), erp=0.8, cfm=1e-4,
+def _ode_points(bodies: dict, contacts, settings: Settings, gravity=(0.0, -G, 0.0), erp=0.8, cfm=1e-4,
                 layer=0.0, bounce=0.0, min_bounce=0.1, mu=(0.0, 0.0), speed=(0.0, 0.0), accel=None,
                 sensor=None, iterations=10, layer_target=False) -> TraceView:
     """Point masses stepped with ODE's contact rule: contacts found from the overlap at a step's
@@ -564,23 +579,23 @@ def _evaluate(name: str, trace: TraceView) -> results.Result:
     return verdicts.evaluate(case, "ode-points", [trace], case.runs)
 
 
-def _bounce_trace(bounce: dict[str, float], min_bounce: float = C.BA_MIN, erp: float = C.BA_ERP,
+def _bounce_trace(bounce: dict[str, float], min_bounce: float = BA.BA_MIN, erp: float = BA.BA_ERP,
                   cfm: float = 1e-4) -> TraceView:
-    """bounce_apex.x3d's balls stepped as ODE does, along the vertical (one contact, no friction):
+    """BA.x3d's balls stepped as ODE does, along the vertical (one contact, no friction):
     a contact on a step that starts overlapping, targeting max(ERP depth / h, e v_in) (the bounce
     where v_in > minBounceSpeed), softened by CFM: v' (1 + gamma) = target + gamma v_free."""
     s = C.BY_NAME["bounce_apex"].runs[0]
     h, per_frame = s.dt, round(1 / (s.rate * s.dt))
-    gamma = cfm * C.BA_M / h
+    gamma = cfm * BA.BA_M / h
     rows = []
-    for name, (e, h0) in C.BA_BALLS.items():
+    for name, (e, h0) in BA.BA_BALLS.items():
         e = bounce.get(name, e)
-        y, v = C.BA_R + h0, 0.0
+        y, v = BA.BA_R + h0, 0.0
         for n in range(round(s.duration / h) + 1):
             if n % per_frame == 0:
                 t = n // per_frame / s.rate
                 rows += [Row(t, name, "position", f"0 {y!r} 0"), Row(t, name, "linearVelocity", f"0 {v!r} 0")]
-            depth, free = C.BA_R - y, v - C.BA_G * h
+            depth, free = BA.BA_R - y, v - BA.BA_G * h
             if depth >= 0:
                 target = erp * depth / h
                 if e > 0 and -v > min_bounce:
@@ -603,11 +618,11 @@ def test_bounce_apex_expectation_passes_odes_bounce():
     assert pushed.verdict == results.FAIL
 
 
-def _incline_trace(mu: float = C.INC_MU) -> TraceView:
+def _incline_trace(mu: float = INC.INC_MU) -> TraceView:
     bodies, walls = {}, []
-    for k, (name, (theta, z)) in enumerate(C.INC_BOXES.items()):
-        start, _, normal = C.incline_frame(theta, z)
-        bodies[name] = (C.INC_M, start, (0.0, 0.0, 0.0))
+    for k, (name, (theta, z)) in enumerate(INC.INC_BOXES.items()):
+        start, _, normal = INC.incline_frame(theta, z)
+        bodies[name] = (INC.INC_M, start, (0.0, 0.0, 0.0))
         base = start - 0.05 * normal  # on the incline's top face, under the box's centre
         walls.append((k, normal, base))
     contacts = lambda p: [(-1, k, n, -float((p[k] - base) @ n) + 0.05, ("Incline", "Box", "NULL", "B"), p[k])  # noqa
@@ -642,8 +657,8 @@ def test_friction_expectations_pass_odes_friction_directions():
     assert backwards.verdict == results.FAIL  # the belt's motion along +x instead of ODE's first direction
 
 
-def _resting_trace(layer: float = C.RP_LAYER, target: bool = False) -> TraceView:
-    bodies = {"Sunk": (C.RP_M, (1.0, 0.09, 0.0), (0.0,) * 3), "Touching": (C.RP_M, (-1.0, 0.1, 0.0), (0.0,) * 3)}
+def _resting_trace(layer: float = RP.RP_LAYER, target: bool = False) -> TraceView:
+    bodies = {"Sunk": (RP.RP_M, (1.0, 0.09, 0.0), (0.0,) * 3), "Touching": (RP.RP_M, (-1.0, 0.1, 0.0), (0.0,) * 3)}
 
     def contacts(p):
         out = []
@@ -671,14 +686,14 @@ STACK_SHORT = Settings(2.0, 1 / 240)  # the case's 10 s in Python PGS would take
 
 
 def _stack_trace(mu: float = 0.3, iterations: int = 40) -> TraceView:
-    bodies = {f"Box{j}": (C.BS_M, (0.0, C.BS_HEIGHT * (j - 0.5), 0.0), (0.0,) * 3) for j in range(1, C.BS_N + 1)}
+    bodies = {f"Box{j}": (BS.BS_M, (0.0, BS.BS_HEIGHT * (j - 0.5), 0.0), (0.0,) * 3) for j in range(1, BS.BS_N + 1)}
 
     def contacts(p):
         out = [(-1, 0, (0.0, 1.0, 0.0), 0.1 - p[0][1], ("Floor", "Box1Shape", "NULL", "Box1"), p[0])]
-        for j in range(1, C.BS_N):
-            out.append((j - 1, j, (0.0, 1.0, 0.0), C.BS_HEIGHT - (p[j][1] - p[j - 1][1]), ("", "", "", ""), p[j]))
+        for j in range(1, BS.BS_N):
+            out.append((j - 1, j, (0.0, 1.0, 0.0), BS.BS_HEIGHT - (p[j][1] - p[j - 1][1]), ("", "", "", ""), p[j]))
         return out[::-1]
-    return _ode_points(bodies, contacts, STACK_SHORT, gravity=tuple(C.BS_GRAVITY), mu=(mu, mu), iterations=iterations)
+    return _ode_points(bodies, contacts, STACK_SHORT, gravity=tuple(BS.BS_GRAVITY), mu=(mu, mu), iterations=iterations)
 
 
 def test_box_stack_expectation_passes_a_converged_contact_solve():
@@ -697,7 +712,7 @@ def test_box_stack_expectation_passes_a_converged_contact_solve():
 
 
 def _filtering_trace(ghost_collides: bool = False) -> TraceView:
-    bodies = {"Kept": (1.0, C.CF_KEPT, (0.0,) * 3), "Ghost": (1.0, C.CF_GHOST, (0.0,) * 3)}
+    bodies = {"Kept": (1.0, KEPT_START, (0.0,) * 3), "Ghost": (1.0, GHOST_START, (0.0,) * 3)}
     touching = (0, 1) if ghost_collides else (0,)
     contacts = lambda p: [(-1, k, (0.0, 1.0, 0.0), 0.1 - p[k][1], ("Floor", "S", "NULL", "B"), p[k])  # noqa: E731
                           for k in touching]
@@ -711,8 +726,8 @@ def test_collision_filtering_expectation():
 
 
 def _sensor_trace(flip_ball_normal=False, swap_names=False, shift=0.0) -> TraceView:
-    bodies = {"Block": (C.SG_BLOCK_M, (0.3, 0.1, -0.2), (0.0,) * 3),
-              "Ball": (C.SG_BALL_M, (0.35, 0.3, -0.15), (0.0,) * 3)}
+    bodies = {"Block": (SG.SG_BLOCK_M, (0.3, 0.1, -0.2), (0.0,) * 3),
+              "Ball": (SG.SG_BALL_M, (0.35, 0.3, -0.15), (0.0,) * 3)}
 
     def contacts(p):
         ball = (("BallShape", "BlockShape", "Ball", "Block") if swap_names
@@ -739,20 +754,20 @@ def test_sensor_geometry_expectation_reads_the_sensors_rows():
 
 
 def _cradle_trace(bounce: float = 1.0, touching: bool = False) -> TraceView:
-    pitch = 2 * C.NC_R + (0.0 if touching else C.NC_GAP)
-    pivots = [(k - 2) * pitch for k in range(C.NC_BALLS)]
-    v_hit = math.sqrt(2 * C.G * C.NC_L * (1 - math.cos(C.NC_THETA0)) / (1 + C.NC_I / (C.NC_M * C.NC_L ** 2)))
+    pitch = 2 * NC.NC_R + (0.0 if touching else NC.NC_GAP)
+    pivots = [(k - 2) * pitch for k in range(NC.NC_BALLS)]
+    v_hit = math.sqrt(2 * G * NC.NC_L * (1 - math.cos(NC.NC_THETA0)) / (1 + NC.NC_I / (NC.NC_M * NC.NC_L ** 2)))
     # Ball1 starts where a 1/1000-s swing from 30 degrees would put it 20 ms before the gap closes
-    m_eff = C.NC_M + C.NC_I / C.NC_L ** 2
-    bodies = {f"Ball{k + 1}": (m_eff, (pivots[k] - (0.02 * v_hit if k == 0 else 0.0), -C.NC_L, 0.0),
-                               ((v_hit if k == 0 else 0.0), 0.0, 0.0)) for k in range(C.NC_BALLS)}
-    rest = np.array([[x, -C.NC_L, 0.0] for x in pivots])
+    m_eff = NC.NC_M + NC.NC_I / NC.NC_L ** 2
+    bodies = {f"Ball{k + 1}": (m_eff, (pivots[k] - (0.02 * v_hit if k == 0 else 0.0), -NC.NC_L, 0.0),
+                               ((v_hit if k == 0 else 0.0), 0.0, 0.0)) for k in range(NC.NC_BALLS)}
+    rest = np.array([[x, -NC.NC_L, 0.0] for x in pivots])
 
     def contacts(p):
-        return [(k, k + 1, (1.0, 0.0, 0.0), 2 * C.NC_R - (p[k + 1][0] - p[k][0]), ("", "", "", ""), p[k])
-                for k in range(C.NC_BALLS - 1)]
+        return [(k, k + 1, (1.0, 0.0, 0.0), 2 * NC.NC_R - (p[k + 1][0] - p[k][0]), ("", "", "", ""), p[k])
+                for k in range(NC.NC_BALLS - 1)]
     return _ode_points(bodies, contacts, C.BY_NAME["newtons_cradle"].runs[0], gravity=(0.0, 0.0, 0.0),
-                       accel=lambda p: -C.G * (p - rest) / C.NC_L * np.array([1.0, 0.0, 0.0]), bounce=bounce,
+                       accel=lambda p: -G * (p - rest) / NC.NC_L * np.array([1.0, 0.0, 0.0]), bounce=bounce,
                        min_bounce=0.0)
 
 

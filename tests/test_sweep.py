@@ -7,7 +7,7 @@ import json
 
 import numpy as np
 import pytest
-from conftest import SCENES
+from conftest import case_scene
 
 from conformance import results
 from conformance.analyses import sweep as S
@@ -61,11 +61,11 @@ def test_comparison_interval_is_a_whole_number_of_every_step():
 
 def test_scene_rewrite_sets_every_collection(tmp_path):
     out = tmp_path / "bounce.x3d"
-    with_collection_fields(f"{SCENES}/conformance/bounce_apex.x3d", str(out), 50, True)
+    with_collection_fields(case_scene("bounce_apex"), str(out), 50, True)
     collections = load(str(out)).of_type("RigidBodyCollection")
     assert len(collections) == 3
     assert all(c.get("iterations") == 50 and c.get("preferAccuracy") is True for c in collections)
-    with_collection_fields(f"{SCENES}/conformance/ball_chain.x3d", str(out), None, True)  # iterations='20' kept
+    with_collection_fields(case_scene("ball_chain"), str(out), None, True)  # iterations='20' kept
     (chain,) = load(str(out)).of_type("RigidBodyCollection")
     assert chain.get("iterations") == 20 and chain.get("preferAccuracy") is True
 
@@ -73,10 +73,11 @@ def test_scene_rewrite_sets_every_collection(tmp_path):
 def test_targets_pick_the_reference():
     dts = [1 / 60, 1 / 240]
     closed, contact, scene = S.targets(["pendulum_period", "bounce_apex",
-                                        f"{SCENES}/conformance/double_pendulum_energy.x3d"], dts)
+                                        case_scene("double_pendulum_energy")], dts)
     assert (closed.reference, closed.quantity, closed.settings.duration) == (S.CLOSED_FORM, "Bob.period", 2.0)
     assert (contact.reference, contact.case, contact.settings.frame_rate) == (S.FINE_STEP, None, 60.0)
-    assert (scene.name, scene.scene) == ("double_pendulum_energy", "scenes/conformance/double_pendulum_energy.x3d")
+    assert (scene.name, scene.scene) == ("double_pendulum_energy",
+                                         "conformance/cases/double_pendulum_energy/double_pendulum_energy.x3d")
     with pytest.raises(ValueError, match="neither a case"):
         S.targets(["no_such_thing"], dts)
     with pytest.raises(ValueError, match="several runs"):
@@ -106,7 +107,7 @@ def test_sweep_command_writes_json_markdown_and_plot(tmp_path):
 
 def test_dask_cluster_gives_the_local_pool_s_numbers():
     distributed = pytest.importorskip("distributed")
-    chosen = S.targets(["projectile", f"{SCENES}/conformance/double_pendulum_energy.x3d"], [1 / 60, 1 / 240])
+    chosen = S.targets(["projectile", case_scene("double_pendulum_energy")], [1 / 60, 1 / 240])
     plans, _ = S.backend_plans([BACKEND])
 
     def errors(scheduler: str | None) -> list:

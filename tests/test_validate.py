@@ -9,10 +9,10 @@ import os
 import pytest
 
 from conformance.cli import main as cli_main
-from conftest import SCENES
+from conftest import SCENES, case_scene
 
-FREE_FALL = os.path.join(SCENES, "conformance", "free_fall.x3d")
-FRAME_RATE = os.path.join(SCENES, "conformance", "frame_rate.x3d")
+FREE_FALL = case_scene("free_fall")
+FRAME_RATE = case_scene("frame_rate")
 PENDULUM = os.path.join(SCENES, "examples", "pendulum.x3d")
 
 

@@ -6,7 +6,6 @@ the ordinary checks end to end."""
 from __future__ import annotations
 
 import json
-import os
 import textwrap
 
 import numpy as np
@@ -14,13 +13,12 @@ import pytest
 
 from conformance.browsers.x_ite import harness as x_ite
 from conformance.cli import main as cli_main
-from conftest import SCENES
+from conftest import case_scene
 from x3d_core.trace import read_trace
 
 pytestmark = [pytest.mark.x_ite,
               pytest.mark.skipif(x_ite.unavailable() is not None, reason=f"X_ITE: {x_ite.unavailable()}")]
 
-CONFORMANCE = os.path.join(SCENES, "conformance")
 G = 9.8  # RigidBodyCollection.gravity by default
 # X_ITE's frame step: a moving average over this many frames of the frame period, from 0
 X_ITE_DELAY = 15
@@ -32,7 +30,7 @@ def _record(scene: str, out: str, *args: str) -> list:
 
 
 def test_runs_are_bit_identical(tmp_path):
-    scene = os.path.join(CONFORMANCE, "pendulum_period.x3d")
+    scene = case_scene("pendulum_period")
     _record(scene, str(tmp_path / "a.csv"), "--duration", "1")
     _record(scene, str(tmp_path / "b.csv"), "--duration", "1")
     assert (tmp_path / "a.csv").read_bytes() == (tmp_path / "b.csv").read_bytes()

@@ -5,7 +5,6 @@ The real browser is driven in tests/test_x_ite.py (opt-in)."""
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import textwrap
 
@@ -15,13 +14,12 @@ from conformance.browsers.x_ite import harness as x_ite
 from conformance.cli import main as cli_main
 from conformance.cases import CASES
 from conformance.browsers.x_ite.judge import probe_fields, without
-from conftest import SCENES
+from conftest import case_scene
 from reports.report_page import report_markdown
 from reports.x_ite_text import render
 from x3d_core.load import load
 from x3d_core.trace import read_trace
 
-CONFORMANCE = os.path.join(SCENES, "conformance")
 CASE = {c.name: c for c in CASES}
 
 
@@ -39,7 +37,7 @@ def _scene(tmp_path, body: str, name: str = "s.x3d") -> str:
 @pytest.mark.parametrize("name", ["hinge_limits", "sensor_geometry", "universal_joint"])
 def test_outputs_are_what_the_evaluator_records(tmp_path, name):
     """The page reads the (node, field) pairs x3drbp's own trace has at time 0."""
-    scene = os.path.join(CONFORMANCE, f"{name}.x3d")
+    scene = case_scene(name)
     trace = tmp_path / "t.csv"
     assert cli_main(["run", scene, "--backend", "bullet", "--duration", "0.05", "--trace", str(trace)]) == 0
     recorded = {(r.node, r.field) for r in read_trace(str(trace)) if r.time == 0}
@@ -59,7 +57,7 @@ def test_a_body_without_def_is_refused_by_name(tmp_path):
 def test_step_is_the_frame_in_iterations_substeps(tmp_path):
     path = _scene(tmp_path, "<RigidBodyCollection iterations='4'><RigidBody DEF='B'/></RigidBodyCollection>")
     assert x_ite.step(load(path), 50.0) == pytest.approx(1 / 200, rel=1e-15)
-    assert x_ite.step(load(os.path.join(CONFORMANCE, "free_fall.x3d")), 60.0) == pytest.approx(1 / 600, rel=1e-15)
+    assert x_ite.step(load(case_scene("free_fall")), 60.0) == pytest.approx(1 / 600, rel=1e-15)
 
 
 def test_probes_are_the_exercised_fields():
@@ -70,7 +68,7 @@ def test_probes_are_the_exercised_fields():
 
 
 def test_without_puts_the_field_at_its_default(tmp_path):
-    scene = os.path.join(CONFORMANCE, "hinge_limits.x3d")
+    scene = case_scene("hinge_limits")
     out = str(tmp_path / "v.x3d")
     assert without(scene, "SingleAxisHingeJoint", "maxAngle", out)
     hinge = next(iter(load(out).of_type("SingleAxisHingeJoint")))

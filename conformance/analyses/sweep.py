@@ -42,7 +42,7 @@ from conformance.analyses.sweep_metrics import comparison_interval, pareto, wind
 
 REFINEMENT = 8  # the fine-step reference's step: the finest swept over this
 DEFAULT_SCENES = ("pendulum_period", "projectile", "bounce_apex",
-                  os.path.join("scenes", "conformance", "double_pendulum_energy.x3d"))
+                  os.path.join("conformance", "cases", "double_pendulum_energy", "double_pendulum_energy.x3d"))
 DEFAULT_DTS = (1 / 60, 1 / 240, 1 / 1000, 1 / 4000)
 DEFAULT_ITERATIONS = (10, 50)
 DEFAULT_WINDOW = 1.0  # s

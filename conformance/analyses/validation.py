@@ -31,7 +31,8 @@ from x3d_core.trace import Row, TraceView
 
 from conformance import results
 from conformance.runner import verdicts
-from conformance.cases import CASES, Case
+from conformance.cases import CASES
+from conformance.cases.case import Case
 from conformance.results import THEIRS, Settings, TraceComparison
 from conformance.analyses.compare import compare_pair
 from conformance.analyses.compare_runs import run_backends

@@ -30,7 +30,7 @@ from x3d_core.trace import Row
 from conformance.cli import options
 from conformance import results
 from conformance.runner import children, probe
-from conformance.cases import Case
+from conformance.cases.case import Case
 from x3d_core.trace import TraceView
 from conformance.analyses.compare import DEFAULT_THRESHOLDS
 from conformance.analyses.trace_check import Problem, check_trace

@@ -31,7 +31,7 @@ from typing import TypeVar
 
 from x3d_core.trace import TraceView, read_trace
 
-from conformance.cases import Case
+from conformance.cases.case import Case
 from conformance.results import ERROR, FAIL, PASS, Convergence, Result, Settings
 from conformance.runner.children import DEFAULT_TIMEOUT, run_child
 

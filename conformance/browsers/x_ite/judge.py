@@ -34,7 +34,7 @@ from x3d_core.load import load
 from x3d_core.trace import TraceView
 
 from conformance import results
-from conformance.cases import Case
+from conformance.cases.case import Case
 from conformance.analyses.trace_check import check_trace
 from conformance.analyses.validation import check_case, compare_with_backends
 from conformance.results import TraceComparison, Validation

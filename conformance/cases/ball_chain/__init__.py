@@ -1,0 +1,62 @@
+"""ball_chain: BallJoint anchorPoint: a chain of five links stays joined."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from x3d_core.trace import TraceView
+
+from conformance.cases.case import Case
+from conformance.cases.closed_forms import ROUNDING, G, ERROR_CORRECTION, max_norm, omega
+from conformance.results import Measure, Settings
+
+
+# ball_chain.x3d: link k joins Link k (body1) to Link k-1 (body2, Anchor for k = 1), anchors
+# at each link's end, 0.1 m from the link's centre
+CHAIN_LINKS, CHAIN_R, CHAIN_MASS, CHAIN_I, CHAIN_LENGTH = 5, 0.1, 0.2, 0.001, 1.0
+
+
+def _omega_cap(inertia: float) -> float:
+    """No link can spin faster than if all the energy the chain can release (its whole mass
+    falling its whole length) went into its rotation: w^2 <= 2 M g L / I."""
+    return math.sqrt(2 * CHAIN_LINKS * CHAIN_MASS * G * CHAIN_LENGTH / inertia)
+
+
+def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """|body1AnchorPoint - body2AnchorPoint| per joint and frame.
+
+    Engines that build the chain as a kinematic tree (generalized coordinates) hold it exactly:
+    rounding only. An engine that ties free bodies with velocity-level constraints makes the two
+    anchors' velocities agree, and one step then leaves them apart by the difference of their
+    arcs and chords: at most dt^2/2 (|w1|^2 r1 + |w2|^2 r2) (centripetal terms; r = the anchor's
+    distance from the body's origin); error correction (ERP, 0.8 by default) removes that
+    fraction of the gap each step, so it settles below dt^2/(2 ERP) (|w1|^2 r1 + |w2|^2 r2):
+    second order per step, with the rates read from the trace at every step (capped by the
+    energy the chain can release, so that a runaway cannot widen its own tolerance)."""
+    tr, s = traces[0], settings[0]
+    errors, bounds = [], []
+    for k in range(1, CHAIN_LINKS + 1):
+        _, a1 = tr.series(f"Joint{k}", "body1AnchorPoint")
+        _, a2 = tr.series(f"Joint{k}", "body2AnchorPoint")
+        cap = _omega_cap(CHAIN_I)
+        w1 = np.minimum(omega(tr, f"Link{k}"), cap)
+        w2 = np.minimum(omega(tr, "Anchor" if k == 1 else f"Link{k - 1}"), cap)
+        r2 = 0.0 if k == 1 else CHAIN_R
+        errors.append(max_norm(a1 - a2))
+        bounds.append(float(np.max(w1 ** 2 * CHAIN_R + w2 ** 2 * r2)) * s.dt ** 2 / (2 * ERROR_CORRECTION))
+    worst = int(np.argmax(np.array(errors) / (np.array(bounds) + ROUNDING)))
+    return [Measure(f"Joint{worst + 1} anchor gap (worst joint)", errors[worst], bounds[worst] + ROUNDING, "m")]
+
+
+CASE = Case("ball_chain", "ball_chain.x3d",
+            "BallJoint chain of 5 links: body1AnchorPoint = body2AnchorPoint for every joint",
+            (Settings(1.5, 1 / 240, None),), expect, exercises=("BallJoint.anchorPoint",),
+            mutations=(
+                # the chain's far end pinned too: one joint then closes a loop through the static
+                # world, which a reduced-coordinate engine holds only softly (MuJoCo: an equality
+                # constraint), and the anchors of a joint come apart
+                ("<RigidBody DEF='Link5' mass='0.2'", "<RigidBody DEF='Link5' fixed='true' mass='0.2'"),
+            ))

@@ -1,0 +1,198 @@
+"""Closed forms, tolerances and trace readers that more than one conformance case uses.
+
+The closed forms' parameters are written in each case, not read from the scene through
+x3d_core, so that the expectation does not share the evaluator's reading of the file: a field the
+evaluator misread or dropped fails the case instead of moving the target with it. Each
+scene's leading comment states the same numbers.
+
+Conventions of the argument (the reference integrator is semi-implicit Euler, which
+Bullet, DART, ODE and MuJoCo's default all use):
+- State at a frame ending at time t is the world after n = floor(t/dt) steps
+  (x3d_core.evaluator); closed forms are evaluated at the physics time n*dt.
+- Velocities under a constant acceleration are exact for every one-step scheme; what is
+  left is rounding. ROUNDING = 1e-9 (relative to the quantity's scale) covers it with
+  room to spare: at most ~500 steps of float64 arithmetic on O(10) numbers make ~1e-13.
+- Angles read from a rotation are worse off: an engine that keeps rotations as matrices or
+  rotation vectors recovers the angle from a cosine (acos, the log map), which near the
+  identity is only good to sqrt(2 eps) ~ 2e-8 rad per conversion, and some convert every
+  step. ROUNDING_ANGLE = 1e-7 rad covers a few such losses (DART's free joint shows 2.7e-9
+  rad, gathered while the angle is small).
+- Positions under a constant acceleration a: every scheme in use advances position with
+  a velocity between the step's start and end velocities, which keeps it within
+  |a| t dt / 2 of the exact parabola. Semi-implicit Euler reaches that bound exactly
+  (y_n = y0 - g dt^2 n(n+1)/2), explicit Euler too with the other sign, second-order
+  schemes err by 0. So the tolerance is c*dt with c = |a| t / 2: first order, as the
+  global error of a first-order method is.
+- Invariants held by constraints (joints, stops) are argued from one step's error and the
+  error correction (ERP) that removes a fraction of it each step; see each case.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from x3d_core.trace import TraceView
+
+from conformance.cases.case import Expectation
+from conformance.results import Measure, Settings
+
+ROUNDING = 1e-9
+ROUNDING_ANGLE = 1e-7  # rad
+STEP_SLACK = 1e-9  # as x3d_core.evaluator: a frame within 1e-9 step of a step boundary is on it
+G = 9.81  # the non-default gravity the scenes use
+G_DEFAULT = 9.8
+# constraint drift, shared by the ball chain and the universal joint
+ERROR_CORRECTION = 0.8  # RigidBodyCollection.errorCorrection default: the scenes leave it
+
+
+def steps(t: np.ndarray, dt: float) -> np.ndarray:
+    return np.floor(np.asarray(t) / dt + STEP_SLACK)
+
+
+def physics_time(t: np.ndarray, dt: float) -> np.ndarray:
+    """The simulated time of the state recorded at frame time t: floor(t/dt) steps."""
+    return steps(t, dt) * dt
+
+
+def max_norm(a: np.ndarray) -> float:
+    a = np.asarray(a, dtype=np.float64)
+    n = np.linalg.norm(a.reshape(len(a), -1), axis=1) if a.ndim > 1 else np.abs(a)
+    return float(np.max(n)) if n.size else math.nan
+
+
+def agm(a: float, b: float) -> float:
+    """Arithmetic-geometric mean."""
+    for _ in range(64):
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        if abs(a - b) <= 1e-16 * a:
+            break
+    return a
+
+
+def ellipk(k: float) -> float:
+    """Complete elliptic integral of the first kind K(k), modulus k: pi / (2 AGM(1, sqrt(1-k^2)))."""
+    return math.pi / (2.0 * agm(1.0, math.sqrt(1.0 - k * k)))
+
+
+def ballistic(body: str, p0: Sequence[float], v0: Sequence[float], a: Sequence[float]) -> Expectation:
+    """A body under a constant acceleration a: p = p0 + v0 t + a t^2/2, v = v0 + a t.
+
+    Velocity: exact for any one-step scheme, so only ROUNDING. Position: |a| t dt / 2 (the
+    module's argument), evaluated at the last frame, where the error is largest."""
+    p0, v0, a = (np.asarray(x, dtype=np.float64) for x in (p0, v0, a))
+
+    def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+        tr, s = traces[0], settings[0]
+        t, p = tr.series(body, "position")
+        _, v = tr.series(body, "linearVelocity")
+        tp = physics_time(t, s.dt)[:, None]
+        p_exact = p0 + v0 * tp + 0.5 * a * tp ** 2
+        v_exact = v0 + a * tp
+        T = float(tp[-1, 0])
+        scale = 1.0 + np.linalg.norm(p0) + np.linalg.norm(v0) * T + np.linalg.norm(a) * T * T
+        return [Measure(f"{body}.linearVelocity", max_norm(v - v_exact),
+                        ROUNDING * (1.0 + np.linalg.norm(v0) + np.linalg.norm(a) * T), "m/s"),
+                Measure(f"{body}.position", max_norm(p - p_exact),
+                        0.5 * float(np.linalg.norm(a)) * T * s.dt + ROUNDING * scale, "m")]
+    return expect
+
+
+def stop_overshoot(speed: float, accel: float, dt: float, error_correction: float) -> float:
+    """How far past a hard stop a body may get: the stop acts on the step after the one that
+    crosses it, so a step at the impact speed and acceleration lands up to speed*dt + accel*dt^2
+    beyond (first order); no bounce (stopBounce 0), and the stop's error correction e (ERP)
+    removes a fraction e of what is left each step, so the gravity that keeps pushing adds at
+    most accel*dt^2/e in the steady state."""
+    return speed * dt + accel * dt * dt / error_correction
+
+
+def omega(tr: TraceView, body: str) -> np.ndarray:
+    """|angular velocity| per frame (a fixed body is in the trace too, at rest)."""
+    return np.linalg.norm(tr.series(body, "angularVelocity")[1], axis=1)
+
+
+# -- collisions ---------------------------------------------------------------------------
+# x3d_core/collision.py states what x3drbp reads: ODE's contacts. The argument below follows
+# ODE's contact step, which the other engines approximate (each declares how):
+# - a contact exists on a step that STARTS with the geometries overlapping, and is solved in that
+#   step together with gravity (the step's velocity is the contact's unknown): a body meets a
+#   surface at most one step late, and a resting body feels no unresisted step of gravity;
+# - its normal row targets max(ERP max(depth - contactSurfaceThickness, 0) / h, e v_in), the
+#   bounce e v_in only where the incoming speed v_in (at the step's start) exceeds minBounceSpeed;
+#   ERP is errorCorrection unless ERROR_REDUCTION applies;
+# - every row is softened by CFM (constantForceMix, 1e-4 in every scene: Bullet cannot set it):
+#   a row carrying a force f lets its velocity off target by CFM f (x3drbp's ODE reading, as in
+#   erp_cfm_spring), so a resting body sinks to CFM f h / ERP beyond the layer, a friction row
+#   holding a load f creeps at CFM f, and an impact impulse P yields CFM P / h of the bounce;
+# - friction is Coulomb's pyramid: |f_k| <= mu_k N along ODE's friction directions; each case
+#   moves bodies along one friction direction, where the pyramid and a cone agree.
+# Where a bound needs "one step of unresisted gravity", it is an engine that lets a body fall
+# one step before its contact acts (a contact found after the step, as Bullet's are): g h of
+# velocity and g h^2 of position. The contact loads are bounded by a whole interface's load on
+# one contact point (ODE shares it among up to 4 box corners: 4 times less).
+CFM_DEFAULT, ERP_DEFAULT = 1e-4, 0.8
+
+
+def friction_velocity(boxes: dict[str, tuple[float, float, float, np.ndarray]]) -> Expectation:
+    """Boxes (name -> mu, v0, target, direction) whose velocity along a friction direction changes
+    at mu g until it reaches its target (0 for a pushed box, the surface speed on a belt). Friction
+    is mu times the normal impulse, which over [0, t] is m g t up to the box's vertical momentum
+    (its vertical speed within g h, the contact acting at most a step late), and a first step
+    without contact loses mu g h of friction: |v - closed form| <= 2 mu g h (and the rate of a
+    row at its target: a velocity row is on it, or a step at mu g off it)."""
+    def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+        tr, s = traces[0], settings[0]
+        out = []
+        for name, (mu, v0, target, direction) in boxes.items():
+            t, v = tr.series(name, "linearVelocity")
+            tp = physics_time(t, s.dt)
+            gap = v0 - target
+            along = target + np.sign(gap) * np.maximum(abs(gap) - mu * G * tp, 0.0)
+            out.append(Measure(f"{name}.linearVelocity (mu = {mu:g} along {direction.tolist()})",
+                               max_norm(v - np.outer(along, direction)),
+                               2 * mu * G * s.dt + ROUNDING * (1 + abs(v0) + abs(target)), "m/s"))
+        return out
+    return expect
+
+
+def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
+    """A CollisionSensor's contacts per frame time: position, contactNormal, depth (arrays) and
+    body1, body2, geometry1, geometry2 (names), from its contacts[i].FIELD rows."""
+    out: dict[float, list[dict]] = {}
+    for i in range(10_000):
+        try:
+            times, pos = tr.series(sensor, f"contacts[{i}].position")
+        except KeyError:
+            break
+        _, normal = tr.series(sensor, f"contacts[{i}].contactNormal")
+        _, depth = tr.series(sensor, f"contacts[{i}].depth")
+        names = {f: dict(zip(*tr.text(sensor, f"contacts[{i}].{f}")))
+                 for f in ("body1", "body2", "geometry1", "geometry2")}
+        for k, t in enumerate(times.tolist()):
+            c = {"position": pos[k], "contactNormal": normal[k], "depth": float(depth[k, 0])}
+            c.update({f: names[f].get(t) for f in names})
+            out.setdefault(t, []).append(c)
+    return out
+
+
+# collision_filtering.x3d and routed_contacts.x3d: two 1 kg balls start at rest touching the floor,
+# Kept, whose shape collides with it, and Ghost, whose shape does not
+KEPT_START, GHOST_START, BALL_MASS = np.array([-0.5, 0.1, 0.0]), np.array([0.5, 0.1, 0.0]), 1.0
+
+
+def kept_rests_ghost_falls(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Ghost: the ballistic closed form (nothing touches it). Kept: at rest on the floor within one
+    step of unresisted fall (g h^2, g h) and ODE's softness (sinking to CFM m g h / ERP, at a speed
+    at most CFM m g)."""
+    tr, s = traces[0], settings[0]
+    h = s.dt
+    _, p = tr.series("Kept", "position")
+    _, v = tr.series("Kept", "linearVelocity")
+    kept = [Measure("Kept |position - start| (rests on the floor)", max_norm(p - KEPT_START),
+                    G * h * h + CFM_DEFAULT * BALL_MASS * G * h / ERP_DEFAULT + ROUNDING, "m"),
+            Measure("Kept |linearVelocity|", max_norm(v), G * h + CFM_DEFAULT * BALL_MASS * G + ROUNDING, "m/s")]
+    ghost = ballistic("Ghost", GHOST_START, (0, 0, 0), (0, -G, 0))(traces, settings)
+    return kept + [Measure(m.quantity + " (falls through the floor)", m.error, m.tolerance, m.unit) for m in ghost]

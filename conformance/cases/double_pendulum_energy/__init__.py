@@ -1,0 +1,118 @@
+"""double_pendulum_energy: Two SingleAxisHingeJoints: a double pendulum's energy, and its first step."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from x3d_core import rotation as R
+from x3d_core.trace import TraceView
+
+from conformance.cases.case import Case
+from conformance.cases.closed_forms import ROUNDING, G, steps, max_norm
+from conformance.results import Measure, Settings
+
+
+# double_pendulum_energy.x3d: absolute angles phi from the downward vertical, about +z
+DP_M1, DP_D1, DP_L1, DP_I1 = 2.0, 0.5, 1.0, 0.16  # mass, shoulder-centre, shoulder-elbow, I_zz
+DP_M2, DP_D2, DP_I2 = 1.5, 0.4, 0.08  # mass, elbow-centre, I_zz
+DP_PHI = (math.radians(30.0), math.radians(45.0))
+DP_INERTIA = {"Upper": np.diag([0.1, 0.1, DP_I1]), "Lower": np.diag([0.05, 0.05, DP_I2])}
+DP_MASS = {"Upper": DP_M1, "Lower": DP_M2}
+
+
+def _dp_matrices(phi1: float, phi2: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Mass matrix M(q), potential Hessian K(q) and generalized gravity force f(q) = -dV/dq of
+    the chain in the absolute angles q = (phi1, phi2):
+    T = 1/2 [A phi1'^2 + 2 B cos(phi1 - phi2) phi1' phi2' + C phi2'^2],
+    V = -P1 g cos phi1 - P2 g cos phi2."""
+    a = DP_I1 + DP_M1 * DP_D1 ** 2 + DP_M2 * DP_L1 ** 2
+    b = DP_M2 * DP_L1 * DP_D2 * math.cos(phi1 - phi2)
+    c = DP_I2 + DP_M2 * DP_D2 ** 2
+    p1, p2 = (DP_M1 * DP_D1 + DP_M2 * DP_L1) * G, DP_M2 * DP_D2 * G
+    return (np.array([[a, b], [b, c]]), np.diag([p1 * math.cos(phi1), p2 * math.cos(phi2)]),
+            np.array([-p1 * math.sin(phi1), -p2 * math.sin(phi2)]))
+
+
+def double_pendulum() -> dict[str, float | np.ndarray]:
+    """E0 and E_min (both links hanging down), the larger normal-mode frequency at rest, and
+    the initial angular accelerations (at rest the Coriolis terms vanish: M q'' = f)."""
+    p1, p2 = DP_PHI
+    y1 = -DP_D1 * math.cos(p1)
+    y2 = -DP_L1 * math.cos(p1) - DP_D2 * math.cos(p2)
+    e0 = G * (DP_M1 * y1 + DP_M2 * y2)
+    e_min = -G * (DP_M1 * DP_D1 + DP_M2 * (DP_L1 + DP_D2))
+    m0, k0, _ = _dp_matrices(0.0, 0.0)
+    mq, kq, f = _dp_matrices(p1, p2)
+    omega_max = math.sqrt(float(np.max(np.linalg.eigvals(np.linalg.solve(m0, k0)).real)))
+    return {"E0": e0, "Emin": e_min, "omega_max": omega_max, "accel0": np.linalg.solve(mq, f),
+            "stiffness0": float(np.linalg.norm(np.linalg.solve(mq, kq), 2))}
+
+
+def _dp_energy(tr: TraceView) -> tuple[np.ndarray, np.ndarray]:
+    """Times and E = sum m g y + 1/2 m |v|^2 + 1/2 w.(R I R^T) w, with the scene's masses and inertias."""
+    total, t = 0.0, None
+    for name, m in DP_MASS.items():
+        t, p = tr.series(name, "position")
+        _, v = tr.series(name, "linearVelocity")
+        _, w = tr.series(name, "angularVelocity")
+        _, rot = tr.series(name, "orientation")
+        mats = R.matrix(R.from_axis_angle(rot))
+        i_world = mats @ DP_INERTIA[name] @ np.swapaxes(mats, 1, 2)
+        total = total + m * (G * p[:, 1] + 0.5 * np.einsum("ni,ni->n", v, v)) + \
+            0.5 * np.einsum("ni,nij,nj->n", w, i_world, w)
+    return t, total
+
+
+def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Energy: max |E(t) - E0| over 2 s.
+
+    Tolerance for a first-order integrator, argued on the linearised chain (two normal modes,
+    frequencies w1 < w2): explicit Euler, the worst of the Euler family, multiplies each mode's
+    energy by |eigenvalue|^2 = 1 + (w h)^2 per step; semi-implicit Euler (symplectic) keeps it
+    within an O(w h) oscillation with no drift; implicit Euler loses it. So over n steps
+    |E - E0| <= (E0 - E_min) ((1 + (w2 h)^2)^n - 1) ~ (E0 - E_min) w2^2 h t: first order.
+    Away from rest the local frequencies are lower (the potential's Hessian falls as cos phi, and
+    the largest eigenvalue of M(q)^-1 K(q) over |phi1| <= 90, |phi2| <= 120 degrees is at rest),
+    so w2 at rest bounds them along the motion. The step is 1 ms: at 1/240 s this bound is 57%
+    of the oscillation's energy, too loose to see an inertia ignored; at 1 ms it is 11%.
+
+    The energy is blind to a motion that never starts (a hinge axis ignored, along gravity), so
+    the first step is checked too: from rest every one-step scheme of the Euler family gives
+    w(h) = h q''(0), q''(0) = M(q0)^-1 f(q0) (Coriolis terms vanish at rest), exact up to
+    ROUNDING; a scheme evaluating the acceleration elsewhere in the step differs by at most
+    h |M^-1 K| h^2 |q''(0)| (the configuration moves by h^2 |q''| in a step)."""
+    tr, s = traces[0], settings[0]
+    d = double_pendulum()
+    t, energy = _dp_energy(tr)
+    n = steps(t, s.dt)
+    drift = (d["E0"] - d["Emin"]) * ((1.0 + (d["omega_max"] * s.dt) ** 2) ** float(n[-1]) - 1.0)
+    out = [Measure("double pendulum |E - E0|", float(np.max(np.abs(energy - d["E0"]))),
+                   drift + ROUNDING * (1 + abs(d["E0"])), "J")]
+    first = np.flatnonzero(n == 1)
+    for k, name in enumerate(DP_MASS):
+        a0 = float(d["accel0"][k])
+        tol = ROUNDING * (1 + abs(a0) * s.dt) + s.dt ** 3 * d["stiffness0"] * abs(a0)
+        if not first.size:
+            out.append(Measure(f"{name}.angularVelocity after one step (no frame there)", math.inf, tol, "rad/s"))
+            continue
+        _, w = tr.series(name, "angularVelocity")
+        out.append(Measure(f"{name}.angularVelocity after one step - h q''(0)",
+                           max_norm(w[first[:1]] - np.array([0.0, 0.0, a0 * s.dt])), tol, "rad/s"))
+    return out
+
+
+CASE = Case("double_pendulum_energy", "double_pendulum_energy.x3d",
+            "two SingleAxisHingeJoints, masses 2 / 1.5 kg, I_zz 0.16 / 0.08, released at 30 / 45 degrees: "
+            f"E = {double_pendulum()['E0']:.4f} J constant within the first-order bound; first step w = h q''(0)",
+            (Settings(2.0, 1 / 1000, None),), expect,
+            convergence="double pendulum |E - E0|", expected_order=1.0,
+            exercises=("SingleAxisHingeJoint.axis", "SingleAxisHingeJoint.anchorPoint", "RigidBody.mass",
+                       "RigidBody.inertia"),
+            mutations=(
+                (" inertia='0.05 0 0 0 0.05 0 0 0 0.08'", ""),
+                ("DEF='Lower' mass='1.5'", "DEF='Lower'"),
+                (" anchorPoint='0.5 -0.8660254037844386 0'", ""),
+            ))

@@ -1,0 +1,68 @@
+"""hinge_bounce: SingleAxisHingeJoint stopBounce: the arm leaves the stop at half its speed (ODE's stop bounce)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from x3d_core.trace import TraceView
+
+from conformance.cases.case import Case
+from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, G
+from conformance.results import Measure, Settings
+
+
+# hinge_bounce.x3d: the hinge_limits arm, with a bouncing stop
+BOUNCE, BOUNCE_MIN, BOUNCE_ERP, BOUNCE_CFM = 0.5, -0.6, 0.2, 1e-6
+BOUNCE_M, BOUNCE_L, BOUNCE_I = 1.0, 1.0, 0.001
+
+
+def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """ODE's stop bounce (dxJointLimitMotor::addLimot): on a step that starts with the joint past
+    the stop and moving into it at rate v, the stop's row targets the rate -stopBounce x v (or the
+    error correction's stopErrorCorrection x penetration / h, if larger: at most 0.2 |v| here, so
+    never). Measured from a frame after every step: the impact is the first frame i after which
+    angleRate stops falling (gravity makes it fall every step until then); before = -angleRate[i],
+    after = angleRate[i+1], and after = 0.5 x before.
+
+    Tolerance. Frames i and i+1 are one step apart, and engines differ in where in that step
+    they meet the stop: ODE on the step after the one that crossed it (then after = 0.5 before
+    exactly), a predictive engine part way through the step. Gravity changes the rate by at
+    most a h in a step (a = m g L / I_p, the largest angular acceleration it can give): before
+    the impact, that raises the impact speed above the measured one (which the bounce halves);
+    after it, it slows the rebound; so after - 0.5 before lies in [-a h, 0.5 a h]: |error| <= a h.
+    ODE's stop row also yields by CFM times its force (a stop starts with the world's CFM), a
+    rate CFM I_p (1 + e) v / h with v at most sqrt(2 m g L / I_p) (all of the arm's fall);
+    at CFM 1e-6 about 1.6 mm/s. The impact must also happen at the stop: the frame before it is
+    at most one step's travel (v + a h) h from minAngle, on either side."""
+    tr, s = traces[0], settings[0]
+    _, ang = tr.series("Hinge", "angle")
+    _, rate = tr.series("Hinge", "angleRate")
+    ang, rate = ang[:, 0], rate[:, 0]
+    i_p = BOUNCE_I + BOUNCE_M * BOUNCE_L ** 2
+    accel = BOUNCE_M * G * BOUNCE_L / i_p
+    w_cap = math.sqrt(2 * BOUNCE_M * G * BOUNCE_L / i_p)
+    softness = BOUNCE_CFM * i_p * ((1 + BOUNCE) * w_cap + accel * s.dt) / s.dt
+    tol_rate = accel * s.dt + softness + ROUNDING * (1 + w_cap)
+    names = (f"Hinge.angleRate after the impact - {BOUNCE:g} x speed before", "Hinge.angle at the impact - minAngle")
+    rising = np.flatnonzero(np.diff(rate) > 0)
+    if not rising.size or rate[rising[0]] >= 0:  # no impact, or a stop that never turned the arm
+        return [Measure(names[0], math.inf, tol_rate, "rad/s"),
+                Measure(names[1], math.inf, (w_cap + accel * s.dt) * s.dt + ROUNDING_ANGLE, "rad")]
+    i = int(rising[0])
+    before, after = -rate[i], rate[i + 1]
+    tol_angle = (min(before, w_cap) + accel * s.dt) * s.dt + ROUNDING_ANGLE
+    return [Measure(names[0], abs(after - BOUNCE * before), tol_rate, "rad/s"),
+            Measure(names[1], abs(ang[i] - BOUNCE_MIN), tol_angle, "rad")]
+
+
+CASE = Case("hinge_bounce", "hinge_bounce.x3d",
+            "SingleAxisHingeJoint stopBounce 0.5 at minAngle -0.6: angleRate after the impact = -0.5 x "
+            "angleRate before (ODE's stop bounce)",
+            (Settings(1.0, 1 / 240, None),), expect,
+            exercises=("SingleAxisHingeJoint.stopBounce", "SingleAxisHingeJoint.stopErrorCorrection",
+                       "SingleAxisHingeJoint.minAngle", "RigidBodyCollection.constantForceMix"),
+            # no backend supports stopBounce: without it the reference backend runs the scene, and fails
+            mutations=((" stopBounce='0.5'", ""),))

@@ -1,0 +1,59 @@
+"""motor_speed: DoubleAxisHingeJoint desiredAngularVelocity2 / maxTorque2: a torque-limited ramp to the target rate."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from x3d_core.trace import TraceView
+
+from conformance.cases.case import Case
+from conformance.cases.closed_forms import ROUNDING, STEP_SLACK, steps
+from conformance.results import Measure, Settings
+
+
+# motor_speed.x3d: a wheel (body2) on a fixed chassis (body1), its axle motor on axis2
+MOTOR_TARGET, MOTOR_MAX_TORQUE, MOTOR_I = 4.0, 0.2, 0.05
+MOTOR_AXIS2 = np.array([0.0, 0.0, 1.0])
+
+
+def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """ODE's joint motor is a velocity constraint whose force is bounded by maxTorque: each step
+    it reaches the target rate if a torque within the bound can, else it pushes with maxTorque.
+    The rate (hinge2AngleRate = axis2 . (w1 - w2), the wheel being body2 on a fixed body1) is
+    alpha n h for steps n < n* = t*/h, alpha = maxTorque/I, and w from step n* on; the wheel's
+    angular velocity is -rate along axis2 (its centre of mass on the anchor, its axle a principal
+    axis: no other torque acts).
+
+    Ramp (steps n < n*): a constant torque, so the rate is exact for every one-step scheme:
+    ROUNDING. Hold (steps n >= n*): a velocity constraint is exactly on the target; a motor acting
+    through a torque computed at the start of the step (a servo) can be off it, but by no more
+    than one step at the torque limit can change the rate: alpha h."""
+    tr, s = traces[0], settings[0]
+    t, w = tr.series("Wheel", "angularVelocity")
+    n = steps(t, s.dt)
+    alpha = MOTOR_MAX_TORQUE / MOTOR_I
+    n_star = math.ceil(MOTOR_TARGET / (alpha * s.dt) - STEP_SLACK)
+    rate = np.minimum(alpha * n * s.dt, MOTOR_TARGET)
+    error = np.linalg.norm(w - np.outer(-rate, MOTOR_AXIS2), axis=1)
+    ramp, hold = n < n_star, n >= n_star
+    rounding = ROUNDING * (1 + MOTOR_TARGET)
+    return [Measure("Wheel.angularVelocity, torque-limited ramp (t < t*)",
+                    float(np.max(error[ramp])) if ramp.any() else math.inf, rounding, "rad/s"),
+            Measure("Wheel.angularVelocity, at the target (t >= t*)",
+                    float(np.max(error[hold])) if hold.any() else math.inf, alpha * s.dt + rounding, "rad/s")]
+
+
+T_STAR = MOTOR_I * MOTOR_TARGET / MOTOR_MAX_TORQUE  # s: the end of the ramp
+CASE = Case("motor_speed", "motor_speed.x3d",
+            "DoubleAxisHingeJoint desiredAngularVelocity2 4 / maxTorque2 0.2, I 0.05: rate = (maxTorque/I) t "
+            f"until t* = I w / maxTorque = {T_STAR:g} s, then w",
+            (Settings(1.5, 1 / 240, None),), expect,
+            exercises=("DoubleAxisHingeJoint.desiredAngularVelocity2", "DoubleAxisHingeJoint.maxTorque2",
+                       "DoubleAxisHingeJoint.axis2", "RigidBody.inertia"),
+            mutations=(
+                (" maxTorque2='0.2'", ""),
+                (" desiredAngularVelocity2='4'", ""),
+            ))

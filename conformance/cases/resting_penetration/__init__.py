@@ -1,0 +1,63 @@
+"""resting_penetration: RigidBodyCollection contactSurfaceThickness: a box rests in the surface layer."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+from x3d_core.trace import TraceView
+
+from conformance.cases.case import Case
+from conformance.cases.closed_forms import ROUNDING, G, CFM_DEFAULT, ERP_DEFAULT, steps, max_norm, sensor_contacts
+from conformance.results import Measure, Settings
+
+
+# resting_penetration.x3d: boxes (1 kg, 0.2 m tall) on a floor whose top is y = 0
+RP_LAYER, RP_M, RP_HALF = 0.01, 1.0, 0.1
+RP_BOXES = {"Sunk": (1.0, RP_LAYER), "Touching": (-1.0, 0.0)}  # x of the box, depth it starts at
+
+
+def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Depth of each box, from the sensor's contacts (every contact the box has, frames after the
+    first step) and from its height (0.1 - y, every frame).
+
+    Sunk starts at depth = layer, where ODE's error correction pushes nothing: it stays, sinking
+    only by the softness CFM m g h / ERP (the whole weight on one contact) and, in an engine whose
+    contact acts a step late, one step of fall g h^2: |depth - 0.01| within their sum.
+    Touching starts at depth 0: nothing pushes it in, but ODE's softness lets a resting body creep
+    in at CFM m g until it reaches the layer: |depth| <= CFM m g T + g h^2 over the run T (an engine
+    that makes the layer a target rather than an allowance pulls it 1 cm in and fails)."""
+    tr, s = traces[0], settings[0]
+    h = s.dt
+    contacts = sensor_contacts(tr, "Sensor")
+    out = []
+    for name, (x, start_depth) in RP_BOXES.items():
+        if start_depth > 0:
+            tol = CFM_DEFAULT * RP_M * G * h / ERP_DEFAULT + G * h * h
+        else:
+            tol = CFM_DEFAULT * RP_M * G * s.duration + G * h * h
+        tol += ROUNDING
+        _, p = tr.series(name, "position")
+        out.append(Measure(f"{name} depth from its height - {start_depth:g}",
+                           max_norm((RP_HALF - p[:, 1]) - start_depth), tol, "m"))
+        times, _ = tr.series(name, "position")
+        worst, missing = 0.0, 0
+        for t, n in zip(times.tolist(), steps(times, h).tolist()):
+            if n < 1:
+                continue
+            mine = [c["depth"] for c in contacts.get(t, []) if (c["position"][0] > 0) == (x > 0)]
+            if not mine:
+                missing += 1
+                continue
+            worst = max(worst, max(abs(d - start_depth) for d in mine))
+        out.append(Measure(f"{name} CollisionSensor contact depth - {start_depth:g}",
+                           worst if not missing else math.inf, tol, "m"))
+    return out
+
+
+CASE = Case("resting_penetration", "resting_penetration.x3d",
+            "RigidBodyCollection contactSurfaceThickness 0.01: a box resting 1 cm into the floor stays there "
+            "(CollisionSensor depth 0.01); one resting on it stays at ~0",
+            (Settings(1.0, 1 / 240),), expect,
+            exercises=("RigidBodyCollection.contactSurfaceThickness", "CollisionSensor"),
+            mutations=((" contactSurfaceThickness='0.01'", ""),))

@@ -1,0 +1,95 @@
+"""sensor_geometry: CollisionSensor contacts: normals, names, positions and depths of a ball on a block on the floor."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from x3d_core.trace import TraceView
+
+from conformance.cases.case import Case
+from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, G, CFM_DEFAULT, ERP_DEFAULT, steps, sensor_contacts
+from conformance.results import Measure, Settings
+
+
+# sensor_geometry.x3d: Ball (0.2 kg, r 0.1) on Block (1 kg, 0.4 x 0.2 x 0.4) on the static Floor
+SG_BALL_M, SG_BLOCK_M, SG_R, SG_BLOCK_HALF, SG_WIDTH = 0.2, 1.0, 0.1, 0.1, 0.4
+SG_LOWER = {frozenset(("Floor", "BlockShape")): "Floor", frozenset(("BlockShape", "BallShape")): "BlockShape"}
+SG_BODY = {"Floor": "NULL", "BlockShape": "Block", "BallShape": "Ball"}
+
+
+def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """Every contact of every frame after the first step (the sensor reports the last step's).
+
+    Depth: the resting penetration (no surface layer): one step of unresisted fall g h^2 plus ODE's
+    softness CFM f h / ERP, f the largest load on a contact (ball and block on the floor).
+    Normal: (0, +-1, 0) by which geometry is lower; the block may tilt by uneven sinking of its
+    edges, at most twice the depth bound over its width, and its faces' normals with it.
+    Ball's contact position: (x, z) of the ball's centre (off by at most r times the tilt) and
+    y at the block's top face (Block's centre + 0.1), within the depth bound (engines put the
+    point on either surface or between them). Names: exact."""
+    tr, s = traces[0], settings[0]
+    h = s.dt
+    depth_tol = G * h * h + CFM_DEFAULT * (SG_BALL_M + SG_BLOCK_M) * G * h / ERP_DEFAULT + ROUNDING
+    tilt = 2 * depth_tol / SG_WIDTH
+    contacts = sensor_contacts(tr, "Sensor")
+    times, ball = tr.series("Ball", "position")
+    _, block = tr.series("Block", "position")
+    try:
+        active = dict(zip(*tr.text("Sensor", "isActive")))
+    except KeyError:  # no sensor output at all: inactive on every frame
+        active = {}
+    hits = {}
+    for k in range(100):
+        try:
+            for t, name in zip(*tr.text("Sensor", f"intersections[{k}]")):
+                hits.setdefault(t, set()).add(name)
+        except KeyError:
+            break
+    normal_err = depth_err = horizontal_err = vertical_err = 0.0
+    wrong_names = inactive = no_ball_contact = missing_hits = 0
+    for frame, (t, n) in enumerate(zip(times.tolist(), steps(times, h).tolist())):
+        if n < 1:
+            continue
+        inactive += active.get(t) != "true"
+        missing_hits += hits.get(t, set()) != set(SG_BODY)
+        ball_contacts = 0
+        for c in contacts.get(t, []):
+            g1, g2 = c["geometry1"], c["geometry2"]
+            lower = SG_LOWER.get(frozenset((g1, g2)))
+            if lower is None or g1 == g2:
+                wrong_names += 1
+                continue
+            wrong_names += (c["body1"], c["body2"]) != (SG_BODY[g1], SG_BODY[g2])
+            want = np.array([0.0, 1.0 if g1 == lower else -1.0, 0.0])
+            normal_err = max(normal_err, float(np.linalg.norm(c["contactNormal"] - want)))
+            depth_err = max(depth_err, abs(c["depth"]))
+            if lower == "BlockShape":
+                ball_contacts += 1
+                d = c["position"] - ball[frame]
+                horizontal_err = max(horizontal_err, math.hypot(d[0], d[2]))
+                vertical_err = max(vertical_err, abs(c["position"][1] - (block[frame][1] + SG_BLOCK_HALF)))
+        no_ball_contact += ball_contacts == 0
+    return [Measure("frames after the first step with isActive FALSE", inactive, 0),
+            Measure("frames whose intersections do not name Floor, BlockShape and BallShape", missing_hits, 0),
+            Measure("contacts whose geometry1/geometry2/body1/body2 are not a touching pair and its bodies",
+                    wrong_names, 0),
+            Measure("frames with no BallShape-BlockShape contact", no_ball_contact, 0),
+            Measure("contactNormal - (0, +-1, 0) from geometry1 towards geometry2 (worst contact)", normal_err,
+                    tilt + ROUNDING_ANGLE),
+            Measure("|depth| (worst contact)", depth_err, depth_tol, "m"),
+            Measure("ball contact position - ball centre, horizontally", horizontal_err, SG_R * tilt + ROUNDING, "m"),
+            Measure("ball contact position - block top face, vertically", vertical_err, depth_tol, "m")]
+
+
+CASE = Case("sensor_geometry", "sensor_geometry.x3d",
+            "CollisionSensor contacts of a ball on a block on the floor: contactNormal (0, +-1, 0) from geometry1 "
+            "towards geometry2, bodies named, position under the ball's centre at the block's top, depth small",
+            (Settings(1.0, 1 / 240),), expect,
+            exercises=("CollisionSensor", "CollidableShape.geometry.Sphere", "CollidableShape.geometry.Box"),
+            mutations=(
+                ("<Sphere radius='0.1'/>", "<Sphere/>"),
+                ("<CollisionCollection USE='Contacts' containerField='collider'/>", ""),
+            ))

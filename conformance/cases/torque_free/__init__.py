@@ -1,0 +1,75 @@
+"""torque_free: RigidBody.inertia off-diagonal: a tumbling body keeps its energy and angular momentum."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from x3d_core import rotation as R
+from x3d_core.trace import TraceView
+
+from conformance.cases.case import Case
+from conformance.cases.closed_forms import ROUNDING, physics_time, max_norm
+from conformance.results import Measure, Settings
+
+
+# torque_free.x3d
+TF_INERTIA = np.array([[0.2, 0.03, 0.01], [0.03, 0.15, -0.02], [0.01, -0.02, 0.1]])
+TF_ORIENTATION = (1.0, 1.0, 0.0, 0.7)
+TF_OMEGA = np.array([1.0, 2.0, 0.5])
+
+
+def torque_free_bounds(inertia: np.ndarray = TF_INERTIA, orientation=TF_ORIENTATION,
+                       omega: np.ndarray = TF_OMEGA) -> dict[str, float]:
+    """E0, L0 and the per-second, per-dt drift constants of a first-order rotational update.
+
+    Euler's equations I w' = (I w) x w in body axes. A first-order step updates w with the
+    gyroscopic torque tau = (I w) x w at one end of the step (explicit: the start; implicit:
+    the end) and turns the body with the new w. Writing I = Ibar + D, Ibar = (Imax+Imin)/2,
+    |D| = dI/2 with dI = Imax - Imin, tau = (D w) x w, so |tau| <= (dI/2) |w|^2. Then per step
+      energy:   dE = dt^2/2 tau . I^-1 tau <= dt^2/2 (dI/2)^2 |w|^4 / Imin
+      momentum: L_world changes by dt^2 [(I^-1 tau) x L + w x tau + 1/2 w x (w x L)]
+                <= dt^2 |w|^3 (dI/2) (Imax/Imin + 3/2)
+    (the exact flow keeps both; expand R exp(dt w') (L + dt L x w) to second order). Summed
+    over t/dt steps: c*t*dt, first order. |w| is bounded through the energy: |w|^2 <= 2E/Imin."""
+    q0 = R.from_axis_angle(np.asarray(orientation, dtype=np.float64))
+    rot = R.matrix(q0)
+    i_world = rot @ inertia @ rot.T
+    e0 = 0.5 * omega @ i_world @ omega
+    l0 = i_world @ omega
+    ev = np.linalg.eigvalsh(inertia)
+    i_min, i_max = float(ev[0]), float(ev[-1])
+    half_spread = 0.5 * (i_max - i_min)
+    w_max = math.sqrt(2.0 * e0 / i_min)
+    return {"E0": float(e0), "L0": l0,
+            "energy_rate": 0.5 * half_spread ** 2 * w_max ** 4 / i_min / e0,  # relative, x t dt
+            "momentum_rate": w_max ** 3 * half_spread * (i_max / i_min + 1.5)}  # kg m^2/s, x t dt
+
+
+def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    tr, s = traces[0], settings[0]
+    t, rot = tr.series("Tumbler", "orientation")
+    _, w = tr.series("Tumbler", "angularVelocity")
+    b = torque_free_bounds()
+    mats = R.matrix(R.from_axis_angle(rot))
+    i_world = mats @ TF_INERTIA @ np.swapaxes(mats, 1, 2)
+    lw = np.einsum("nij,nj->ni", i_world, w)
+    energy = 0.5 * np.einsum("ni,ni->n", w, lw)
+    T = float(physics_time(t, s.dt)[-1])
+    scale_l = float(np.linalg.norm(b["L0"]))
+    return [Measure("Tumbler.energy (relative)", float(np.max(np.abs(energy - b["E0"]))) / b["E0"],
+                    b["energy_rate"] * T * s.dt + ROUNDING, ""),
+            Measure("Tumbler.angularMomentum (world)", max_norm(lw - b["L0"]),
+                    b["momentum_rate"] * T * s.dt + ROUNDING * (1 + scale_l), "kg m^2/s")]
+
+
+CASE = Case("torque_free", "torque_free.x3d",
+            "RigidBody.inertia off-diagonal, angularVelocity, orientation: E = 1/2 w.Iw and world "
+            "L = R I R^T w constant",
+            (Settings(1.0, 1 / 240),), expect,
+            convergence="Tumbler.energy (relative)", expected_order=1.0,
+            exercises=("RigidBody.inertia.offDiagonal", "RigidBody.angularVelocity", "RigidBody.orientation"),
+            mutations=(("inertia='0.2 0.03 0.01 0.03 0.15 -0.02 0.01 -0.02 0.1'",
+                        "inertia='0.2 0 0 0 0.15 0 0 0 0.1'"),))
