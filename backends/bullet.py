@@ -484,6 +484,7 @@ class BulletSimulation:
             restitutionVelocityThreshold=par.min_bounce_speed, contactSlop=par.surface_thickness,
             enableConeFriction=0, contactERP=erp, physicsClientId=c)
         for (uid, link), gi in self.geometry_at.items():
+            # no frictionAnchor: it would hold static friction but pin contact points (see _FRICTION)
             kw = dict(lateralFriction=float(np.sqrt(base)), restitution=float(np.sqrt(par.bounce)),
                       rollingFriction=0.0, spinningFriction=0.0, contactProcessingThreshold=_PROCESSING)
             if soft:
@@ -659,6 +660,16 @@ _BOUNCE = ("restitution sqrt(e) on every shape (pybullet multiplies two bodies')
            "+e g dt (rebound speed +0.9% at 4.4 m/s, dt 1/240); no position correction where a bounce applies "
            "(pybullet would add it to the rebound): an impact's penetration (up to v dt) stays. Apex of a 1 m "
            "drop, dt 1/240: e = 0.2, 0.5, 0.8 within -0.4%, +2.0%, +1.9% of e^2 h")
+_FRICTION = ("pybullet multiplies two bodies' lateral friction: every shape gets sqrt(mu), so contacts get mu, on "
+             "ODE's friction pyramid along the same two directions (incline slides within 0.6% of g(sin - mu cos)); "
+             "Bullet clamps the combined coefficient at 10, so larger ones act as 10. Static friction is a velocity "
+             "row without position correction (pybullet's frictionAnchor is left off), so a sideways load makes "
+             "resting contacts creep: box_stack (dt 1/240, 10 s) moves Box1 5.8 mm and Box5 29.9 mm, tilting them "
+             "8.9 to 19.3 mrad (bounds 1.2 to 4.0 mm, 0.9 to 4.3 mrad). frictionAnchor would hold that stack (Box5 "
+             "1.3 mm, 0.86 of its bound) but pins contact points where they were made: resting balls lose contact "
+             "for a step now and then (bounce_apex, dt 1/2000: |v| at rest up to 0.013 m/s, bound g dt = 0.0049) "
+             "and CollisionSensor reports the stale point (sensor_geometry: 1.1 mm off under the ball, bound "
+             "0.088 mm), so the bounce and the contact points are kept instead")
 
 
 class BulletBackend(Backend):
@@ -695,10 +706,7 @@ class BulletBackend(Backend):
                  "CollisionCollection.softnessConstantForceMix", "CollisionCollection.appliedParameters.CONSTANT_FORCE",
                  "CollisionSensor"),
         **approximate(_BOUNCE, "CollisionCollection.bounce", "CollisionCollection.appliedParameters.BOUNCE"),
-        **approximate("pybullet multiplies two bodies' lateral friction: every shape gets sqrt(mu), so contacts get "
-                      "mu, on ODE's friction pyramid along the same two directions (incline slides within 0.6% of "
-                      "g(sin - mu cos)); Bullet clamps the combined coefficient at 10, so larger ones act as 10",
-                      "CollisionCollection.frictionCoefficients"),
+        **approximate(_FRICTION, "CollisionCollection.frictionCoefficients"),
         **approximate("pybullet's anisotropic friction scales the static shape's friction along ODE's second "
                       "direction for the normal of that shape's up (+y) face: exact there (slides along x and z "
                       "within 1%), approximate for other normals; contacts between two moving bodies get mu1 both "

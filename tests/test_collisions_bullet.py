@@ -1,14 +1,16 @@
-"""Collisions in the pybullet backend against closed forms: shapes where they should be, what
-collides with what, and the collection's contact parameters as effective values (pybullet
-combines two bodies' values: product for friction and restitution, springs in series).
+"""What only the pybullet backend does with collisions: shapes built as pybullet's (cylinders turned
+from its z axis, cones and moving meshes as hulls with their margin, heightfields, offsets and
+several shapes on massless fixed links, fixed bodies as static multibodies), which pairs it filters,
+the collection's contact parameters as the per-body values pybullet combines (product for friction
+and restitution, springs in series), and the declared approximations the cases measure as fails
+(contactSlop, anisotropic friction). The shared contact physics (bounce apex and threshold,
+incline, filtering, sensor contacts) is in the conformance cases (conformance/cases/).
 
 Tolerances come from what the engine does, measured with pybullet 3.2.7 (see backends/bullet.py):
 semi-implicit Euler at dt = 1/240, contacts found at the start of a step (so an impact has
 penetrated up to v dt), restitution applied to the approach speed after the step's gravity."""
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 import pytest
@@ -51,19 +53,6 @@ def names(world, contacts: ContactPoints) -> list[tuple[str, str]]:
 
 
 # -- where shapes are, and what contact points say -------------------------------------------------
-
-def test_sphere_resting_on_a_static_box(tmp_path):
-    world, sim = build(tmp_path, ball_on_floor())
-    sim.step(240)
-    c = sim.contacts()
-    assert names(world, c) == [("BallShape", "Floor")]  # the lower geometry index first
-    assert c.normal[0] == pytest.approx([0, -1, 0], abs=1e-9)  # from the ball towards the floor
-    # rigid contact (no CONSTANT_FORCE): errorCorrection 0.8 takes out all but rounding
-    assert abs(c.depth[0]) < 1e-6
-    assert c.position[0] == pytest.approx([0.3, 0, -0.1], abs=1e-6)
-    assert sim.state().position[0] == pytest.approx([0.3, 0.2, -0.1], abs=1e-6)
-    assert np.abs(sim.state().linear_velocity[0]).max() < 1e-6
-
 
 def test_soft_contact_sinks_by_weight_over_odes_spring(tmp_path):
     # ERROR_REDUCTION and CONSTANT_FORCE: ODE's spring k = ERP/(h CFM); per body pybullet puts two
@@ -182,21 +171,6 @@ def test_fixed_body_shapes_are_static_where_the_body_is(tmp_path):
 
 # -- what collides with what -----------------------------------------------------------------------
 
-def test_a_collidable_outside_the_collider_falls_through(tmp_path):
-    world, sim = build(tmp_path, FLOOR + "<RigidBodyCollection gravity='0 -9.81 0'>"
-                       "<RigidBody DEF='In' position='-1 0.2 0'>" + shape("InShape", "<Sphere radius='0.2'/>")
-                       + "</RigidBody><RigidBody DEF='Out' position='1 0.2 0'>"
-                       + shape("OutShape", "<Sphere radius='0.2'/>")
-                       + "</RigidBody><CollisionCollection><CollidableShape USE='InShape'/>"
-                       "<CollidableShape USE='Floor'/>"
-                       "</CollisionCollection></RigidBodyCollection>")
-    sim.step(240)
-    s = sim.state()
-    assert s.position[0, 1] == pytest.approx(0.2, abs=1e-5)
-    assert s.position[1, 1] == pytest.approx(0.2 - G * DT * DT * 240 * 241 / 2, abs=1e-9)  # free fall
-    assert names(world, sim.contacts()) == [("InShape", "Floor")]
-
-
 def test_joined_bodies_never_collide_but_others_in_one_tree_do(tmp_path):
     # a chain A - B - C hanging from nothing, in zero gravity: A and B overlap and are joined, so never
     # touch; C overlaps A but is joined only to B, so A and C touch and push apart (pybullet: links of
@@ -215,39 +189,6 @@ def test_joined_bodies_never_collide_but_others_in_one_tree_do(tmp_path):
 
 
 # -- contact parameters ----------------------------------------------------------------------------
-
-def incline(tmp_path, theta: float, mu: float, seconds: float = 1.0) -> float:
-    """How far a flat block (0.4 x 0.1 x 0.4) slides down a static slab tilted by theta about z
-    in the given time, from rest."""
-    normal = np.array([-math.sin(theta), math.cos(theta), 0])
-    slab = -0.5 * normal
-    start = 0.05 * normal
-    world, sim = build(tmp_path, f"<Group><CollidableShape DEF='Slab' translation='{slab[0]} {slab[1]} 0' "
-                       f"rotation='0 0 1 {theta}'><Shape containerField='shape'><Box size='4 1 4'/></Shape>"
-                       "</CollidableShape></Group><RigidBodyCollection gravity='0 -9.81 0'>"
-                       f"<RigidBody DEF='Block' position='{start[0]} {start[1]} 0' orientation='0 0 1 {theta}' "
-                       "inertia='0.014 0 0 0 0.027 0 0 0 0.014'>" + shape("BlockShape", "<Box size='0.4 0.1 0.4'/>")
-                       + f"</RigidBody><CollisionCollection frictionCoefficients='{mu} 0'>"
-                       "<CollidableShape USE='BlockShape'/><CollidableShape USE='Slab'/></CollisionCollection>"
-                       "</RigidBodyCollection>")
-    sim.step(round(seconds / DT))
-    down = np.array([-math.cos(theta), -math.sin(theta), 0])
-    return float((sim.state().position[0] - start) @ down)
-
-
-@pytest.mark.parametrize("theta, mu", [(0.2, 0.3), (0.4, 0.5), (0.6, 0.5), (0.6, 0.1), (0.4, 0.3)])
-def test_friction_on_an_incline(tmp_path, theta, mu):
-    # pybullet multiplies the two bodies' friction: each gets sqrt(mu). The block slides along ODE's
-    # first friction direction, where the pyramid is Coulomb's law. It rocks on its four corner
-    # contacts: measured within 0.025 m/s^2 of g (sin - mu cos) sliding, and creeping at most
-    # 0.005 m/s^2 where it sticks
-    d = incline(tmp_path, theta, mu)
-    a = 2 * d  # over one second from rest
-    if math.tan(theta) <= mu:
-        assert abs(d) < 0.005
-    else:
-        assert a == pytest.approx(G * (math.sin(theta) - mu * math.cos(theta)), abs=0.05)
-
 
 @pytest.mark.parametrize("mu1, mu2", [(0.2, 0.6), (0.6, 0.2), (0.0, 0.4)])
 def test_second_friction_coefficient_on_level_ground(tmp_path, mu1, mu2):
@@ -281,47 +222,6 @@ def test_bounce_rebounds_at_e_times_the_approach_speed(tmp_path):
             before = v
         else:
             pytest.fail("no rebound")
-
-
-def test_bounce_apex_height(tmp_path):
-    # dropped from 1 m with e = 0.5: apex e^2 h = 0.25 m. Off by the rebound's +e g dt (+0.9% in
-    # speed, 1.9% in height), and lowered by the impact's penetration (up to v dt = 18 mm), which no
-    # position correction takes out while a bounce applies; measured 0.2551
-    world, sim = build(tmp_path, ball_on_floor("bounce='0.5'", y=1.2))
-    heights = []
-    for _ in range(round(1.2 / DT)):
-        sim.step()
-        heights.append(sim.state().position[0, 1] - 0.2)
-    after = heights[int(np.argmin(heights)):]
-    v = math.sqrt(2 * G)
-    assert max(after) == pytest.approx(0.25, abs=0.25 * (2 * G * DT / v) + v * DT)
-    assert max(after) == pytest.approx(0.2551, abs=1e-3)
-
-
-def test_no_bounce_below_min_bounce_speed(tmp_path):
-    # minBounceSpeed is pybullet's restitutionVelocityThreshold: a 0.77 m/s impact stays down, 1.25 m/s bounces
-    for drop, bounces in ((0.03, False), (0.08, True)):
-        world, sim = build(tmp_path, ball_on_floor("bounce='0.5' minBounceSpeed='1'", radius=0.1, y=0.1 + drop))
-        ys = []
-        for _ in range(360):
-            sim.step()
-            ys.append(sim.state().position[0, 1])
-        rise = max(ys[int(np.argmin(ys)):]) - 0.1
-        assert (rise > 0.01) == bounces
-
-
-def test_run_trace_with_a_collision_sensor(tmp_path):
-    from x3d_core.evaluator import RunSettings, run
-    body = ball_on_floor(y=0.5).replace("<CollisionCollection ", "<CollisionCollection DEF='C' ")
-    world, _ = build(tmp_path, body + "<CollisionSensor DEF='Sensor'><CollisionCollection USE='C' "
-                     "containerField='collider'/></CollisionSensor>")
-    rows = {(r.node, r.field): r.value for r in run([world], BACKEND, RunSettings(1.0, DT, 10)).rows if r.time == 1.0}
-    assert rows[("Sensor", "isActive")] == "true"
-    assert (rows[("Sensor", "contacts[0].geometry1")], rows[("Sensor", "contacts[0].geometry2")]) == \
-        ("BallShape", "Floor")
-    assert [float(x) for x in rows[("Sensor", "contacts[0].contactNormal")].split()] == \
-        pytest.approx([0, -1, 0], abs=1e-9)
-    assert [float(x) for x in rows[("Ball", "position")].split()] == pytest.approx([0.3, 0.2, -0.1], abs=1e-5)
 
 
 def test_no_collider_no_contacts(tmp_path):
