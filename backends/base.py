@@ -1,18 +1,25 @@
 """The backend protocol: a declared feature table, and a build step.
 
-A backend is one module in this package exposing `BACKEND`, an instance of a Backend
-subclass. It declares, per feature name (the names of x3d_core.analysis), whether the
-engine honours it natively, approximately (and how) or not at all (and why); anything
-it does not declare is unsupported. `build(world, dt)` returns an
+A backend is one module exposing `BACKEND`, an instance of a Backend subclass. It
+declares, per feature name (the names of x3d_core.analysis), whether the engine honours
+it natively, approximately (and how) or not at all (and why); anything it does not
+declare is unsupported. `build(world, dt)` returns an
 x3d_core.engine.Simulation: step, read state in bulk, set velocities.
 
-To add an engine: write backends/NAME.py against this module and add NAME to
-ENGINES below. Nothing else changes.
+Backends are found through the entry point group `x3drbp.backends` (registry()): each
+entry point names a backend and the module attribute that is its instance. To add an
+engine: write a module with BACKEND against this one and declare it as an entry point,
+in-tree (pyproject.toml's `[project.entry-points."x3drbp.backends"]`, as the five here) or
+in any installed package (docs/example_adapter is one). Nothing else changes: the runner,
+the CLI and the pytest plugin (conformance/pytest_plugin.py) take every registered name.
+Listing the registry imports no engine; load() imports the one asked for, and an entry
+point whose module fails to import is unavailable, with the reason.
 """
 
 from __future__ import annotations
 
-import importlib
+import functools
+import importlib.metadata
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from enum import Enum
@@ -20,7 +27,9 @@ from enum import Enum
 from x3d_core.engine import Simulation
 from x3d_core.world import World
 
-ENGINES = ("bullet", "mujoco", "dart", "ode", "pymunk")
+GROUP = "x3drbp.backends"  # the entry point group of backends
+# the backends x3drbp ships (pyproject.toml declares each): listed first, in this order
+IN_TREE = ("bullet", "mujoco", "dart", "ode", "pymunk")
 
 
 class Support(Enum):
@@ -127,17 +136,76 @@ class Backend(ABC):
         return {**EVALUATOR, **self.declared}
 
 
+@dataclass(frozen=True)
+class Registered:
+    """One backend the registry knows: where its instance is and who declares it."""
+    name: str
+    value: str  # "module:ATTRIBUTE"
+    dist: str  # the distribution declaring it ("" when x3drbp's metadata is not installed)
+
+
+@functools.cache
+def _registry() -> tuple[dict[str, Registered], tuple[str, ...]]:
+    found = [Registered(ep.name, ep.value, ep.dist.name if ep.dist is not None else "")
+             for ep in importlib.metadata.entry_points(group=GROUP)]
+    # a source checkout without x3drbp's metadata still has its own backends
+    found += [Registered(n, f"backends.{n}:BACKEND", "") for n in IN_TREE
+              if not any(r.name == n and r.dist == "x3drbp" for r in found)]
+    # x3drbp's own first (in IN_TREE's order), then the others by name; sorted() is stable,
+    # so among one name's entry points the order importlib.metadata found them stays
+    found.sort(key=lambda r: (r.name not in IN_TREE or r.dist not in ("x3drbp", ""),
+                              IN_TREE.index(r.name) if r.name in IN_TREE else 0, r.name))
+    out: dict[str, Registered] = {}
+    notes = []
+    for r in found:
+        first = out.setdefault(r.name, r)
+        if first is not r and first.value != r.value:
+            notes.append(f"backend {r.name!r}: entry point {r.value} ({r.dist or 'unknown distribution'}) ignored; "
+                         f"the first one registered wins: {first.value} ({first.dist or 'x3drbp'})")
+    return out, tuple(notes)
+
+
+def registry() -> dict[str, Registered]:
+    """Every backend declared in the `x3drbp.backends` entry point group, x3drbp's own first
+    (in IN_TREE's order), then the others by name. Imports no engine."""
+    return dict(_registry()[0])
+
+
+def registry_notes() -> tuple[str, ...]:
+    """One line per entry point that lost to an earlier one of the same name."""
+    return _registry()[1]
+
+
+def engines() -> tuple[str, ...]:
+    """The names of every registered backend, in registry() order."""
+    return tuple(_registry()[0])
+
+
 def load(name: str) -> Backend:
-    """The backend of that name; ImportError (with the reason) if its engine is missing."""
-    if name not in ENGINES:
-        raise KeyError(f"no backend {name!r}; known: {', '.join(ENGINES)}")
-    return importlib.import_module(f"backends.{name}").BACKEND
+    """The backend of that name, importing its module alone; ImportError (with the reason)
+    if its engine is missing or its module fails to import in any other way."""
+    found = _registry()[0]
+    if name not in found:
+        raise KeyError(f"no backend {name!r}; known: {', '.join(found)}")
+    value = found[name].value
+    module, _, attr = value.partition(":")
+    try:
+        backend = importlib.import_module(module)
+        for part in filter(None, attr.split(".")):
+            backend = getattr(backend, part)
+    except ImportError:
+        raise
+    except Exception as e:  # a module that raises on import is as unusable as a missing engine
+        raise ImportError(f"{value}: {type(e).__name__}: {e}") from e
+    if not all(callable(getattr(backend, a, None)) for a in ("build", "version", "support", "table")):
+        raise ImportError(f"{value} is not a backend (a backends.base.Backend instance): {type(backend).__name__}")
+    return backend
 
 
 def available() -> dict[str, Backend | str]:
-    """Each known backend, or the reason it cannot be used here."""
+    """Each registered backend, or the reason it cannot be used here."""
     out: dict[str, Backend | str] = {}
-    for name in ENGINES:
+    for name in engines():
         try:
             out[name] = load(name)
         except ImportError as e:

@@ -33,7 +33,7 @@ def write_readme(path: str) -> None:
     """README's matrix from the pinned verdicts of every backend x3drbp ships."""
     with open(path, encoding="utf-8") as f:
         text = f.read()
-    table = markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.ENGINES})
+    table = markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.IN_TREE})
     new = replace_section(text, table)
     if new != text:
         atomic.write_text(path, new)

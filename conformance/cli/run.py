@@ -100,6 +100,8 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def cmd_backends(args: argparse.Namespace) -> int:
+    for note in base.registry_notes():  # two entry points of one name
+        print(f"x3drbp backends: note: {note}", file=sys.stderr)
     for name, b in base.available().items():
         if isinstance(b, str):
             print(f"{name}: {b}")
@@ -114,7 +116,8 @@ def cmd_backends(args: argparse.Namespace) -> int:
 def add_commands(sub) -> None:
     r = sub.add_parser("run", help="run a scene on one backend and write its event trace")
     r.add_argument("scene")
-    r.add_argument("--backend", required=True, help=f"one of {', '.join(base.ENGINES)}")
+    r.add_argument("--backend", required=True, help=f"one of {', '.join(base.engines())} (the "
+                   "registered backends: `x3drbp backends` says which are usable)")
     options.add_run_settings(r)
     r.add_argument("--trace", help="write the trace CSV here (default: standard output)")
     r.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording of the run (open it with `rerun OUT.rrd`)")
@@ -122,6 +125,7 @@ def add_commands(sub) -> None:
                    "steps, state readback; not the load or the trace writing) to FILE as JSON "
                    "{\"simulation_wall_s\": S, \"step_wall_s\": T}, T the engine's steps alone")
     r.set_defaults(func=cmd_run)
-    b = sub.add_parser("backends", help="list the backends, their engine versions and declared features")
+    b = sub.add_parser("backends", help="list the registered backends (entry point group x3drbp.backends), their "
+                      "engine versions and declared features")
     b.add_argument("--features", action="store_true", help="print each backend's feature table")
     b.set_defaults(func=cmd_backends)

@@ -29,7 +29,7 @@ else:
         found = base.available()
     except Exception:  # base.available() catches ImportError only: go engine by engine
         found = {}
-        for name in base.ENGINES:
+        for name in base.engines():
             try:
                 found[name] = base.load(name)
             except Exception as e:
@@ -75,19 +75,19 @@ def named_backends(names: Sequence[str], info: dict[str, BackendInfo]) -> list[s
 def backend_table(timeout: float = DEFAULT_TIMEOUT) -> dict[str, BackendInfo]:
     """backends.base.available(), asked in a child process: importing an engine can crash,
     and the suite must survive that too. Should the probe of all engines die, each engine
-    is probed alone, so that one broken engine does not hide the others. Every name in
-    base.ENGINES gets an entry."""
+    is probed alone, so that one broken engine does not hide the others. Every registered
+    name (base.engines(): the entry point group x3drbp.backends) gets an entry."""
     from backends import base  # the registry itself imports no engine
     data, why = _probe([], timeout)
     if not data:
         whys = {}
-        for name in base.ENGINES:
+        for name in base.engines():
             one, whys[name] = _probe([name], timeout)
             data.update(one)
     else:
         whys = {}
     out = {}
-    for name in dict.fromkeys([*base.ENGINES, *data]):
+    for name in dict.fromkeys([*base.engines(), *data]):
         d = data.get(name)
         if d is None:
             out[name] = BackendInfo(name, unavailable=whys.get(name) or why or "not reported by base.available()")
