@@ -3,7 +3,7 @@ thread each), wall time of each and the speed-up; the target is 1.7x or more on 
 
 The sweep: pendulum_period (closed form, a frame every step) on MuJoCo and Bullet at
 dt = 1/3000 and 1/4000 s with iterations 10, 20 and 50: 12 runs of about a second or two
-each. Timed: conformance.sweep.run_sweep, from connecting to the cluster to the last result
+each. Timed: conformance.analyses.sweep.run_sweep, from connecting to the cluster to the last result
 (the clusters are started before, and the backends' declarations probed once, outside).
 Each size runs --repeat times, the two sizes taking turns; the speed-up is of the best
 times (other work on the machine only ever slows a run), and each run's time is printed

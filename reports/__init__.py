@@ -1,4 +1,5 @@
 """Rendering of results (markdown, HTML, plots, rerun recordings).
 
-Layering (DESIGN.md): reports read results; they run nothing and import no engine.
+Layering (README's Layout; tests/test_project.py holds it): reports read results
+(x3d_core, conformance.results); they run nothing and import no engine.
 """

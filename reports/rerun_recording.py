@@ -1,9 +1,9 @@
 """Rerun recordings of runs: each backend's bodies moving side by side, and where they part.
 
-One .rrd from the parsed traces (the same arrays compare.py measures) and the scene's
-collision plan; it runs no engine. Everything is sent in columns (rr.send_columns: a
-whole time column and one array per entity), so recording costs little next to the
-simulation it shows. Entities, on one timeline `time` (simulation seconds):
+One .rrd from the parsed traces (the same arrays conformance/analyses/compare.py
+measures) and the scene's collision plan; it runs no engine. Everything is sent in columns
+(rr.send_columns: a whole time column and one array per entity), so recording costs little
+next to the simulation it shows. Entities, on one timeline `time` (simulation seconds):
 
     /BACKEND/bodies/BODY                 Transform3D per frame (trace position, orientation)
     /BACKEND/bodies/BODY/GEOMETRY        the collidable's shape, static, in the body's frame
@@ -27,6 +27,7 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from conformance.results import JOINT_OUTPUTS, ORIENTATION, POSITION, Divergence, PairComparison
+from x3d_core import atomic
 from x3d_core import rotation as R
 from x3d_core.collision import Geometry
 from x3d_core.trace import TraceView
@@ -155,7 +156,8 @@ def blueprint(backends: Sequence[str], pairs: bool, joints: bool) -> rrb.Bluepri
 def write_recording(out: str, scene: Scene, runs: Sequence[tuple[str, TraceView]],
                     pairs: Sequence[PairComparison] = ()) -> float:
     """Writes the recording of these runs (backend, parsed trace) and their comparisons to
-    `out`; returns the seconds it took."""
+    `out`, atomically (rerun writes a temporary name, renamed once closed); returns the
+    seconds it took."""
     started = time.perf_counter()
     rec = rr.RecordingStream("x3drbp", make_default=False)
     rec.set_log_time_enabled(False)  # simulation time is the one timeline
@@ -172,6 +174,10 @@ def write_recording(out: str, scene: Scene, runs: Sequence[tuple[str, TraceView]
     for p in pairs:
         for d in (p.position, p.orientation):
             _divergence(rec, p, d)
-    rec.save(out, default_blueprint=blueprint([b for b, _ in runs], bool(pairs), any_joints))
-    rec.disconnect()
+    with atomic.replacing(out) as tmp:  # the whole recording, or the previous file
+        try:
+            rec.save(tmp, default_blueprint=blueprint([b for b, _ in runs], bool(pairs), any_joints))
+            rec.flush()
+        finally:
+            rec.disconnect()  # the file closed, its footer written, before it is renamed or removed
     return time.perf_counter() - started

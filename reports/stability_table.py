@@ -45,7 +45,7 @@ def markdown(data: dict) -> str:
     lines += ["Backends: " + "; ".join(describe(n) for n in data["backends"]), "",
               f"{len(data['results'])} runs, {data['jobs']} at a time: {data['wall_s']:.0f} s wall.", "",
               "Cell: the verdict; where a run did not hold, what gave way first and when (simulated time). "
-              "Bounds and their arguments: conformance/stability.py and each scene's leading comment.", "",
+              "Bounds and their arguments: conformance/analyses/stability.py and each scene's leading comment.", "",
               "| case | dt | " + " | ".join(backends) + " |", "|---|---|" + "---|" * len(backends)]
     for c in data["cases"]:
         for dt in dts:

@@ -1,6 +1,6 @@
 """`x3drbp validate`'s result as text: markdown tables that read as well in a terminal.
 
-Reads a conformance.validate.Validation; runs nothing.
+Reads a conformance.results.Validation; runs nothing.
 """
 
 from __future__ import annotations

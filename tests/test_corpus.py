@@ -1,4 +1,5 @@
-"""Every third-party scene under ../shared/corpus loads, validates and writes back unchanged."""
+"""Every third-party scene under ../shared/corpus loads, validates and writes back unchanged,
+and runs or names what it lacks (a routed input, a Script that writes fields directly)."""
 
 from __future__ import annotations
 
@@ -10,8 +11,8 @@ from concurrent.futures import ThreadPoolExecutor
 import pytest
 
 from backends import base
-from conftest import CORPUS, ROOT, SCENES
-from x3d_core.analysis import summarize
+from conftest import CASES, CORPUS, ROOT, SCENES
+from x3d_core.analysis import SCRIPT_DIRECT_OUTPUT, features, run_features, summarize
 from x3d_core.load import load
 from x3d_core.model_diff import differences
 from x3d_core.paths import scene_files
@@ -44,12 +45,15 @@ EXPECTED = {
 
 needs_corpus = pytest.mark.skipif(not os.path.isdir(CORPUS), reason=f"no corpus at {CORPUS}")
 
-# Scenes whose motion a ROUTE from a Script or an input device drives: refused on every
-# backend by naming the routed input (x3drbp runs no Scripts). Every other scene runs,
-# except where a backend declares a feature it uses unsupported.
+# Scenes whose motion a ROUTE from a Script or an input device drives, or a Script with
+# directOutput TRUE (x_ite_media/CollisionCollection.x3d: its initialize() sets the ball's
+# position and velocities through an SFNode field): refused on every backend by naming the
+# routed input (x3drbp runs no Scripts). Every other scene runs, except where a backend
+# declares a feature it uses unsupported.
 SCRIPTED = {"xj3d/combined__cannon.x3dv", "xj3d/combined__toy_car.x3dv", "xj3d/physics__ball_bounce.x3dv",
             "xj3d/physics__bounce_trimesh.x3dv", "xj3d/physics__double_hinge_joint.x3dv",
-            "xj3d/physics__motor_joint.x3dv", "xj3d/physics__moving_body.x3dv", "xj3d/physics__slider_joint.x3dv"}
+            "xj3d/physics__motor_joint.x3dv", "xj3d/physics__moving_body.x3dv", "xj3d/physics__slider_joint.x3dv",
+            "x_ite_media/CollisionCollection.x3d"}
 RUN_SECONDS = 5
 BACKENDS = [n for n, b in base.available().items() if not isinstance(b, str)]
 
@@ -81,7 +85,7 @@ def test_check_command_exits_zero_on_the_corpus():
 
 
 def all_scenes():
-    return scene_files([CORPUS] if os.path.isdir(CORPUS) else []) + scene_files([SCENES])
+    return scene_files([CORPUS] if os.path.isdir(CORPUS) else []) + scene_files([SCENES, CASES])
 
 
 @pytest.mark.parametrize("path", all_scenes(), ids=lambda p: os.path.relpath(p, os.path.dirname(p) + "/.."))
@@ -135,3 +139,56 @@ def test_corpus_scene_runs_five_seconds_or_names_what_it_lacks(name, backend, co
         assert any(f.endswith(".routed") for f in refused), refused
     else:  # nothing routed: only what this backend itself declares it cannot do
         assert not any(f.endswith(".routed") for f in refused), refused
+
+
+# -- Scripts, in scenes written here: one with directOutput TRUE writes fields of the nodes
+# it reaches itself, with no ROUTE, so it is refused by name like a routed input; one with
+# directOutput FALSE acts only through ROUTEs, and without one into a physics node it runs
+
+BODY = "#X3D V4.0 utf8\nDEF World RigidBodyCollection { bodies DEF Ball RigidBody { position 0 1 0 } }\n"
+SETS_THE_BALL = 'url "ecmascript: function initialize() { ball.position = new SFVec3f(0, 5, 0); }"'
+
+
+def _script(tmp_path, script: str, route: str = "", body: str = BODY) -> str:
+    path = tmp_path / "s.x3dv"
+    path.write_text(f"{body}DEF Mover Script {{ {script} }}\n{route}")
+    return str(path)
+
+
+def _x3drbp(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT, capture_output=True, text=True,
+                          timeout=120)
+
+
+@pytest.mark.parametrize("script", [
+    f"directOutput TRUE initializeOnly SFNode ball USE Ball {SETS_THE_BALL}",  # reaches the body by a field
+    "directOutput TRUE url \"ecmascript: function initialize() { "  # or by name, through the Browser
+    "Browser.currentScene.getNamedNode('Ball').position = new SFVec3f(0, 5, 0); }\""],
+    ids=["by-field", "by-name"])
+def test_a_script_with_direct_output_is_refused_by_name_on_every_backend(tmp_path, script):
+    path = _script(tmp_path, script)
+    assert SCRIPT_DIRECT_OUTPUT in run_features(load(path))
+    for backend in BACKENDS:
+        assert base.load(backend).support(SCRIPT_DIRECT_OUTPUT).support is base.Support.UNSUPPORTED
+        out = tmp_path / f"{backend}.csv"
+        r = _x3drbp("run", path, "--backend", backend, "--duration", "0.1", "--trace", str(out))
+        assert r.returncode == 3, (backend, r.stderr)
+        assert f"unsupported by {backend}: {SCRIPT_DIRECT_OUTPUT}: " in r.stderr and not out.exists()
+
+
+def test_a_script_without_direct_output_or_a_route_into_physics_runs_with_a_warning(tmp_path):
+    path = _script(tmp_path, f"initializeOnly SFNode ball USE Ball {SETS_THE_BALL}")  # directOutput FALSE
+    assert not [f for f in run_features(load(path)) if f.endswith(".routed")]
+    check = _x3drbp("check", path)
+    assert check.returncode == 0 and "Script is kept in the model but does not run" in check.stdout, check.stdout
+    for backend in BACKENDS:
+        out = tmp_path / f"{backend}.csv"
+        r = _x3drbp("run", path, "--backend", backend, "--duration", "0.1", "--trace", str(out))
+        assert r.returncode == 0 and out.exists(), (backend, r.stderr)
+
+
+def test_only_a_script_s_route_into_physics_or_its_direct_output_counts(tmp_path):
+    routed = _script(tmp_path, "outputOnly SFVec3f p", "ROUTE Mover.p TO Ball.set_position\n")
+    assert {"RigidBody.set_position.routed"} == {f for f in features(load(routed)) if f.endswith(".routed")}
+    no_physics = _script(tmp_path, f"directOutput TRUE {SETS_THE_BALL}", body="#X3D V4.0 utf8\nDEF Ball Transform { }\n")
+    assert features(load(no_physics)) == []  # nothing of the component for it to write

@@ -21,8 +21,9 @@ def test_readme_gives_the_two_commands_and_ci_runs_the_test_one():
     assert re.search(r"^make test$", ci, re.M)
 
 
-# What each part of the project may import of the others (DESIGN: x3d_core <- backends <-
-# conformance; reports read results). A module's own package may always import itself.
+# What each part of the project may import of the others (README's Layout: x3d_core <-
+# backends <- conformance; reports read results). A module's own package may always
+# import itself.
 ALLOWED = {
     "x3d_core": set(),
     "backends": {"x3d_core"},

@@ -34,6 +34,23 @@ def test_features_set_declarations_against_the_cases_verdicts():
     assert sum(declared.values()) == len(base.load(backend).table())
 
 
+def test_a_step_log_is_written_as_the_step_runs_and_keeps_what_a_failed_step_said(tmp_path):
+    """Logs are the one output written in place (not through x3d_core.atomic): to be read
+    while a step runs, and to say why a step that dies half-way died."""
+    log = tmp_path / "sweep.log"
+    seen = []
+
+    def step(argv):
+        print("measuring bullet at dt 1/60")
+        seen.append(log.read_text())  # what someone reading the log sees meanwhile
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        R._run(step, ["sweep"], str(log))
+    assert seen == ["$ x3drbp sweep\nmeasuring bullet at dt 1/60\n"]
+    assert log.read_text() == seen[0]
+
+
 def _fake_results(out) -> None:
     """What the steps leave behind, written by hand: the page must need nothing else."""
     (out / "conformance").mkdir(parents=True)

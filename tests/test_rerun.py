@@ -8,6 +8,7 @@ import os
 
 import numpy as np
 import pyarrow as pa
+import pytest
 from rerun.chunk import RrdReader
 
 from conformance.cli import main as cli_main
@@ -73,6 +74,36 @@ def test_run_recording_has_one_backend_and_no_divergence(tmp_path):
     entities = _entities(str(rrd))
     assert {e.split("/")[1] for e in entities} == {"__properties", "mujoco", "joints"}
     assert len(_times(entities["/mujoco/bodies/Ball3"])) == 16  # frames at 60 Hz over 0.25 s, both ends
+
+
+def test_a_failed_recording_keeps_the_previous_file_and_leaves_no_partial_one(tmp_path, monkeypatch):
+    import rerun as rr
+
+    from reports.rerun_recording import write_recording
+    from x3d_core.load import load
+    from x3d_core.trace import TraceView, read_trace
+
+    trace = tmp_path / "t.csv"
+    assert cli_main(["run", CRADLE, "--backend", "mujoco", "--duration", "0.25", "--trace", str(trace)]) == 0
+    rrd = tmp_path / "run.rrd"
+    rrd.write_bytes(b"the previous recording")
+    flush = rr.RecordingStream.flush
+
+    def fails_once_written(self, *args, **kwargs):  # the file is being written, then the write fails
+        flush(self, *args, **kwargs)
+        assert [p for p in os.listdir(tmp_path) if p.endswith(".tmp") and os.path.getsize(tmp_path / p)]
+        raise OSError("disk full")
+
+    monkeypatch.setattr(rr.RecordingStream, "flush", fails_once_written)
+    runs = [("mujoco", TraceView(read_trace(str(trace))))]
+    with pytest.raises(OSError, match="disk full"):
+        write_recording(str(rrd), load(CRADLE), runs)
+    assert rrd.read_bytes() == b"the previous recording"
+    assert sorted(os.listdir(tmp_path)) == ["run.rrd", "t.csv"]
+    monkeypatch.undo()
+    write_recording(str(rrd), load(CRADLE), runs)  # and once it succeeds, the new one replaces it whole
+    assert sorted(os.listdir(tmp_path)) == ["run.rrd", "t.csv"]
+    assert len(_times(_entities(str(rrd))["/mujoco/bodies/Ball3"])) == 16
 
 
 def test_tessellations_close_their_surfaces():

@@ -1,9 +1,11 @@
 """Scene analysis: what a scene holds and which features it needs.
 
-Feature names join scenes, backends, cases and reports (DESIGN.md, "model only
-what a scene needs"): 'RigidBody' for a node type in use, 'RigidBody.mass' for an
-input field given a value other than its default, and derived names for what a
-field alone does not say ('RigidBody.inertia.offDiagonal', 'SingleAxisHingeJoint.limits',
+Feature names join scenes, backends, cases and reports. A run models only what its scene
+needs, and refuses by name each feature its backend declares unsupported (backends/base.py,
+Backend.support; `x3drbp run` exits 3): nothing is ignored silently. 'RigidBody' for a
+node type in use, 'RigidBody.mass' for an input field given a value other than its
+default, and derived names for what a field alone does not say
+('RigidBody.inertia.offDiagonal', 'SingleAxisHingeJoint.limits',
 'CollidableShape.geometry.Cone', 'CollisionCollection.appliedParameters.SLIP-1').
 """
 
@@ -77,6 +79,16 @@ def summarize(scene: Scene) -> Summary:
     return s
 
 
+# A Script whose directOutput is TRUE sets fields of other nodes itself, with no ROUTE (X3D
+# 4.0 Scripting, the Script node: the nodes its SFNode/MFNode fields hold and what they
+# contain; through the Browser object, any named node, and routes it adds): an input that
+# no field or ROUTE of the file names. Any such Script in a physics scene counts, whatever
+# its fields hold: which nodes it reaches is for its code to say. The name ends in '.routed',
+# so every backend refuses it by name (backends/base.py, Backend.support). A Script with
+# directOutput FALSE acts only through its ROUTEs, each counted in features() itself.
+SCRIPT_DIRECT_OUTPUT = "Script.directOutput.routed"
+
+
 def features(scene: Scene) -> list[str]:
     """The sorted feature names the scene uses."""
     out: set[str] = set()
@@ -126,6 +138,8 @@ def features(scene: Scene) -> list[str]:
                     else "RigidBodyCollection.set_contacts.fromSensor")
         else:
             out.add(f"{r.to_node.type_name}.{r.to_field}.routed")
+    if out and any(n.type_name == "Script" and n.get("directOutput") for n in scene.nodes()):
+        out.add(SCRIPT_DIRECT_OUTPUT)
     return sorted(out)
 
 

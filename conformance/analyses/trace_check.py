@@ -1,8 +1,8 @@
 """Reads a trace written by someone else and says, line by line, what is wrong with it.
 
 `x3drbp validate` judges a browser's trace only once it reads as the trace contract says
-(DESIGN.md, docs/implementers.md): a problem here is the file's, not the physics', so it
-is reported with its line and stops the validation (exit 2). Checked:
+(docs/implementers.md; README's `x3drbp run`): a problem here is the file's, not the
+physics', so it is reported with its line and stops the validation (exit 2). Checked:
 
 - the header `time,node,field,value`, and four columns on every row;
 - time: a finite number, never less than the row before's;

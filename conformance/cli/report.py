@@ -59,8 +59,11 @@ def _steps(out: str, backends: list[str], quick: bool, x_ite: bool) -> list[tupl
 
 
 def _run(main: Callable[[list[str]], int], argv: list[str], log: str) -> int:
-    """One x3drbp command in this process (`main`, the command line's own), its output into the log."""
-    with open(log, "a", encoding="utf-8") as f, contextlib.redirect_stdout(f), contextlib.redirect_stderr(f):
+    """One x3drbp command in this process (`main`, the command line's own), its output into the
+    log line by line. The logs are the one output x3drbp writes in place, not through
+    x3d_core/atomic.py: they are read while a step runs, and keep what a killed step said."""
+    with (open(log, "a", encoding="utf-8", buffering=1) as f, contextlib.redirect_stdout(f),
+          contextlib.redirect_stderr(f)):
         print(f"$ x3drbp {' '.join(argv)}", flush=True)
         try:
             return main(argv)

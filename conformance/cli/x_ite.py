@@ -4,13 +4,13 @@
     x3drbp x-ite record SCENE --trace OUT.csv [--frame-rate F] [--duration S]
 
 `cases` records every conformance case (or those named) in X_ITE and judges each with the
-suite's ordinary checks (conformance/x_ite_conformance.py): right, ignores (the fields
+suite's ordinary checks (conformance/browsers/x_ite/judge.py): right, ignores (the fields
 measured to have no effect) or wrong, with X_ITE's traces in DIR/traces/, a rerun
 recording of each case where X_ITE and a backend part in DIR/recordings/, and
 DIR/x_ite.json and x_ite.md (DIR defaults to out/x_ite). `record` writes X_ITE's trace of
 any scene, for `x3drbp validate` (it prints the --dt to pass: the step X_ITE takes).
 
-Needs node, Debian's chromium and the npm packages in conformance/x_ite: `make
+Needs node, Debian's chromium and the npm packages in conformance/browsers/x_ite: `make
 x-ite-install` installs them. Exit status 0 whatever the verdicts (they are results); 1
 when X_ITE cannot run here at all, or `record` could not record; 2 on bad usage.
 """

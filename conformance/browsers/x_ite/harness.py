@@ -2,8 +2,8 @@
 Chromium, as an implementation under test: it writes a trace of a scene the way any browser
 author would (docs/implementers.md), and the suite judges that trace as it judges any.
 
-conformance/x_ite/record.mjs drives it through playwright-core with Debian's chromium (no
-browser download) under a virtual clock (conformance/x_ite/page.html): frame k is at
+record.mjs (beside this module) drives it through playwright-core with Debian's chromium
+(no browser download) under a virtual clock (page.html, also beside it): frame k is at
 k / frame_rate exactly, the state read at time 0 is the scene as loaded, before any step,
 and two runs are bit-identical. X_ITE reads its fields through its own scripting API.
 
