@@ -19,7 +19,8 @@ def _rtf(r: BackendRun) -> str:
     return f"{f:.3g}x" + (" (child)" if r.realtime_basis == "child" else "")
 
 
-def _rms_max(d: Divergence) -> str:
+def rms_max(d: Divergence) -> str:
+    """A divergence's cell: RMS / max (the body and time of the max)."""
     return "-" if d.max is None else f"{num(d.rms)} / {num(d.max)} ({d.max_body}, {num(d.max_time)} s)"
 
 
@@ -31,7 +32,8 @@ def _crossing(c: Crossing | None) -> str:
     return f"{num(c.time)} s: {named}" + (f" +{more} more" if more > 0 else "")
 
 
-def _joint(p: PairComparison) -> str:
+def worst_joint(p: PairComparison) -> str:
+    """The cell of the pair's joint output furthest past its threshold."""
     j = p.worst_joint()
     if j is None:
         return "-"
@@ -72,9 +74,9 @@ def render(c: Comparison) -> str:
               f"| first position > {num(th['position'])} m | first orientation > {num(th['orientation'])} rad "
               "| worst joint output |", "|---|---:|---:|---|---|---|---|---|"]
     for p in c.pairs:
-        lines.append(f"| {p.a} / {p.b} | {len(p.bodies)} | {p.times.size} | {_rms_max(p.position)} | "
-                     f"{_rms_max(p.orientation)} | {_crossing(p.position.first_over)} | "
-                     f"{_crossing(p.orientation.first_over)} | {_joint(p)} |")
+        lines.append(f"| {p.a} / {p.b} | {len(p.bodies)} | {p.times.size} | {rms_max(p.position)} | "
+                     f"{rms_max(p.orientation)} | {_crossing(p.position.first_over)} | "
+                     f"{_crossing(p.orientation.first_over)} | {worst_joint(p)} |")
     notes = [n for p in c.pairs for n in _notes(p)]
     lines += ["", "RMS and max: over every frame and body (the max's body and time); first: the first frame a "
               "body passes the threshold, the bodies over it then, worst first; worst joint output: the largest "

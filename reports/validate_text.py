@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from conformance.results import RAN, TraceComparison, Validation
 
-from .compare_text import _joint, _rms_max
+from .compare_text import rms_max, worst_joint
 from .text import escape, num
 
 
@@ -33,8 +33,8 @@ def _comparison(c: TraceComparison) -> list[str]:
         if p is None:
             lines.append(f"| {r.backend} | {r.verdict}: {escape(r.reason)} | - | - | - | - |")
         else:
-            lines.append(f"| {r.backend} | {c.verdict(r.backend)} | {p.times.size} | {_rms_max(p.position)} | "
-                         f"{_rms_max(p.orientation)} | {_joint(p)} |")
+            lines.append(f"| {r.backend} | {c.verdict(r.backend)} | {p.times.size} | {rms_max(p.position)} | "
+                         f"{rms_max(p.orientation)} | {worst_joint(p)} |")
     missing = [f"- {p.b}: {what} it records that the trace lacks: {', '.join(names)}"
                for p in c.pairs.values()
                for what, names in (("bodies", p.only_in_b), ("joint outputs", p.joints_only_in_b)) if names]

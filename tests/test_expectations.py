@@ -74,15 +74,14 @@ def test_readme_matrix_is_the_pins_rendered(tmp_path):
     assert BEGIN in readme and END in readme
 
 
-def test_check_reports_a_verdict_that_left_its_pin(tmp_path, monkeypatch, capsys):
+def test_check_reports_a_verdict_that_left_its_pin(tmp_path, capsys):
     installed = [b for b in ("mujoco", "bullet") if not isinstance(base.available().get(b), str)]
     if not installed:
         pytest.skip("neither mujoco nor bullet is installed")
-    b = installed[0]
-    monkeypatch.setattr(E, "FOLDER", str(tmp_path))
+    b, pins = installed[0], str(tmp_path)
     (tmp_path / f"{b}.toml").write_text(E.dumps(b, "x", {"free_fall": Expected(FAIL, ("Ball.position",), why="w")}))
-    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall", "--check"]) == 1
-    assert "free_fall on " + b + ": expected fail, got pass" in capsys.readouterr().out
-    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall,gravity_off", "--readme", ""]) == 0
-    assert E.load(b, str(tmp_path)) == {}
-    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall", "--check"]) == 0
+    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall", "--check", "--pins", pins]) == 1
+    assert f"free_fall on {b}: expected fail, got pass" in capsys.readouterr().out
+    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall,gravity_off", "--pins", pins]) == 0
+    assert E.load(b, pins) == {}
+    assert cli_main(["expectations", "--backends", b, "--cases", "free_fall", "--check", "--pins", pins]) == 0

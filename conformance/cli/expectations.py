@@ -1,7 +1,7 @@
 """`x3drbp expectations`: pin every conformance verdict from a run, or check the pins.
 
-    x3drbp expectations [--backends LIST] [--cases NAMES] [--check] [--readme FILE]
-                        [--timeout S] [--jobs N]
+    x3drbp expectations [--backends LIST] [--cases NAMES] [--check] [--pins DIR]
+                        [--readme FILE] [--timeout S] [--jobs N]
 
 Runs the cases on the backends and rewrites conformance/expectations/BACKEND.toml for
 each backend that ran (a `why` is kept while its verdict holds; cases not run keep their
@@ -23,6 +23,7 @@ from x3d_core import atomic
 from conformance import cases as C
 from conformance import expectations as E
 from conformance.cli import options
+from conformance.results import PASS, Expected
 from conformance.runner import children, probe, verdicts
 
 EXIT_OK, EXIT_CHANGED, EXIT_USAGE = 0, 1, 2
@@ -47,28 +48,32 @@ def cmd_expectations(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     info = probe.backend_table(args.timeout)
     try:
-        backends = [b for b in probe.named_backends(options.names(args.backends), info) if info[b].usable]
+        named = probe.named_backends(options.names(args.backends), info)
     except ValueError as e:
         print(f"x3drbp expectations: {e}", file=sys.stderr)
         return EXIT_USAGE
+    for b in named:
+        if not info[b].usable:
+            print(f"skipped {b}, its pins kept: unavailable: {info[b].unavailable}")
+    backends = [b for b in named if info[b].usable]
     outcomes = verdicts.run_matrix(cases, backends, args.timeout, args.jobs)
     changed = 0
     for b in backends:
-        old = E.load(b)
+        old = E.load(b, args.pins)
         mine = [r for r in outcomes if r.backend == b]
         for r in mine:
-            why = E.mismatch(r, old.get(r.case, E.Expected(E.PASS)))
+            why = E.mismatch(r, old.get(r.case, Expected(PASS)))
             if why:
                 changed += 1
                 print(f"changed: {why}")
         if args.check:
             continue
         new = {k: v for k, v in old.items() if k not in {r.case for r in mine}} | E.regenerate(mine, old)
-        atomic.write_text(E.path(b), E.dumps(b, info[b].version or "", new))
+        atomic.write_text(E.path(b, args.pins), E.dumps(b, info[b].version or "", new))
     print(f"{changed} verdict(s) differ from their pins on {', '.join(backends) or 'no backend'}")
     if args.check:
         return EXIT_CHANGED if changed else EXIT_OK
-    if args.readme:
+    if args.readme and args.pins is None:  # README shows x3drbp's own pins
         write_readme(args.readme)
     return EXIT_OK
 
@@ -78,6 +83,8 @@ def add_command(sub) -> None:
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     options.add_matrix_options(p, "pin", list(C.BY_NAME), children.DEFAULT_TIMEOUT)
     p.add_argument("--check", action="store_true", help="write nothing; exit 1 when a verdict differs from its pin")
+    p.add_argument("--pins", metavar="DIR", help="the folder of BACKEND.toml pins (default conformance/expectations): "
+                   "an adapter outside x3drbp keeps its own")
     p.add_argument("--readme", default=README if os.path.exists(README) else None, metavar="FILE",
                    help="the README whose matrix to regenerate (default: the project's)")
     p.set_defaults(func=cmd_expectations)
