@@ -26,9 +26,37 @@ def dt_label(dt: float) -> str:
 
 # -- conformance verdicts ----------------------------------------------------------------
 
-PASS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR = (
-    "pass", "fail", "unsupported", "crashed", "timed out", "blew up", "error")
-VERDICTS = (PASS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR)
+# pass: conforms; conventions: conforms, but differs from x3drbp's reading where the spec
+# is silent (only convention measures fail); fail: violates the spec (a spec measure fails)
+PASS, CONVENTIONS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR = (
+    "pass", "conventions", "fail", "unsupported", "crashed", "timed out", "blew up", "error")
+VERDICTS = (PASS, CONVENTIONS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR)
+JUDGED = (PASS, CONVENTIONS, FAIL)  # the verdicts of a run the expectation measured
+# what each judged verdict says, in full, where a verdict is shown to people
+MEANING = {PASS: "conforms", CONVENTIONS: "conforms, differs in conventions", FAIL: "violates the spec"}
+SPEC, CONVENTION = "spec", "convention"
+
+
+@dataclass(frozen=True)
+class Basis:
+    """Why a measure holds an implementation to its tolerance. SPEC: `text` quotes the
+    sentence of ISO/IEC 19775-1 the measure enforces (clause and node first). CONVENTION:
+    the spec is silent or ambiguous here; `text` names the reading checked (ODE's, as a
+    rule) and the alternatives real implementations take, none of them wrong."""
+    kind: str
+    text: str
+
+    def __post_init__(self) -> None:
+        if self.kind not in (SPEC, CONVENTION) or not self.text.strip():
+            raise ValueError(f"a basis is {SPEC!r} or {CONVENTION!r} with its text, not {self.kind!r}: {self.text!r}")
+
+
+def spec(quote: str) -> Basis:
+    return Basis(SPEC, quote)
+
+
+def convention(reading: str) -> Basis:
+    return Basis(CONVENTION, reading)
 
 
 @dataclass(frozen=True)
@@ -58,6 +86,7 @@ class Measure:
     error: float
     tolerance: float
     unit: str = ""
+    basis: Basis | None = None  # None: not stated yet, held as the spec
 
     def __post_init__(self) -> None:  # plain floats (numpy scalars do not go to JSON)
         object.__setattr__(self, "error", float(self.error))
@@ -72,6 +101,17 @@ class Measure:
         if not math.isfinite(self.error):
             return math.inf
         return self.error / self.tolerance if self.tolerance > 0 else (0.0 if self.error == 0 else math.inf)
+
+    @property
+    def convention(self) -> bool:
+        """The measure checks a reading of a point the spec leaves open."""
+        return self.basis is not None and self.basis.kind == CONVENTION
+
+    def to_json(self) -> dict:
+        return {"quantity": self.quantity, "error": _finite_or_str(self.error),
+                "tolerance": _finite_or_str(self.tolerance), "unit": self.unit, "ok": self.ok,
+                "basis": None if self.basis is None else self.basis.kind,
+                "basis_text": None if self.basis is None else self.basis.text}
 
 
 @dataclass
@@ -92,10 +132,39 @@ class Result:
 
     def to_json(self) -> dict:
         return {"case": self.case, "backend": self.backend, "verdict": self.verdict, "reason": self.reason,
-                "dt": self.dt, "wall_s": round(self.wall_s, 3),
-                "measures": [{"quantity": m.quantity, "error": _finite_or_str(m.error),
-                              "tolerance": _finite_or_str(m.tolerance), "unit": m.unit, "ok": m.ok}
-                             for m in self.measures]}
+                "dt": self.dt, "wall_s": round(self.wall_s, 3), "meaning": self.meaning(),
+                "measures": [m.to_json() for m in self.measures]}
+
+    def failing(self, kind: str | None = None) -> list[Measure]:
+        """The measures beyond tolerance (of one basis: SPEC, CONVENTION)."""
+        return [m for m in self.measures if not m.ok and (kind is None or m.convention == (kind == CONVENTION))]
+
+    def meaning(self) -> str:
+        """The verdict as people read it: conforms / conforms, differs in conventions: the
+        readings / violates the spec: measure, quote, figure."""
+        if self.verdict not in JUDGED:
+            return self.verdict + (f": {self.reason}" if self.reason else "")
+        if self.verdict == PASS:
+            return MEANING[PASS]
+        if self.verdict == CONVENTIONS:
+            return f"{MEANING[CONVENTIONS]}: " + "; ".join(
+                f"{m.quantity} ({m.basis.text}): {_figure(m)}" for m in self.failing(CONVENTION))
+        return f"{MEANING[FAIL]}: " + "; ".join(
+            f"{m.quantity}" + (f" (\"{m.basis.text}\")" if m.basis else "") + f": {_figure(m)}"
+            for m in self.failing(SPEC))
+
+
+def judge(measures: Sequence[Measure]) -> str:
+    """PASS when every measure holds; CONVENTIONS when only convention measures fail; else FAIL."""
+    failing = [m for m in measures if not m.ok]
+    if not failing:
+        return PASS
+    return CONVENTIONS if all(m.convention for m in failing) else FAIL
+
+
+def _figure(m: Measure) -> str:
+    unit = f" {m.unit}" if m.unit else ""
+    return f"error {m.error:.3g}{unit} > tolerance {m.tolerance:.3g}{unit}"
 
 
 def _finite_or_str(x: float) -> float | str:
@@ -115,7 +184,7 @@ class Convergence:
         out = []
         for r in self.results:
             m = r.measure(self.quantity)
-            out.append(m.error if m is not None and r.verdict in (PASS, FAIL) else None)
+            out.append(m.error if m is not None and r.verdict in JUDGED else None)
         return out
 
     def order(self) -> float | None:
@@ -125,7 +194,7 @@ class Convergence:
         return {"case": self.case, "backend": self.backend, "quantity": self.quantity,
                 "expected_order": self.expected_order,
                 "points": [{"dt": dt, "error": (None if e is None else _finite_or_str(e)), "verdict": r.verdict,
-                            "reason": r.reason if r.verdict not in (PASS, FAIL) else ""}
+                            "reason": r.reason if r.verdict not in JUDGED else ""}
                            for dt, e, r in zip(self.dts, self.errors(), self.results)],
                 "order": self.order()}
 
@@ -414,7 +483,7 @@ class Validation:
     @property
     def conforms(self) -> bool:
         if self.case is not None:
-            return self.case.verdict == PASS
+            return self.case.verdict in (PASS, CONVENTIONS)
         return bool(self.agreeing())
 
     def to_json(self) -> dict:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 
+from conformance.results import Measure
+
 
 def num(x: float | None) -> str:
     """Three significant digits; '-' for no value."""
@@ -17,3 +19,10 @@ def num(x: float | None) -> str:
 def escape(text: str) -> str:
     """Text safe inside a markdown table cell."""
     return text.replace("|", "\\|").replace("\n", " ")
+
+
+def basis_cell(m: Measure) -> str:
+    """A measure's basis in a table: the spec's words it enforces, or the convention it checks."""
+    if m.basis is None:
+        return "spec (not quoted)"
+    return f"{m.basis.kind}: {escape(m.basis.text)}"

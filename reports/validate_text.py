@@ -8,16 +8,16 @@ from __future__ import annotations
 from conformance.results import RAN, TraceComparison, Validation
 
 from .compare_text import rms_max, worst_joint
-from .text import escape, num
+from .text import basis_cell, escape, num
 
 
 def _case(v: Validation) -> list[str]:
     r = v.case
     if r is None:
         return ["No conformance case has this scene: the trace conforms when it agrees with at least one backend.", ""]
-    lines = [f"## Case {r.case}: **{r.verdict}**", "",
-             "| measure | error | tolerance | verdict |", "|---|---:|---:|---|"]
-    lines += [f"| {escape(m.quantity)} | {num(m.error)} {m.unit} | {num(m.tolerance)} {m.unit} | "
+    lines = [f"## Case {r.case}: **{escape(r.meaning())}**", "",
+             "| measure | basis | error | tolerance | verdict |", "|---|---|---:|---:|---|"]
+    lines += [f"| {escape(m.quantity)} | {basis_cell(m)} | {num(m.error)} {m.unit} | {num(m.tolerance)} {m.unit} | "
               f"{'pass' if m.ok else '**fail**'} |" for m in r.measures]
     return lines + [""]
 

@@ -25,15 +25,15 @@ import os
 import tomllib
 from collections.abc import Iterable, Mapping
 
-from conformance.results import FAIL, PASS, UNSUPPORTED, VERDICTS, Expected, Result
+from conformance.results import CONVENTIONS, FAIL, PASS, UNSUPPORTED, VERDICTS, Expected, Result
 
 FOLDER = os.path.dirname(os.path.abspath(__file__))
 
 
 def pinned(r: Result, why: str = "") -> Expected:
     """What a result pins: its verdict and what makes it that verdict."""
-    if r.verdict == FAIL:
-        return Expected(FAIL, tuple(sorted(m.quantity for m in r.measures if not m.ok)), why=why)
+    if r.verdict in (FAIL, CONVENTIONS):
+        return Expected(r.verdict, tuple(sorted(m.quantity for m in r.failing())), why=why)
     if r.verdict == UNSUPPORTED:
         return Expected(UNSUPPORTED, reason=r.reason, why=why)
     return Expected(r.verdict, why=why if r.verdict != PASS else "")

@@ -32,7 +32,7 @@ from typing import TypeVar
 from x3d_core.trace import TraceView, read_trace
 
 from conformance.cases.case import Case
-from conformance.results import ERROR, FAIL, PASS, Convergence, Result, Settings
+from conformance.results import ERROR, Convergence, Result, Settings, judge
 from conformance.runner.children import DEFAULT_TIMEOUT, run_child
 
 T = TypeVar("T")  # what run_many's jobs return
@@ -46,12 +46,10 @@ def evaluate(case: Case, backend: str, traces: Sequence[TraceView], settings: Se
     except (KeyError, ValueError, IndexError) as e:
         msg = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
         return Result(case.name, backend, ERROR, f"the expectation could not read the trace: {msg}", dt=dt)
-    failing = [m for m in measures if not m.ok]
-    if not failing:
-        return Result(case.name, backend, PASS, "", measures, dt=dt)
-    reason = "; ".join(f"{m.quantity}: error {m.error:.3g}{' ' + m.unit if m.unit else ''} > tolerance "
-                       f"{m.tolerance:.3g}" for m in failing)
-    return Result(case.name, backend, FAIL, reason, measures, dt=dt)
+    reason = "; ".join(("[convention] " if m.convention else "") + f"{m.quantity}: error {m.error:.3g}"
+                       f"{' ' + m.unit if m.unit else ''} > tolerance {m.tolerance:.3g}"
+                       for m in measures if not m.ok)
+    return Result(case.name, backend, judge(measures), reason, measures, dt=dt)
 
 
 def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,

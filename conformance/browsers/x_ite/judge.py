@@ -4,7 +4,8 @@ gets wrong, each measured by the suite's ordinary checks (`x3drbp validate`'s, u
 - Each case's runs are recorded in X_ITE at the case's frame rate and duration
   (conformance.browsers.x_ite.harness), and judged as any browser's traces are (conformance.analyses.validation): the
   case's expectation at the step X_ITE takes, and every backend run at that step.
-- A case it passes is RIGHT.
+- A case it passes is RIGHT; one where only convention measures fail (a reading of a point
+  the spec leaves open that is not ODE's) is CONVENTIONS: it conforms.
 - A case it fails is probed: for each field the case exercises (Case.exercises, where the
   feature is a field of a node type), the scene is recorded again with that field removed
   from every node of the type, i.e. at its default. A field whose removal leaves X_ITE's
@@ -40,14 +41,14 @@ from conformance.analyses.validation import check_case, compare_with_backends
 from conformance.results import TraceComparison, Validation
 from conformance.browsers.x_ite.harness import NotRecordable, Recording, outputs, record, step
 
-RIGHT, IGNORES, WRONG, ERROR = "right", "ignores", "wrong", "error"
+RIGHT, CONVENTIONS, IGNORES, WRONG, ERROR = "right", "conventions", "ignores", "wrong", "error"
 NAME = "x_ite"  # X_ITE's name beside the backends' in comparisons and recordings
 
 
 @dataclass
 class CaseVerdict:
     case: str
-    verdict: str  # RIGHT, IGNORES, WRONG or ERROR
+    verdict: str  # RIGHT, CONVENTIONS, IGNORES, WRONG or ERROR
     detail: str  # the failing measures, or what stopped the run
     dt: float | None = None  # the step X_ITE takes in this case
     ignored: list[str] = field(default_factory=list)  # TYPE.field with no effect on X_ITE's trace
@@ -89,13 +90,6 @@ def without(scene: str, node_type: str, fld: str, out: str) -> bool:
     if changed:
         tree.write(out, xml_declaration=True, encoding="UTF-8")
     return bool(changed)
-
-
-def _failing(result: results.Result) -> str:
-    bad = [m for m in result.measures if not m.ok]
-    if not bad:
-        return result.reason or result.verdict
-    return "; ".join(f"{m.quantity} {m.error:.3g} > {m.tolerance:.3g} {m.unit}".rstrip() for m in bad)
 
 
 @dataclass
@@ -149,8 +143,8 @@ def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, results.Backend
     comparisons = [compare_with_backends(case.path, r.out, rows, dt, backends, info, thresholds, timeout, NAME)
                    for r, rows in zip(c.runs, rows_of)]
     v = Validation(case.path, [r.out for r in c.runs], dict(thresholds), result, comparisons)
-    verdict = RIGHT if result.verdict == results.PASS else WRONG
-    detail = "" if verdict == RIGHT else _failing(result)
+    verdict = {results.PASS: RIGHT, results.CONVENTIONS: CONVENTIONS}.get(result.verdict, WRONG)
+    detail = "" if verdict == RIGHT else result.meaning()
     c.verdict = CaseVerdict(case.name, verdict, detail, dt, agreeing=v.agreeing(), wall_s=wall, messages=messages, validation=v.to_json())
     parted = [b for b in comparisons[0].pairs if comparisons[0].verdict(b) != "agrees"]
     if recordings is not None and parted:
