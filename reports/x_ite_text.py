@@ -40,7 +40,8 @@ def render(data: dict, matrix: dict | None = None) -> str:
         "# X_ITE on the conformance cases", "",
         f"X_ITE {v['x_ite']} (npm `x_ite`, Bullet through ammo.js) in {escape(v['chromium'])}, headless, under a "
         "virtual clock: frame k at k / frame rate, runs bit-identical. Each case is recorded at its own frame "
-        "rate and duration and judged by `x3drbp validate`'s checks at the step X_ITE takes (the frame in "
+        "rate and duration (a rate beyond the 80 frames/s X_ITE draws at most, its MaximumFrameRate, at the case's "
+        "rate / k for the least k under it: every frame on one of the case's) and judged by `x3drbp validate`'s checks at the step X_ITE takes (the frame in "
         "`iterations` substeps). **right**: the case passes (it conforms). **right, other conventions**: only "
         "measures of a convention fail, a reading of a point the spec leaves open that is not ODE's: it conforms "
         "(docs/spec-loose-ends.md). **ignores**: it fails, and recording it again "
@@ -48,12 +49,14 @@ def render(data: dict, matrix: dict | None = None) -> str:
         "fails though every probed field has an effect. **error**: X_ITE did not run it.", "",
         f"{counts['right']} right, {counts['conventions']} right with other conventions, {counts['ignores']} ignores, {counts['wrong']} wrong, {counts['error']} error, "
         f"in {data['wall_s']:g} s.", "",
-        "| case | " + "".join(f"{b} | " for b in backends) + "X_ITE | dt (s) | evidence | agrees with | recording |",
-        "|---|" + "---|" * len(backends) + "---|---:|---|---|---|"]
+        "| case | " + "".join(f"{b} | " for b in backends) + "X_ITE | frames/s | dt (s) | evidence | agrees with | "
+        "recording |",
+        "|---|" + "---|" * len(backends) + "---|---:|---:|---|---|---|"]
     for c in data["cases"]:
         cells = "".join(f"{verdicts.get((c['case'], b), '-')} | " for b in backends)
         rec = f"[{c['recording'].split('/')[-1]}]({c['recording']})" if c["recording"] else "-"
-        lines.append(f"| {c['case']} | {cells}{_SHOWN[c['verdict']]} | {num(c['dt'])} | {_evidence(c)} | "
+        rates = ", ".join(num(r) for r in c.get("frame_rates", [])) or "-"
+        lines.append(f"| {c['case']} | {cells}{_SHOWN[c['verdict']]} | {rates} | {num(c['dt'])} | {_evidence(c)} | "
                      f"{', '.join(c['agreeing']) or 'none'} | {rec} |")
     said = sorted({m for c in data["cases"] for m in c["messages"]})
     if said:

@@ -158,3 +158,13 @@ def test_bad_usage_is_one_line_and_exit_2(tmp_path, capsys, argv, says):
     assert cli_main(["x-ite", "cases", *argv, "--out", str(tmp_path)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("x3drbp x-ite: ") and says in err[0]
+
+
+@pytest.mark.parametrize("rate,reached", [(60.0, 60.0), (30.0, 30.0), (240.0, 60.0), (144.0, 72.0), (80.0, 40.0),
+                                          (500.0, 500.0 / 7), (1000.0, 1000.0 / 13)])
+def test_cases_faster_than_x_ite_draws_are_recorded_at_a_rate_it_reaches(rate, reached):
+    """X_ITE draws a frame only after more than 1/80 s (MaximumFrameRate): a case's rate
+    beyond that is divided down, so every recorded frame is one of the case's."""
+    got = x_ite.reachable_rate(rate)
+    assert got == pytest.approx(reached, rel=1e-15) and got < x_ite.MAXIMUM_FRAME_RATE
+    assert (rate / got) == pytest.approx(round(rate / got), rel=1e-12)

@@ -15,6 +15,7 @@ dt = 1 / (frame_rate * iterations) (`step`).
 from __future__ import annotations
 
 import json
+import math
 import os
 import shutil
 import signal
@@ -68,6 +69,18 @@ def outputs(scene: Scene) -> dict:
     if unnamed:
         raise NotRecordable(f"{', '.join(unnamed)}: a page reads nodes by DEF name, and these have none")
     return found
+
+
+# X_ITE draws a frame only when more than 1 / MaximumFrameRate seconds have passed since
+# the last (X3DBrowser.advanceTime), and its browser option MaximumFrameRate is 80 unless a
+# page changes it: no X_ITE of default options runs faster
+MAXIMUM_FRAME_RATE = 80.0
+
+
+def reachable_rate(rate: float) -> float:
+    """The case's frame rate where X_ITE reaches it; else rate / k for the least k that
+    brings it under X_ITE's maximum, so every frame still falls on one of the case's."""
+    return rate if rate < MAXIMUM_FRAME_RATE else rate / (math.floor(rate / MAXIMUM_FRAME_RATE) + 1)
 
 
 def step(scene: Scene, frame_rate: float) -> float:

@@ -1,7 +1,8 @@
 """X_ITE on the conformance cases: per case what it gets right, what it ignores and what it
 gets wrong, each measured by the suite's ordinary checks (`x3drbp validate`'s, unchanged).
 
-- Each case's runs are recorded in X_ITE at the case's frame rate and duration
+- Each case's runs are recorded in X_ITE at the case's frame rate (or, where that is beyond
+  what X_ITE draws, 80 frames/s, at the case's rate / k for the least k under it) and duration
   (conformance.browsers.x_ite.harness), and judged as any browser's traces are (conformance.analyses.validation): the
   case's expectation at the step X_ITE takes, and every backend run at that step.
 - A case it passes is RIGHT; one where only convention measures fail (a reading of a point
@@ -39,7 +40,7 @@ from conformance.cases.case import Case
 from conformance.analyses.trace_check import check_trace
 from conformance.analyses.validation import check_case, compare_with_backends
 from conformance.results import TraceComparison, Validation
-from conformance.browsers.x_ite.harness import NotRecordable, Recording, outputs, record, step
+from conformance.browsers.x_ite.harness import NotRecordable, Recording, outputs, reachable_rate, record, step
 
 RIGHT, CONVENTIONS, IGNORES, WRONG, ERROR = "right", "conventions", "ignores", "wrong", "error"
 NAME = "x_ite"  # X_ITE's name beside the backends' in comparisons and recordings
@@ -51,6 +52,8 @@ class CaseVerdict:
     verdict: str  # RIGHT, CONVENTIONS, IGNORES, WRONG or ERROR
     detail: str  # the failing measures, or what stopped the run
     dt: float | None = None  # the step X_ITE takes in this case
+    # the frame rates its runs were recorded at: the case's, or under X_ITE's maximum (80/s)
+    frame_rates: list[float] = field(default_factory=list)
     ignored: list[str] = field(default_factory=list)  # TYPE.field with no effect on X_ITE's trace
     probed: list[str] = field(default_factory=list)  # every TYPE.field probed (the scene sets it)
     agreeing: list[str] = field(default_factory=list)  # backends whose runs agree with X_ITE's
@@ -110,8 +113,8 @@ def _prepare(case: Case, folder: str) -> _Case:
     except NotRecordable as e:
         c.verdict = CaseVerdict(case.name, ERROR, str(e))
         return c
-    c.runs = [Recording(case.path, os.path.join(folder, f"{case.name}.{k}.csv"), s.rate, s.duration, what)
-              for k, s in enumerate(case.runs)]
+    c.runs = [Recording(case.path, os.path.join(folder, f"{case.name}.{k}.csv"), reachable_rate(s.rate), s.duration,
+                        what) for k, s in enumerate(case.runs)]
     return c
 
 
@@ -139,7 +142,7 @@ def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, results.Backend
             return
         rows_of.append(rows)
         views.append(TraceView(rows))
-    result = check_case(case, views, dt)
+    result = check_case(case, views, dt, [r.frame_rate for r in c.runs])
     comparisons = [compare_with_backends(case.path, r.out, rows, dt, backends, info, thresholds, timeout, NAME)
                    for r, rows in zip(c.runs, rows_of)]
     v = Validation(case.path, [r.out for r in c.runs], dict(thresholds), result, comparisons)
@@ -194,6 +197,7 @@ def run_cases(cases: Sequence[Case], folder: str, backends: Sequence[str], info:
     for c in prepared:
         if c.verdict is None:
             _judge(c, backends, info, thresholds, timeout, recordings)
+        c.verdict.frame_rates = [r.frame_rate for r in c.runs]
         progress(f"{c.case.name}: {c.verdict.verdict}")
     started = time.perf_counter()
     _probe(prepared, timeout)
