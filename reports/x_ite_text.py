@@ -25,6 +25,13 @@ def _evidence(c: dict) -> str:
     parts = []
     if c["ignored"]:
         parts.append(f"no effect: {', '.join(c['ignored'])}")
+        made = sorted({x for f in c["ignored"] for x in c.get("variants", {}).get(f, [])})
+        if made:
+            parts.append(f"probed on the scene with {'; '.join(made)}")
+    if c.get("blew_up_probed"):
+        causes = c.get("blow_up_causes", [])
+        parts.append(f"runs without its {', '.join(causes)}" if causes else
+                     f"blows up without any one of {', '.join(c['blew_up_probed'])} too")
     if c["detail"]:
         parts.append(c["detail"])
     if c["verdict"] == "wrong" and c["probed"]:

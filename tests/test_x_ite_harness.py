@@ -13,7 +13,8 @@ import pytest
 from conformance.browsers.x_ite import harness as x_ite
 from conformance.cli import main as cli_main
 from conformance.cases import CASES
-from conformance.browsers.x_ite.judge import probe_fields, without
+from conformance.browsers.x_ite.judge import probe_fields
+from conformance.browsers.x_ite.variants import CONTACT, MASS, needs, ready, without, without_nodes
 from conftest import case_scene
 from reports.report_page import report_markdown
 from reports.x_ite_text import render
@@ -168,3 +169,44 @@ def test_cases_faster_than_x_ite_draws_are_recorded_at_a_rate_it_reaches(rate, r
     got = x_ite.reachable_rate(rate)
     assert got == pytest.approx(reached, rel=1e-15) and got < x_ite.MAXIMUM_FRAME_RATE
     assert (rate / got) == pytest.approx(round(rate / got), rel=1e-12)
+
+
+def test_probes_need_what_lets_x_ite_show_their_field():
+    assert needs("RigidBody", "torques") == (MASS,)
+    assert needs("CollisionCollection", "bounce") == (CONTACT,)
+    assert needs("RigidBodyCollection", "contactSurfaceThickness") == (CONTACT,)
+    assert needs("SingleAxisHingeJoint", "minAngle") == ()
+
+
+def test_ready_gives_a_body_its_inertia_and_a_static_floor_a_fixed_body(tmp_path):
+    scene = tmp_path / "s.x3d"
+    scene.write_text(textwrap.dedent("""\
+        <X3D profile='Full' version='4.0'><Scene>
+          <CollisionCollection DEF='Coll'>
+            <CollidableShape DEF='Floor' containerField='collidables'><Shape containerField='shape'><Box size='4 0.1 4'/></Shape></CollidableShape>
+          </CollisionCollection>
+          <RigidBodyCollection DEF='World'>
+            <RigidBody DEF='Spun' mass='2' inertia='0.5 0 0 0 0.8 0 0 0 0.5'/>
+            <RigidBody DEF='Anchor' fixed='true'/>
+            <CollisionCollection USE='Coll' containerField='collider'/>
+          </RigidBodyCollection>
+        </Scene></X3D>"""))
+    out = str(tmp_path / "ready.x3d")
+    assert ready(str(scene), out, (MASS,)) == ["Spun given a collidable sphere of radius 0.866 m"]
+    spun = next(b for b in load(out).of_type("RigidBody") if b.def_name == "Spun")
+    sphere = spun.get("geometry")[0].get("shape").get("geometry")
+    assert sphere.get("radius") == pytest.approx((2.5 * 0.6 / 2) ** 0.5, rel=1e-12)  # 2/5 m r^2 = mean I
+    changes = ready(str(scene), out, (CONTACT,))
+    assert changes == ["Floor (a collidable on no body) held by the fixed RigidBody XITE_STATIC_1"]
+    ready_scene = load(out)
+    assert not ready_scene.errors, [str(d) for d in ready_scene.errors]
+    held = next(b for b in ready_scene.of_type("RigidBody") if b.def_name == "XITE_STATIC_1")
+    assert held.get("fixed") and held.get("geometry")[0].def_name == "Floor"
+    assert ready(str(scene), str(tmp_path / "none.x3d"), ()) == [] and not (tmp_path / "none.x3d").exists()
+
+
+def test_without_nodes_takes_a_joint_type_out(tmp_path):
+    out = str(tmp_path / "v.x3d")
+    assert without_nodes(case_scene("slider_stops"), "SliderJoint", out)
+    assert not load(out).of_type("SliderJoint") and not load(out).errors
+    assert not without_nodes(case_scene("free_fall"), "SliderJoint", out + "2")

@@ -9,11 +9,16 @@ gets wrong, each measured by the suite's ordinary checks (`x3drbp validate`'s, u
   the spec leaves open that is not ODE's) is CONVENTIONS: it conforms.
 - A case it fails is probed: for each field the case exercises (Case.exercises, where the
   feature is a field of a node type), the scene is recorded again with that field removed
-  from every node of the type, i.e. at its default. A field whose removal leaves X_ITE's
-  trace identical, byte for byte, has no effect in X_ITE: it IGNORES it. (Runs are
+  from every node of the type, i.e. at its default, and compared with the scene recorded
+  with it. Both are first made so X_ITE can show the field (variants.ready: a body's
+  collidable for its mass distribution, a fixed body under a static floor for contacts),
+  and the verdict names what was changed. A field whose removal leaves X_ITE's trace
+  identical, byte for byte, has no effect in X_ITE: it IGNORES it. (Runs are
   bit-identical, so any effect at all shows.) A failed case with no ignored field is WRONG.
-- A case whose state stops being finite blew up: WRONG, and not probed (a trace cut short
-  says nothing of what a field would have changed later).
+- A case whose state stops being finite blew up: WRONG, its fields not probed (a trace cut
+  short says nothing of what a field would have changed later); it is recorded again
+  without each joint type it has, and the types without which it runs are named as the
+  cause.
 - A case X_ITE cannot run (its page throws, the browser crashes or times out, the scene
   has an output the page cannot name) is an ERROR, with the reason.
 
@@ -29,8 +34,6 @@ import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 
-from lxml import etree
-
 from x3d_core import schema
 from x3d_core.load import load
 from x3d_core.trace import TraceView
@@ -41,6 +44,7 @@ from conformance.analyses.trace_check import check_trace
 from conformance.analyses.validation import check_case, compare_with_backends
 from conformance.results import TraceComparison, Validation
 from conformance.browsers.x_ite.harness import NotRecordable, Recording, outputs, reachable_rate, record, step
+from conformance.browsers.x_ite.variants import needs, ready, without, without_nodes
 
 RIGHT, CONVENTIONS, IGNORES, WRONG, ERROR = "right", "conventions", "ignores", "wrong", "error"
 NAME = "x_ite"  # X_ITE's name beside the backends' in comparisons and recordings
@@ -56,6 +60,10 @@ class CaseVerdict:
     frame_rates: list[float] = field(default_factory=list)
     ignored: list[str] = field(default_factory=list)  # TYPE.field with no effect on X_ITE's trace
     probed: list[str] = field(default_factory=list)  # every TYPE.field probed (the scene sets it)
+    # TYPE.field -> what its probe's scene changed so that X_ITE could show the field (variants.ready)
+    variants: dict[str, list[str]] = field(default_factory=dict)
+    blew_up_probed: list[str] = field(default_factory=list)  # joint types taken out of a case that blew up
+    blow_up_causes: list[str] = field(default_factory=list)  # those without which it no longer blows up
     agreeing: list[str] = field(default_factory=list)  # backends whose runs agree with X_ITE's
     recording: str | None = None  # the rerun recording, relative to the output folder
     wall_s: float = 0.0  # X_ITE's own recording time, all runs of the case
@@ -81,20 +89,6 @@ def probe_fields(case: Case) -> list[tuple[str, str]]:
     return out
 
 
-def without(scene: str, node_type: str, fld: str, out: str) -> bool:
-    """Writes the XML scene with `fld` removed from every `node_type` element (so at its
-    default) to `out`; False where no element sets it, or the scene is not XML."""
-    if not scene.endswith(".x3d"):
-        return False
-    tree = etree.parse(scene, etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False))
-    changed = [e for e in tree.iter(node_type) if fld in e.attrib]
-    for e in changed:
-        del e.attrib[fld]
-    if changed:
-        tree.write(out, xml_declaration=True, encoding="UTF-8")
-    return bool(changed)
-
-
 @dataclass
 class _Case:
     """A case under way: its recordings, then its judgement."""
@@ -102,7 +96,8 @@ class _Case:
     folder: str
     runs: list[Recording] = field(default_factory=list)
     verdict: CaseVerdict | None = None
-    probes: list[tuple[str, Recording]] = field(default_factory=list)  # (TYPE.field, its recording)
+    # (TYPE.field or joint TYPE, its recording, the recording it is compared with)
+    probes: list[tuple[str, Recording, Recording]] = field(default_factory=list)
 
 
 def _prepare(case: Case, folder: str) -> _Case:
@@ -164,25 +159,63 @@ def _record_divergence(case: Case, theirs: TraceView, comparison: TraceCompariso
 
 
 def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
-    """Records each failed case again without each field it exercises; a field whose removal
-    leaves the trace byte-identical is ignored."""
+    """Records each failed case again without each field it exercises, on a variant of the
+    scene where X_ITE can show that field (variants.ready): a field whose removal leaves the
+    trace byte-identical to the variant's own is ignored. A case that blew up is recorded
+    again without each joint type it has instead: the types without which it no longer
+    blows up are the cause."""
     probes: list[Recording] = []
     for c in cases:
-        if c.verdict is None or c.verdict.verdict != WRONG or any(r.blew_up for r in c.runs):
-            continue  # a trace cut short says nothing of what a field changes later
+        if c.verdict is None or c.verdict.verdict != WRONG:
+            continue
+        if any(r.blew_up for r in c.runs):  # a trace cut short says nothing of what a field changes later
+            probes += _blow_up_probes(c)
+            continue
         first = c.runs[0]
+        bases: dict[tuple[str, ...], tuple[Recording, list[str]]] = {(): (first, [])}
         for t, f in probe_fields(c.case):
+            need = needs(t, f)
+            if need not in bases:
+                path = os.path.join(c.folder, f"{c.case.name}.x_ite-ready.{len(bases)}.x3d")
+                changes = ready(c.case.path, path, need)
+                base = Recording(path, path[:-4] + ".csv", first.frame_rate, first.duration,
+                                 outputs(load(path))) if changes else first
+                bases[need] = (base, changes)
+                if changes:
+                    probes.append(base)
+            base, changes = bases[need]
             variant = os.path.join(c.folder, f"{c.case.name}.without-{t}.{f}.x3d")
             if without(c.case.path, t, f, variant):
-                r = Recording(variant, variant[:-4] + ".csv", first.frame_rate, first.duration, first.what)
-                c.probes.append((f"{t}.{f}", r))
+                if changes:
+                    ready(variant, variant, need)
+                r = Recording(variant, variant[:-4] + ".csv", first.frame_rate, first.duration, base.what)
+                c.probes.append((f"{t}.{f}", r, base))
+                c.verdict.variants[f"{t}.{f}"] = changes
                 probes.append(r)
-        c.verdict.probed = [name for name, _ in c.probes]
+        c.verdict.probed = [name for name, _, _ in c.probes]
     record(probes, timeout_per_run * max(1, len(probes)))
     for c in cases:
-        ignored = [name for name, r in c.probes if r.ok and filecmp.cmp(r.out, c.runs[0].out, shallow=False)]
+        if c.verdict is not None and c.verdict.blew_up_probed:
+            c.verdict.blow_up_causes = [name for name, r, _ in c.probes if r.ok and not r.blew_up]
+            continue
+        ignored = [name for name, r, base in c.probes
+                   if r.ok and base.ok and filecmp.cmp(r.out, base.out, shallow=False)]
         if ignored:
             c.verdict.verdict, c.verdict.ignored = IGNORES, ignored
+
+
+def _blow_up_probes(c: _Case) -> list[Recording]:
+    """The case's scene without each of its joint types, to be recorded."""
+    first, out = c.runs[0], []
+    for t in sorted({n.type_name for n in load(c.case.path).nodes() if schema.node_type(n.type_name) is not None
+                     and schema.node_type(n.type_name).is_a("X3DRigidJointNode")}):
+        variant = os.path.join(c.folder, f"{c.case.name}.without-{t}.x3d")
+        if without_nodes(c.case.path, t, variant):
+            r = Recording(variant, variant[:-4] + ".csv", first.frame_rate, first.duration, outputs(load(variant)))
+            c.probes.append((t, r, first))
+            out.append(r)
+    c.verdict.blew_up_probed = [name for name, _, _ in c.probes]
+    return out
 
 
 def run_cases(cases: Sequence[Case], folder: str, backends: Sequence[str], info: Mapping[str, results.BackendInfo],
