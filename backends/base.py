@@ -64,14 +64,21 @@ EVALUATOR: dict[str, Declared] = native(
     *(f"{j}.forceOutput" for j in ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint",
                                    "UniversalJoint", "MotorJoint")),
     # MotorJoint is ODE's AMotor: torques the evaluator applies through set_loads
-    "MotorJoint", "MotorJoint.enabledAxes", "MotorJoint.autoCalc",
+    "MotorJoint", "MotorJoint.enabledAxes",
     *(f"MotorJoint.axis{k}{f}" for k in (1, 2, 3) for f in ("Angle", "Torque")),
     *(f"MotorJoint.motor{k}Axis" for k in (1, 2, 3)),
     # all three engines turn a body by the exponential map of its angular velocity: ODE's
     # finite rotation mode, whatever the flag says
     "RigidBody.useFiniteRotation") | approximate(
-    "bodies on no joint stop after disableTime under both speed thresholds (ODE disables islands of "
-    "jointed bodies together; those never stop here)",
+    "motorNAngle is the twist of body1's rotation relative to body2 (from the start) about each motor axis "
+    "separately; ODE's Euler mode (Xj3D) splits that rotation into three Euler angles about axis 1, the axis "
+    "perpendicular to 1 and 3, and axis 3: the same with one axis, different where several axes turn at once",
+    "MotorJoint.autoCalc") | approximate(
+    "bodies on no joint stop after disableTime with any one speed under its threshold (the clause's 'any one "
+    "of these values'; ODE needs both) and are held (velocities zeroed, weight cancelled; an engine's contact "
+    "may still take back the depth they rest at); a new contact, a contact with an awake body, or an applied "
+    "force or torque wakes them (ODE: an enabled body touching or joined to them); "
+    "ODE disables islands of jointed bodies together, here jointed bodies never stop",
     "RigidBody.autoDisable", "RigidBody.disableLinearSpeed", "RigidBody.disableAngularSpeed", "RigidBody.disableTime",
     "RigidBodyCollection.autoDisable", "RigidBodyCollection.disableLinearSpeed",
     "RigidBodyCollection.disableAngularSpeed", "RigidBodyCollection.disableTime") | approximate(

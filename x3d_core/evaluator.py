@@ -55,7 +55,10 @@ class RunSettings:
 
 
 class _Damping:
-    """autoDamp as ODE defines it: each step takes a fraction of each velocity away."""
+    """autoDamp as ODE defines it: each step takes a fraction of each velocity away. The spec
+    (37.4.10) damps "a multiple of the value calculated in the last frame" each frame; its model
+    evaluates the physics once a frame, and damping once a step keeps the motion independent of
+    the frame rate (conformance case damping accepts once a frame and once a step)."""
 
     def __init__(self, world: World):
         b = world.bodies
@@ -91,11 +94,32 @@ class _Motors:
 
 
 class _AutoDisable:
-    """autoDisable as ODE's auto-disable: a body whose linear and angular speeds stay under
-    its thresholds for disableTime seconds stops; nothing in a run without contacts wakes
-    it. A body's own thresholds apply where its autoDisable is TRUE, else the collection's
-    where that is. Only bodies on no joint take part: ODE disables whole islands of
-    jointed bodies at once, which x3drbp does not model (declared approximate)."""
+    """autoDisable as clause 37 words it: "Once any one of these values is achieved, the body
+    is considered as being at rest, unless acted upon by an external force (e.g., collision
+    or action of connected joint)".
+
+    Disabling, the literal reading: a candidate body whose linear speed is under its
+    disableLinearSpeed OR whose angular speed is under its disableAngularSpeed (any one of
+    the speed values) at every step for disableTime seconds (ceil(disableTime/dt) steps) is
+    disabled. disableTime is read as the interval the condition must hold ("interval when
+    body becomes at rest"), not as a third alternative: alone it has no clock to count from
+    and would stop every body, however fast, at that time. ODE's reading (both speeds under
+    their thresholds for the time) is the documented alternative; it disables later or never.
+
+    A disabled body is held: no loads (its gravity cancelled), velocities zeroed after every
+    step. It wakes (idle clock reset, the step's velocities kept) when acted upon:
+    - a contact: one the body did not have at the step before (a new collision, with a body
+      or the environment), or one with a body that is awake (ODE wakes a disabled body an
+      enabled one touches). The contact it rests on does not wake it. Contacts are read only
+      while some body is disabled: scenes without autoDisable, or before a body stops, pay
+      nothing;
+    - a force or torque: RigidBody.forces/torques are constant in a run (x3drbp has no
+      events), so a body with a non-zero one is acted upon at every step and never disabled;
+      wake() is the hook for loads or velocities set during a run.
+    A body's own thresholds apply where its autoDisable is TRUE, else the collection's where
+    that is. Only bodies on no joint take part: ODE disables whole islands of jointed bodies
+    at once, and a joint's action wakes them, which x3drbp does not model (declared
+    approximate)."""
 
     def __init__(self, world: World, dt: float):
         b = world.bodies
@@ -110,16 +134,52 @@ class _AutoDisable:
         self.candidates = (b.auto_disable | on_collection) & ~b.fixed & ~jointed
         self.thresholds = np.where(b.auto_disable[:, None], b.disable_thresholds, collection)
         self.active = bool(self.candidates.any())
+        # acted upon by an applied force or torque at every step
+        self.pushed = np.any(b.forces != 0.0, axis=1) | np.any(b.torques != 0.0, axis=1)
         # idle time counted in whole steps, so that 0.5 s at 1/240 s is 120 steps, not 121
         self.needed = np.ceil(self.thresholds[:, 2] / dt - _STEP_SLACK)
         self.idle = np.zeros(len(b))
         self.disabled = np.zeros(len(b), dtype=bool)
+        geometries = world.collisions.geometries if world.collisions is not None else []
+        self.geometry_body = np.array([g.body for g in geometries], dtype=int)
+        self.touching: set[tuple[int, int]] = set()  # geometry pairs in contact at the last step, if any body is off
 
-    def update(self, s: State) -> None:
-        slow = (np.linalg.norm(s.linear_velocity, axis=1) < self.thresholds[:, 0]) & \
+    def wake(self, rows: np.ndarray) -> None:
+        """Rows acted upon (a load or velocity set on them): awake, their idle clock reset."""
+        self.disabled[rows] = False
+        self.idle[rows] = 0
+
+    def update(self, s: State, sim: Simulation) -> None:
+        """After a step: wake the disabled bodies a contact acts on, then count idle steps and
+        disable the bodies whose time has come."""
+        pairs = None
+        if self.disabled.any() and len(self.geometry_body):
+            pairs = self._pairs(sim)
+            self.wake(self._struck(pairs))
+        slow = (np.linalg.norm(s.linear_velocity, axis=1) < self.thresholds[:, 0]) | \
             (np.linalg.norm(s.angular_velocity, axis=1) < self.thresholds[:, 1])
-        self.idle = np.where(slow & self.candidates, self.idle + 1, 0)
-        self.disabled |= self.candidates & (self.idle >= self.needed) & slow
+        self.idle = np.where(slow & self.candidates & ~self.pushed, self.idle + 1, 0)
+        self.disabled |= self.candidates & (self.idle >= self.needed)
+        if self.disabled.any() and len(self.geometry_body):
+            self.touching = self._pairs(sim) if pairs is None else pairs
+        else:
+            self.touching = set()
+
+    def _pairs(self, sim: Simulation) -> set[tuple[int, int]]:
+        pts = sim.contacts()
+        return {(min(a, b), max(a, b)) for a, b in zip(pts.geometry1.tolist(), pts.geometry2.tolist())}
+
+    def _struck(self, pairs: set[tuple[int, int]]) -> np.ndarray:
+        """The disabled rows a contact acts on: a new contact, or one with an awake body."""
+        rows = []
+        for pair in pairs:
+            bodies = self.geometry_body[list(pair)]
+            new = pair not in self.touching
+            for me, other in ((bodies[0], bodies[1]), (bodies[1], bodies[0])):
+                if me != STATIC and self.disabled[me] and (
+                        new or (other != STATIC and not self.disabled[other])):
+                    rows.append(me)
+        return np.array(rows, dtype=int)
 
 
 class _StepInputs:
@@ -134,10 +194,13 @@ class _StepInputs:
         self.active = self.damping.active or self.motors.active or self.disable.active
         b = world.bodies
         self.weight = b.mass[:, None] * world.gravity * b.use_gravity[:, None]
+        self.held = False  # loads set with a disabled body's weight cancelled
 
     def before(self, sim: Simulation) -> None:
-        if not (self.motors.active or self.disable.disabled.any()):
+        held = bool(self.disable.disabled.any())
+        if not (self.motors.active or held or self.held):  # self.held: a body woke, its loads come back
             return
+        self.held = held
         b = self.world.bodies
         forces, torques = b.forces.copy(), b.torques.copy()
         self.motors.add_torques(torques, sim.state())
@@ -153,7 +216,7 @@ class _StepInputs:
         lin = s.linear_velocity * self.damping.keep_linear
         ang = s.angular_velocity * self.damping.keep_angular
         if self.disable.active:
-            self.disable.update(s)
+            self.disable.update(s, sim)
             lin[self.disable.disabled] = 0.0
             ang[self.disable.disabled] = 0.0
         sim.set_velocities(lin, ang)
