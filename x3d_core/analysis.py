@@ -6,7 +6,9 @@ Backend.support; `x3drbp run` exits 3): nothing is ignored silently. 'RigidBody'
 node type in use, 'RigidBody.mass' for an input field given a value other than its
 default, and derived names for what a field alone does not say
 ('RigidBody.inertia.offDiagonal', 'SingleAxisHingeJoint.limits',
-'CollidableShape.geometry.Cone', 'CollisionCollection.appliedParameters.SLIP-1').
+'CollidableShape.geometry.Cone', 'CollisionCollection.appliedParameters.SLIP-1'; its
+FRICTION_COEFFICIENT-2 only where the two frictionCoefficients differ: with equal ones the
+flag asks for nothing beyond isotropic friction).
 """
 
 from __future__ import annotations
@@ -126,7 +128,11 @@ def features(scene: Scene) -> list[str]:
             if geom is not None:
                 out.add(f"CollidableShape.geometry.{geom.type_name}")
         if t in ("CollisionCollection", "Contact"):
-            out.update(f"{t}.appliedParameters.{p}" for p in applied(n.get("appliedParameters")))
+            on = applied(n.get("appliedParameters"))
+            fc = np.asarray(n.get("frictionCoefficients"), dtype=np.float64)
+            if fc[0] == fc[1]:  # one coefficient both ways: what every reading of the flag applies
+                on = on - {"FRICTION_COEFFICIENT-2"}
+            out.update(f"{t}.appliedParameters.{p}" for p in on)
         if n.spec.is_a("X3DRigidJointNode") and n.get("forceOutput") != ["NONE"]:
             out.add(f"{t}.forceOutput")
     for r in scene.routes:  # inputs that change during a run

@@ -37,13 +37,18 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Expectation
-from conformance.results import Measure, Settings
+from conformance.results import Basis, Measure, Settings, convention, spec
 
 ROUNDING = 1e-9
 ROUNDING_ANGLE = 1e-7  # rad
 STEP_SLACK = 1e-9  # as x3d_core.evaluator: a frame within 1e-9 step of a step boundary is on it
 G = 9.81  # the non-default gravity the scenes use
 G_DEFAULT = 9.8
+# the spec's sentences more than one case enforces (ISO/IEC 19775-1 V3.3, clause 37.4)
+GRAVITY = spec("37.4.11 RigidBodyCollection: The gravity field indicates direction and strength of the local "
+               "gravity vector for this collection of bodies.")
+FORCES = spec("37.4.10 RigidBody: The torques and forces fields define zero or more sets of torque and force "
+              "values that are applied to the object every frame.")
 # constraint drift, shared by the ball chain and the universal joint
 ERROR_CORRECTION = 0.8  # RigidBodyCollection.errorCorrection default: the scenes leave it
 
@@ -77,8 +82,10 @@ def ellipk(k: float) -> float:
     return math.pi / (2.0 * agm(1.0, math.sqrt(1.0 - k * k)))
 
 
-def ballistic(body: str, p0: Sequence[float], v0: Sequence[float], a: Sequence[float]) -> Expectation:
-    """A body under a constant acceleration a: p = p0 + v0 t + a t^2/2, v = v0 + a t.
+def ballistic(body: str, p0: Sequence[float], v0: Sequence[float], a: Sequence[float],
+              basis: Basis | None = None) -> Expectation:
+    """A body under a constant acceleration a: p = p0 + v0 t + a t^2/2, v = v0 + a t (both
+    measures held to `basis`: the sentence of the spec that gives the body that acceleration).
 
     Velocity: exact for any one-step scheme, so only ROUNDING. Position: |a| t dt / 2 (the
     module's argument), evaluated at the last frame, where the error is largest."""
@@ -94,9 +101,9 @@ def ballistic(body: str, p0: Sequence[float], v0: Sequence[float], a: Sequence[f
         T = float(tp[-1, 0])
         scale = 1.0 + np.linalg.norm(p0) + np.linalg.norm(v0) * T + np.linalg.norm(a) * T * T
         return [Measure(f"{body}.linearVelocity", max_norm(v - v_exact),
-                        ROUNDING * (1.0 + np.linalg.norm(v0) + np.linalg.norm(a) * T), "m/s"),
+                        ROUNDING * (1.0 + np.linalg.norm(v0) + np.linalg.norm(a) * T), "m/s", basis),
                 Measure(f"{body}.position", max_norm(p - p_exact),
-                        0.5 * float(np.linalg.norm(a)) * T * s.dt + ROUNDING * scale, "m")]
+                        0.5 * float(np.linalg.norm(a)) * T * s.dt + ROUNDING * scale, "m", basis)]
     return expect
 
 
@@ -135,26 +142,41 @@ def omega(tr: TraceView, body: str) -> np.ndarray:
 # one contact point (ODE shares it among up to 4 box corners: 4 times less).
 CFM_DEFAULT, ERP_DEFAULT = 1e-4, 0.8
 
+# the spec's sentences the contact cases enforce (ISO/IEC 19775-1 V3.3), and the readings they
+# check where it is silent
+FRICTION = spec('37.4.4 CollisionCollection, table 37.2 appliedParameters: "FRICTION_COEFFICIENT-2": '
+                'Apply frictionCoefficients values')
+BOUNCE = spec("37.4.4 CollisionCollection: The bounce field indicates how bouncy the surface contact is. A value "
+              "of 0 indicates no bounce at all while a value of 1 indicates maximum bounce.")
+FRICTION_DIRECTIONS = convention(
+    "ODE's friction directions: without USER_FRICTION, direction 1 is dPlaneSpace of the normal (-x, then +z, "
+    "for an upward normal), which frictionCoefficients, surfaceSpeed and slipFactors components 1 and 2 follow; "
+    "the spec says only that the system computes a direction perpendicular to the normal, and other engines "
+    "take other tangents (MuJoCo's first is world z, Bullet's follows the relative velocity)")
 
-def friction_velocity(boxes: dict[str, tuple[float, float, float, np.ndarray]]) -> Expectation:
-    """Boxes (name -> mu, v0, target, direction) whose velocity along a friction direction changes
-    at mu g until it reaches its target (0 for a pushed box, the surface speed on a belt). Friction
-    is mu times the normal impulse, which over [0, t] is m g t up to the box's vertical momentum
-    (its vertical speed within g h, the contact acting at most a step late), and a first step
-    without contact loses mu g h of friction: |v - closed form| <= 2 mu g h (and the rate of a
-    row at its target: a velocity row is on it, or a step at mu g off it)."""
+
+def friction_fit(tr: TraceView, s: Settings, name: str, mu: float, v0: float, target: float,
+                 direction: np.ndarray) -> tuple[float, float]:
+    """A box whose velocity along a friction direction changes at mu g until it reaches its target
+    (0 for a pushed box, the surface speed on a belt): max |v - closed form| over the run, and its
+    tolerance. Friction is mu times the normal impulse, which over [0, t] is m g t up to the box's
+    vertical momentum (its vertical speed within g h, the contact acting at most a step late), and
+    a first step without contact loses mu g h of friction: |v - closed form| <= 2 mu g h (and the
+    rate of a row at its target: a velocity row is on it, or a step at mu g off it)."""
+    t, v = tr.series(name, "linearVelocity")
+    tp = physics_time(t, s.dt)
+    gap = v0 - target
+    along = target + np.sign(gap) * np.maximum(abs(gap) - mu * G * tp, 0.0)
+    return (max_norm(v - np.outer(along, direction)),
+            2 * mu * G * s.dt + ROUNDING * (1 + abs(v0) + abs(target)))
+
+
+def friction_velocity(boxes: dict[str, tuple[float, float, float, np.ndarray]], basis: Basis) -> Expectation:
+    """Boxes (name -> mu, v0, target, direction), each held to friction_fit() under `basis`."""
     def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
-        tr, s = traces[0], settings[0]
-        out = []
-        for name, (mu, v0, target, direction) in boxes.items():
-            t, v = tr.series(name, "linearVelocity")
-            tp = physics_time(t, s.dt)
-            gap = v0 - target
-            along = target + np.sign(gap) * np.maximum(abs(gap) - mu * G * tp, 0.0)
-            out.append(Measure(f"{name}.linearVelocity (mu = {mu:g} along {direction.tolist()})",
-                               max_norm(v - np.outer(along, direction)),
-                               2 * mu * G * s.dt + ROUNDING * (1 + abs(v0) + abs(target)), "m/s"))
-        return out
+        return [Measure(f"{name}.linearVelocity (mu = {mu:g} along {direction.tolist()})",
+                        *friction_fit(traces[0], settings[0], name, mu, v0, target, direction), "m/s", basis)
+                for name, (mu, v0, target, direction) in boxes.items()]
     return expect
 
 
@@ -183,16 +205,20 @@ def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
 KEPT_START, GHOST_START, BALL_MASS = np.array([-0.5, 0.1, 0.0]), np.array([0.5, 0.1, 0.0]), 1.0
 
 
-def kept_rests_ghost_falls(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+def kept_rests_ghost_falls(basis: Basis) -> Expectation:
     """Ghost: the ballistic closed form (nothing touches it). Kept: at rest on the floor within one
     step of unresisted fall (g h^2, g h) and ODE's softness (sinking to CFM m g h / ERP, at a speed
-    at most CFM m g)."""
-    tr, s = traces[0], settings[0]
-    h = s.dt
-    _, p = tr.series("Kept", "position")
-    _, v = tr.series("Kept", "linearVelocity")
-    kept = [Measure("Kept |position - start| (rests on the floor)", max_norm(p - KEPT_START),
-                    G * h * h + CFM_DEFAULT * BALL_MASS * G * h / ERP_DEFAULT + ROUNDING, "m"),
-            Measure("Kept |linearVelocity|", max_norm(v), G * h + CFM_DEFAULT * BALL_MASS * G + ROUNDING, "m/s")]
-    ghost = ballistic("Ghost", GHOST_START, (0, 0, 0), (0, -G, 0))(traces, settings)
-    return kept + [Measure(m.quantity + " (falls through the floor)", m.error, m.tolerance, m.unit) for m in ghost]
+    at most CFM m g). Every measure held to `basis`: the sentence that says which shapes collide."""
+    def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+        tr, s = traces[0], settings[0]
+        h = s.dt
+        _, p = tr.series("Kept", "position")
+        _, v = tr.series("Kept", "linearVelocity")
+        kept = [Measure("Kept |position - start| (rests on the floor)", max_norm(p - KEPT_START),
+                        G * h * h + CFM_DEFAULT * BALL_MASS * G * h / ERP_DEFAULT + ROUNDING, "m", basis),
+                Measure("Kept |linearVelocity|", max_norm(v), G * h + CFM_DEFAULT * BALL_MASS * G + ROUNDING, "m/s",
+                        basis)]
+        ghost = ballistic("Ghost", GHOST_START, (0, 0, 0), (0, -G, 0))(traces, settings)
+        return kept + [Measure(m.quantity + " (falls through the floor)", m.error, m.tolerance, m.unit, basis)
+                       for m in ghost]
+    return expect

@@ -11,12 +11,14 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, G, ERROR_CORRECTION, max_norm, omega
-from conformance.results import Measure, Settings
+from conformance.results import Measure, Settings, spec
 
 
 # ball_chain.x3d: link k joins Link k (body1) to Link k-1 (body2, Anchor for k = 1), anchors
 # at each link's end, 0.1 m from the link's centre
 CHAIN_LINKS, CHAIN_R, CHAIN_MASS, CHAIN_I, CHAIN_LENGTH = 5, 0.1, 0.2, 0.001, 1.0
+JOINED = spec("37.4.1 BallJoint: body1AnchorPoint and body2AnchorPoint ... can be used to detect if the joint has "
+              "caused a separation if the two values are not the same for a given frame.")
 
 
 def _omega_cap(inertia: float) -> float:
@@ -48,7 +50,7 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
         errors.append(max_norm(a1 - a2))
         bounds.append(float(np.max(w1 ** 2 * CHAIN_R + w2 ** 2 * r2)) * s.dt ** 2 / (2 * ERROR_CORRECTION))
     worst = int(np.argmax(np.array(errors) / (np.array(bounds) + ROUNDING)))
-    return [Measure(f"Joint{worst + 1} anchor gap (worst joint)", errors[worst], bounds[worst] + ROUNDING, "m")]
+    return [Measure(f"Joint{worst + 1} anchor gap (worst joint)", errors[worst], bounds[worst] + ROUNDING, "m", JOINED)]
 
 
 CASE = Case("ball_chain", "ball_chain.x3d",

@@ -10,7 +10,7 @@ from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, physics_time, max_norm
+from conformance.cases.closed_forms import FORCES, ROUNDING, ROUNDING_ANGLE, physics_time, max_norm
 from conformance.results import Measure, Settings
 
 
@@ -30,9 +30,9 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     w_exact = np.outer(alpha * tp, [0.0, 0.0, 1.0])
     q_exact = R.from_axis_angle(np.column_stack([np.zeros((len(tp), 2)), np.ones(len(tp)), 0.5 * alpha * tp ** 2]))
     T = float(tp[-1])
-    return [Measure("Spun.angularVelocity", max_norm(w - w_exact), ROUNDING * (1 + alpha * T), "rad/s"),
+    return [Measure("Spun.angularVelocity", max_norm(w - w_exact), ROUNDING * (1 + alpha * T), "rad/s", FORCES),
             Measure("Spun.orientation", float(np.max(R.angle_between(R.from_axis_angle(rot), q_exact))),
-                    0.5 * alpha * T * s.dt + ROUNDING_ANGLE, "rad")]
+                    0.5 * alpha * T * s.dt + ROUNDING_ANGLE, "rad", FORCES)]
 
 
 CASE = Case("constant_torque", "constant_torque.x3d",

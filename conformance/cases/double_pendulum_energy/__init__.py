@@ -12,7 +12,7 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, G, steps, max_norm
-from conformance.results import Measure, Settings
+from conformance.results import Measure, Settings, spec
 
 
 # double_pendulum_energy.x3d: absolute angles phi from the downward vertical, about +z
@@ -21,6 +21,7 @@ DP_M2, DP_D2, DP_I2 = 1.5, 0.4, 0.08  # mass, elbow-centre, I_zz
 DP_PHI = (math.radians(30.0), math.radians(45.0))
 DP_INERTIA = {"Upper": np.diag([0.1, 0.1, DP_I1]), "Lower": np.diag([0.05, 0.05, DP_I2])}
 DP_MASS = {"Upper": DP_M1, "Lower": DP_M2}
+HINGES = spec("37.4.12 SingleAxisHingeJoint: This node represents a joint with a single axis about which to rotate.")
 
 
 def _dp_matrices(phi1: float, phi2: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -90,17 +91,18 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     n = steps(t, s.dt)
     drift = (d["E0"] - d["Emin"]) * ((1.0 + (d["omega_max"] * s.dt) ** 2) ** float(n[-1]) - 1.0)
     out = [Measure("double pendulum |E - E0|", float(np.max(np.abs(energy - d["E0"]))),
-                   drift + ROUNDING * (1 + abs(d["E0"])), "J")]
+                   drift + ROUNDING * (1 + abs(d["E0"])), "J", HINGES)]
     first = np.flatnonzero(n == 1)
     for k, name in enumerate(DP_MASS):
         a0 = float(d["accel0"][k])
         tol = ROUNDING * (1 + abs(a0) * s.dt) + s.dt ** 3 * d["stiffness0"] * abs(a0)
         if not first.size:
-            out.append(Measure(f"{name}.angularVelocity after one step (no frame there)", math.inf, tol, "rad/s"))
+            out.append(Measure(f"{name}.angularVelocity after one step (no frame there)", math.inf, tol, "rad/s",
+                               HINGES))
             continue
         _, w = tr.series(name, "angularVelocity")
         out.append(Measure(f"{name}.angularVelocity after one step - h q''(0)",
-                           max_norm(w[first[:1]] - np.array([0.0, 0.0, a0 * s.dt])), tol, "rad/s"))
+                           max_norm(w[first[:1]] - np.array([0.0, 0.0, a0 * s.dt])), tol, "rad/s", HINGES))
     return out
 
 

@@ -11,7 +11,7 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, G, physics_time, max_norm
-from conformance.results import Measure, Settings
+from conformance.results import Measure, Settings, convention, spec
 
 
 # erp_cfm_spring.x3d: two weights, each on a vertical slider (the tree joint) and a ball joint
@@ -19,6 +19,12 @@ from conformance.results import Measure, Settings
 SPRING_ERP, SPRING_CFM = 0.2, 1e-5
 SPRING_WEIGHTS = {"Light": (1.0, np.array([0.0, 1.0, 0.0])), "Heavy": (4.0, np.array([1.0, 1.0, 0.0]))}
 SPRING_SETTLED = 0.5  # s: measured from here on
+SOFT = spec("37.4.11 RigidBodyCollection: The larger the value, the more soft each of the constraints being "
+            "evaluated. A value of zero indicates hard constraints so that everything is exactly honoured.")
+ODE_SPRING = convention("errorCorrection and constantForceMix are ODE's ERP and CFM of every joint row, a spring "
+                        "k = ERP/(h CFM) whatever hangs from it (x3drbp, ODE, Xj3D, FreeWRL); alternatives: a "
+                        "softness scaled by each row's effective mass (Bullet's, MuJoCo's solref), or other "
+                        "units for either field")
 
 
 def spring_constants(dt: float, erp: float = SPRING_ERP, cfm: float = SPRING_CFM) -> tuple[float, float]:
@@ -48,7 +54,13 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     c/k = (1 - ERP) h / ERP = 4 steps; from rest at the unsprung position the gap's distance from
     its fixed point stays below sag exp(-t k / c) (the slow mode; the fast one, m/c, is shorter
     than a step), 1e-13 of the sag by 0.5 s. What is left is rounding of the positions (O(1) m):
-    ROUNDING per metre."""
+    ROUNDING per metre.
+
+    What the spec says is less: constantForceMix > 0 makes the joints soft, so each weight's
+    loop-closing joint yields under its load, down: its sag (the gap's downward component, mean
+    from 0.5 s on) must be measurable, above 10 ROUNDING per metre (ODE's is 2 and 8 um here),
+    where a hard joint has none (spec measures). The size of the sag, m g / k, is ODE's reading
+    of the two fields (convention measures)."""
     tr, s = traces[0], settings[0]
     k, c = spring_constants(s.dt)
     out = []
@@ -58,8 +70,12 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
         late = physics_time(t, s.dt) >= SPRING_SETTLED
         sag = m * G / k
         error = max_norm((a1 - a2)[late] - np.array([0.0, -sag, 0.0])) if late.any() else math.inf
-        tol = sag * math.exp(-SPRING_SETTLED * k / c) + ROUNDING * (1 + float(np.linalg.norm(anchor)))
-        out.append(Measure(f"{name}Hold gap - (0, -m g/k, 0), m = {m:g} kg", error, tol, "m"))
+        rounding = ROUNDING * (1 + float(np.linalg.norm(anchor)))
+        tol = sag * math.exp(-SPRING_SETTLED * k / c) + rounding
+        yielded = -float(np.mean((a1 - a2)[late, 1])) if late.any() else -math.inf
+        out.append(Measure(f"{name}Hold sag (a soft joint yields), short of 10 ROUNDING",
+                           max(0.0, 10 * rounding - yielded), 0.0, "m", SOFT))
+        out.append(Measure(f"{name}Hold gap - (0, -m g/k, 0), m = {m:g} kg", error, tol, "m", ODE_SPRING))
     return out
 
 

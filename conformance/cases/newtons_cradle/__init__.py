@@ -10,7 +10,7 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import G, CFM_DEFAULT
+from conformance.cases.closed_forms import G, CFM_DEFAULT, BOUNCE
 from conformance.results import Measure, Settings
 
 
@@ -47,13 +47,13 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     tol_pass = 1 - (1 + gamma) ** -(NC_BALLS - 1) + drag
     tol_left = gamma + drag
     if not moved.size or moved[0] == 0:
-        return [Measure(names[0], math.inf, tol_pass), Measure(names[1], math.inf, tol_left)]
+        return [Measure(names[0], math.inf, tol_pass, basis=BOUNCE), Measure(names[1], math.inf, tol_left, basis=BOUNCE)]
     v = float(speed[1][moved[0] - 1])
     fastest = int(np.argmax(speed[5]))
     after = min(fastest + 5, len(speed[5]) - 1)
     left = max(float(speed[k][after]) for k in range(1, NC_BALLS))
-    return [Measure(names[0], abs(float(speed[5][fastest]) / v - 1), tol_pass),
-            Measure(names[1], left / v, tol_left)]
+    return [Measure(names[0], abs(float(speed[5][fastest]) / v - 1), tol_pass, basis=BOUNCE),
+            Measure(names[1], left / v, tol_left, basis=BOUNCE)]
 
 
 CASE = Case("newtons_cradle", "newtons_cradle.x3d",

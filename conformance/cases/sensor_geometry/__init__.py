@@ -11,7 +11,7 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, G, CFM_DEFAULT, ERP_DEFAULT, steps, sensor_contacts
-from conformance.results import Measure, Settings
+from conformance.results import Measure, Settings, convention, spec
 
 
 # sensor_geometry.x3d: Ball (0.2 kg, r 0.1) on Block (1 kg, 0.4 x 0.2 x 0.4) on the static Floor
@@ -19,13 +19,31 @@ SG_BALL_M, SG_BLOCK_M, SG_R, SG_BLOCK_HALF, SG_WIDTH = 0.2, 1.0, 0.1, 0.1, 0.4
 SG_LOWER = {frozenset(("Floor", "BlockShape")): "Floor", frozenset(("BlockShape", "BallShape")): "BlockShape"}
 SG_BODY = {"Floor": "NULL", "BlockShape": "Block", "BallShape": "Ball"}
 
+# ISO/IEC 19775-1 V3.3: 37.4.5 CollisionSensor, 37.4.7 Contact
+ACTIVE = spec("37.4.5 CollisionSensor: The CollisionSensor is active (isActive is TRUE) when contacts were located "
+              "as a result of the movement of the watched objects from last frame.")
+INTERSECTIONS = spec("37.4.5 CollisionSensor: The intersections field is used to report the colliding geometry that "
+                     "was detected in this last frame.")
+CONTACTS = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were generated as a "
+                "result of the scene graph changes last frame.")
+NAMES = spec("37.4.7 Contact: The geometry1 and geometry2 fields specify information about body1 and body2.")
+NORMAL = spec("37.4.7 Contact: The contactNormal field is a unit vector describing the normal between the two "
+              "colliding bodies.")
+NORMAL_DIRECTION = convention(
+    "x3drbp's: contactNormal points from geometry1 towards geometry2 (ODE's dContactGeom normal, which points from "
+    "geom 2 into geom 1, turned round); Xj3D and X_ITE report it pointing towards geometry1")
+DEPTH = spec("37.4.7 Contact: The depth field indicates how deep the current intersection is along the normal vector.")
+POSITION = spec("37.4.7 Contact: The position field indicates the exact location of the contact that was made "
+                "between the two objects.")
+
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
     """Every contact of every frame after the first step (the sensor reports the last step's).
 
     Depth: the resting penetration (no surface layer): one step of unresisted fall g h^2 plus ODE's
     softness CFM f h / ERP, f the largest load on a contact (ball and block on the floor).
-    Normal: (0, +-1, 0) by which geometry is lower; the block may tilt by uneven sinking of its
+    Normal: along the vertical (the spec: a unit vector along the normal, either sign), and (0, +-1, 0)
+    by which geometry is lower (x3drbp's direction, a convention); the block may tilt by uneven sinking of its
     edges, at most twice the depth bound over its width, and its faces' normals with it.
     Ball's contact position: (x, z) of the ball's centre (off by at most r times the tilt) and
     y at the block's top face (Block's centre + 0.1), within the depth bound (engines put the
@@ -49,7 +67,7 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
         except KeyError:
             break
     normal_err = depth_err = horizontal_err = vertical_err = 0.0
-    wrong_names = inactive = no_ball_contact = missing_hits = 0
+    wrong_names = inactive = no_ball_contact = missing_hits = reversed_normals = 0
     for frame, (t, n) in enumerate(zip(times.tolist(), steps(times, h).tolist())):
         if n < 1:
             continue
@@ -64,7 +82,9 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
                 continue
             wrong_names += (c["body1"], c["body2"]) != (SG_BODY[g1], SG_BODY[g2])
             want = np.array([0.0, 1.0 if g1 == lower else -1.0, 0.0])
-            normal_err = max(normal_err, float(np.linalg.norm(c["contactNormal"] - want)))
+            n_along = float(c["contactNormal"] @ want)
+            normal_err = max(normal_err, float(np.linalg.norm(c["contactNormal"] - math.copysign(1.0, n_along) * want)))
+            reversed_normals += n_along <= 0
             depth_err = max(depth_err, abs(c["depth"]))
             if lower == "BlockShape":
                 ball_contacts += 1
@@ -72,21 +92,25 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
                 horizontal_err = max(horizontal_err, math.hypot(d[0], d[2]))
                 vertical_err = max(vertical_err, abs(c["position"][1] - (block[frame][1] + SG_BLOCK_HALF)))
         no_ball_contact += ball_contacts == 0
-    return [Measure("frames after the first step with isActive FALSE", inactive, 0),
-            Measure("frames whose intersections do not name Floor, BlockShape and BallShape", missing_hits, 0),
+    return [Measure("frames after the first step with isActive FALSE", inactive, 0, basis=ACTIVE),
+            Measure("frames whose intersections do not name Floor, BlockShape and BallShape", missing_hits, 0,
+                    basis=INTERSECTIONS),
             Measure("contacts whose geometry1/geometry2/body1/body2 are not a touching pair and its bodies",
-                    wrong_names, 0),
-            Measure("frames with no BallShape-BlockShape contact", no_ball_contact, 0),
-            Measure("contactNormal - (0, +-1, 0) from geometry1 towards geometry2 (worst contact)", normal_err,
-                    tilt + ROUNDING_ANGLE),
-            Measure("|depth| (worst contact)", depth_err, depth_tol, "m"),
-            Measure("ball contact position - ball centre, horizontally", horizontal_err, SG_R * tilt + ROUNDING, "m"),
-            Measure("ball contact position - block top face, vertically", vertical_err, depth_tol, "m")]
+                    wrong_names, 0, basis=NAMES),
+            Measure("frames with no BallShape-BlockShape contact", no_ball_contact, 0, basis=CONTACTS),
+            Measure("contactNormal - (0, 1, 0) or (0, -1, 0), the nearer (worst contact)", normal_err,
+                    tilt + ROUNDING_ANGLE, basis=NORMAL),
+            Measure("contacts whose contactNormal does not point from geometry1 towards geometry2", reversed_normals, 0,
+                    basis=NORMAL_DIRECTION),
+            Measure("|depth| (worst contact)", depth_err, depth_tol, "m", DEPTH),
+            Measure("ball contact position - ball centre, horizontally", horizontal_err, SG_R * tilt + ROUNDING, "m",
+                    POSITION),
+            Measure("ball contact position - block top face, vertically", vertical_err, depth_tol, "m", POSITION)]
 
 
 CASE = Case("sensor_geometry", "sensor_geometry.x3d",
-            "CollisionSensor contacts of a ball on a block on the floor: contactNormal (0, +-1, 0) from geometry1 "
-            "towards geometry2, bodies named, position under the ball's centre at the block's top, depth small",
+            "CollisionSensor contacts of a ball on a block on the floor: contactNormal (0, +-1, 0) (x3drbp's "
+            "direction: from geometry1 towards geometry2), bodies named, position under the ball's centre at the block's top, depth small",
             (Settings(1.0, 1 / 240),), expect,
             exercises=("CollisionSensor", "CollidableShape.geometry.Sphere", "CollidableShape.geometry.Box"),
             mutations=(

@@ -1,0 +1,111 @@
+"""The contact cases' bases: where the spec is silent (the contact normal's direction, which tangent
+is friction direction 1) a trace of the other convention passes the spec measures and fails only
+convention measures; a trace that breaks the spec fails a spec measure. Real ODE runs, transformed."""
+
+from __future__ import annotations
+
+import pytest
+
+from x3d_core.trace import Row, TraceView, read_trace
+
+import conformance.cases as C
+from conformance import results
+from conformance.runner import probe, verdicts
+
+MINE = ("bounce_apex", "incline", "anisotropic_friction", "conveyor", "resting_penetration", "box_stack",
+        "collision_filtering", "routed_contacts", "sensor_geometry", "newtons_cradle")
+CASES = {c.name: c for c in C.CASES if c.name in MINE}
+
+_ODE = probe.backend_table().get("ode")
+pytestmark = pytest.mark.skipif(_ODE is None or not _ODE.usable, reason="ODE is not installed")
+
+
+@pytest.fixture(scope="module")
+def ode_runs(tmp_path_factory):
+    """Each case's result on ODE and its trace's rows."""
+    folder = str(tmp_path_factory.mktemp("ode"))
+    found = verdicts.run_many([lambda c=c: verdicts.run_pair(c, "ode", keep=folder) for c in CASES.values()])
+    return {c.name: (r, read_trace(f"{folder}/{c.name}-ode.csv")) for c, r in zip(CASES.values(), found)}
+
+
+def _vec(text: str) -> list[float]:
+    return [float(x) for x in text.split()]
+
+
+def _text(v) -> str:
+    return " ".join(repr(float(x)) for x in v)
+
+
+def _edit(rows: list[Row], node: str, suffix: str, f) -> list[Row]:
+    """The rows with node's fields ending in suffix mapped by f (on their vectors)."""
+    return [Row(r.time, r.node, r.field, _text(f(_vec(r.value)))) if r.node == node and r.field.endswith(suffix)
+            else r for r in rows]
+
+
+def _judge(case: str, rows: list[Row]) -> tuple[str, list[results.Measure]]:
+    c = CASES[case]
+    measures = c.expect([TraceView(rows)], c.runs)
+    return results.judge(measures), measures
+
+
+def _failing(measures, kind):
+    return [m.quantity for m in measures if not m.ok and (m.basis.kind == kind)]
+
+
+def test_every_measure_of_the_contact_cases_has_a_basis(ode_runs):
+    for name, (r, rows) in ode_runs.items():
+        assert r.verdict in results.JUDGED, (name, r.verdict, r.reason)
+        measures = CASES[name].expect([TraceView(rows)], CASES[name].runs)
+        assert measures, name
+        for m in measures:
+            assert m.basis is not None and m.basis.text.strip(), (name, m.quantity)
+            if m.basis.kind == results.SPEC:
+                assert m.basis.text.startswith("37."), (name, m.quantity, m.basis.text)
+
+
+def test_contact_normal_towards_geometry1_is_a_convention(ode_runs):
+    _, rows = ode_runs["sensor_geometry"]
+    assert _judge("sensor_geometry", rows)[0] == results.PASS
+    verdict, measures = _judge("sensor_geometry", _edit(rows, "Sensor", ".contactNormal", lambda n: [-x for x in n]))
+    assert verdict == results.CONVENTIONS
+    assert _failing(measures, results.CONVENTION) == [
+        "contacts whose contactNormal does not point from geometry1 towards geometry2"]
+    # a normal off the contact's axis breaks the spec: "a unit vector describing the normal"
+    verdict, measures = _judge("sensor_geometry", _edit(rows, "Sensor", ".contactNormal", lambda n: [0.6, 0.8, 0.0]))
+    assert verdict == results.FAIL
+    assert "contactNormal - (0, 1, 0) or (0, -1, 0), the nearer (worst contact)" in _failing(measures, results.SPEC)
+
+
+def test_surface_speed_along_the_other_direction_is_a_convention(ode_runs):
+    _, rows = ode_runs["conveyor"]
+    assert _judge("conveyor", rows)[0] == results.PASS
+    for turn in (lambda v: [-v[0], v[1], v[2]], lambda v: [v[2], v[1], -v[0]]):  # +x, or +z
+        verdict, measures = _judge("conveyor", _edit(rows, "Parcel", "linearVelocity", turn))
+        assert verdict == results.CONVENTIONS
+        assert _failing(measures, results.CONVENTION) == [
+            "Parcel.linearVelocity along ODE's first friction direction [-1.0, 0.0, 0.0]"]
+    # the belt ignored: the parcel never moves
+    verdict, measures = _judge("conveyor", _edit(rows, "Parcel", "linearVelocity", lambda v: [0.0, 0.0, 0.0]))
+    assert verdict == results.FAIL and _failing(measures, results.SPEC)
+
+
+def test_friction_axes_swapped_is_a_convention(ode_runs):
+    _, rows = ode_runs["anisotropic_friction"]
+    assert _judge("anisotropic_friction", rows)[0] == results.PASS
+    # direction 1 along +z, direction 2 along -x: Along1 (pushed along -x) slows at mu2 g, Along2 at mu1 g
+    v1 = {r.time: _vec(r.value) for r in rows if r.node == "Along1" and r.field == "linearVelocity"}
+    v2 = {r.time: _vec(r.value) for r in rows if r.node == "Along2" and r.field == "linearVelocity"}
+    swapped = [Row(r.time, r.node, r.field, _text([-v2[r.time][2], v2[r.time][1], v2[r.time][0]]))
+               if r.node == "Along1" and r.field == "linearVelocity"
+               else Row(r.time, r.node, r.field, _text([v1[r.time][2], v1[r.time][1], -v1[r.time][0]]))
+               if r.node == "Along2" and r.field == "linearVelocity" else r for r in rows]
+    verdict, measures = _judge("anisotropic_friction", swapped)
+    assert verdict == results.CONVENTIONS
+    assert sorted(_failing(measures, results.CONVENTION)) == [
+        "Along1.linearVelocity (mu1 = 0.2 along ODE's friction direction 1, [-1.0, 0.0, 0.0])",
+        "Along2.linearVelocity (mu2 = 0.6 along ODE's friction direction 2, [0.0, 0.0, 1.0])"]
+    # friction ignored: both boxes keep their push
+    ignored = _edit(_edit(rows, "Along1", "linearVelocity", lambda v: [-3.0, 0.0, 0.0]),
+                    "Along2", "linearVelocity", lambda v: [0.0, 0.0, 3.0])
+    verdict, measures = _judge("anisotropic_friction", ignored)
+    assert verdict == results.FAIL and len(_failing(measures, results.SPEC)) == 2
