@@ -75,6 +75,8 @@ def test_case_on_backend(case, backend, matrix):
         assert r.reason.strip(), "an unsupported verdict must carry the backend's reason"
     if r.verdict == results.PASS:
         assert r.measures and all(m.ok for m in r.measures)
+    unstated = [m.quantity for m in r.measures if m.basis is None]
+    assert not unstated, f"{case.name}: measures without a basis (spec or convention): {unstated}"
 
 
 # -- the cases themselves ---------------------------------------------------------------
