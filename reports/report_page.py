@@ -17,7 +17,7 @@ import re
 
 import markdown as md
 
-from conformance.results import Comparison
+from conformance.results import CONVENTIONS, PASS, UNSUPPORTED, Comparison
 from x3d_core import atomic
 
 from .compare_text import render as render_comparison
@@ -58,12 +58,15 @@ def _section(text: str, prefix: str = "") -> str:
 
 def _cell(cell: dict) -> str:
     verdicts = [c["verdict"] for c in cell["cases"]]
-    failing = [c["case"] for c in cell["cases"] if c["verdict"] not in ("pass", "unsupported")]
-    parts = [f"{verdicts.count('pass')} pass"]
+    failing = [c["case"] for c in cell["cases"] if c["verdict"] not in (PASS, CONVENTIONS, UNSUPPORTED)]
+    other = [c["case"] for c in cell["cases"] if c["verdict"] == CONVENTIONS]
+    parts = [f"{verdicts.count(PASS)} pass"]
+    if other:
+        parts.append(f"{len(other)} conforming in other conventions ({', '.join(other)})")
     if failing:
         parts.append(f"{len(failing)} not ({', '.join(failing)})")
-    if "unsupported" in verdicts:
-        parts.append(f"{verdicts.count('unsupported')} refused")
+    if UNSUPPORTED in verdicts:
+        parts.append(f"{verdicts.count(UNSUPPORTED)} refused")
     text = f"{_MARK[cell['support']]}: {', '.join(parts)}"
     if cell["support"] == "native" and failing:
         text = f"**{text}**"  # declared native, measured failing: a finding
@@ -74,8 +77,9 @@ def _features(data: dict) -> str:
     backends = list(data["declared"])
     lines = ["## Declared against measured", "",
              "Per feature that a conformance case exercises: what each backend declares (`x3drbp backends "
-             "--features` gives the reasons) and the verdicts there of the cases exercising it: pass, not "
-             "(fail, blew up, crashed, timed out, error: named) and refused (the scene needs something "
+             "--features` gives the reasons) and the verdicts there of the cases exercising it: pass, conforming "
+             "in other conventions (only convention measures fail: named), not (fail, blew up, crashed, timed "
+             "out, error: named) and refused (the scene needs something "
              "else the backend lacks). **Bold**: declared native yet a case does not pass.", "",
              "| feature | " + " | ".join(backends) + " |", "|---|" + "---|" * len(backends)]
     for row in data["features"]:

@@ -110,3 +110,11 @@ def test_bad_usage_is_exit_2_without_a_traceback(tmp_path):
     r = subprocess.run([sys.executable, "-m", "conformance.cli", "report", "--backends", "nope", "--out",
                         str(tmp_path)], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert r.returncode == 2 and "unknown backend(s) nope" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_a_feature_cell_counts_other_conventions_as_conforming():
+    from reports.report_page import _cell
+    cell = {"support": "native", "cases": [{"case": "a", "verdict": "pass"}, {"case": "b", "verdict": "conventions"}]}
+    assert _cell(cell) == "native: 1 pass, 1 conforming in other conventions (b)"  # not bold: no case fails
+    cell["cases"].append({"case": "c", "verdict": "fail"})
+    assert _cell(cell).startswith("**native: 1 pass, 1 conforming in other conventions (b), 1 not (c)")
