@@ -18,12 +18,11 @@ import os
 import sys
 
 from reports.matrix_table import markdown
-from x3d_core import atomic
 
 from conformance.cli import options
 from conformance import cases as C
 from conformance import results
-from conformance.runner import children, probe, verdicts
+from conformance.runner import children, verdicts
 
 EXIT_OK, EXIT_USAGE = 0, 2
 
@@ -44,13 +43,7 @@ def to_json(outcomes: list[results.Result], cases: list[C.Case], backends: list[
 
 def cmd_conformance(args: argparse.Namespace) -> int:
     try:
-        cases = C.select(options.names(args.cases))
-    except KeyError as e:
-        print(f"x3drbp conformance: {e.args[0]}", file=sys.stderr)
-        return EXIT_USAGE
-    info = probe.backend_table(args.timeout)
-    try:
-        backends = probe.named_backends(options.names(args.backends), info)
+        cases, info, backends = options.chosen(args, C.select)
     except ValueError as e:
         print(f"x3drbp conformance: {e}", file=sys.stderr)
         return EXIT_USAGE
@@ -70,11 +63,7 @@ def cmd_conformance(args: argparse.Namespace) -> int:
     if args.convergence:
         convergence = verdicts.run_convergence(cases, runnable, C.CONVERGENCE_DTS, args.timeout, args.jobs)
     text = markdown(outcomes, [(c.name, c.checks) for c in cases], backends, info, convergence)
-    os.makedirs(args.out, exist_ok=True)
-    atomic.write_text(os.path.join(args.out, "matrix.md"), text)
-    atomic.write_json(os.path.join(args.out, "matrix.json"), to_json(outcomes, cases, backends, info, convergence))
-    sys.stdout.write(text)
-    print(f"\nwrote {os.path.join(args.out, 'matrix.md')} and matrix.json")
+    options.publish(args.out, "matrix", text, to_json(outcomes, cases, backends, info, convergence))
     return EXIT_OK
 
 

@@ -24,7 +24,7 @@ from conformance import cases as C
 from conformance import expectations as E
 from conformance.cli import options
 from conformance.results import PASS, Expected
-from conformance.runner import children, probe, verdicts
+from conformance.runner import children, verdicts
 
 EXIT_OK, EXIT_CHANGED, EXIT_USAGE = 0, 1, 2
 README = os.path.join(C.ROOT, "README.md")
@@ -42,13 +42,7 @@ def write_readme(path: str) -> None:
 
 def cmd_expectations(args: argparse.Namespace) -> int:
     try:
-        cases = C.select(options.names(args.cases))
-    except KeyError as e:
-        print(f"x3drbp expectations: {e.args[0]}", file=sys.stderr)
-        return EXIT_USAGE
-    info = probe.backend_table(args.timeout)
-    try:
-        named = probe.named_backends(options.names(args.backends), info)
+        cases, info, named = options.chosen(args, C.select)
     except ValueError as e:
         print(f"x3drbp expectations: {e}", file=sys.stderr)
         return EXIT_USAGE

@@ -4,12 +4,19 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from x3d_core.load import load
 from x3d_core.model import LoadError, Scene
 
+from x3d_core import atomic
+
 from conformance.analyses.compare import DEFAULT_THRESHOLDS, UNITS
+from conformance.results import BackendInfo
+from conformance.runner import probe
 
 
 def names(values: list[str] | None) -> list[str]:
@@ -72,3 +79,25 @@ def add_matrix_options(p: argparse.ArgumentParser, verb: str, case_names: list[s
                    help=f"time limit per run in seconds (default {timeout:g})")
     p.add_argument("--jobs", type=int, default=None, metavar="N",
                    help="runs in parallel (default: the number of CPUs)")
+
+
+def chosen(args: argparse.Namespace, select: Callable[[Sequence[str]], list[Any]]
+           ) -> tuple[list[Any], dict[str, BackendInfo], list[str]]:
+    """The cases --cases names (through `select`), the backends found here, and those
+    --backends names (default: every usable one); ValueError with the one-line reason for a
+    name either does not know."""
+    try:
+        cases = select(names(args.cases))
+    except KeyError as e:
+        raise ValueError(e.args[0]) from None
+    info = probe.backend_table(args.timeout)
+    return cases, info, probe.named_backends(names(args.backends), info)
+
+
+def publish(out: str, name: str, text: str, data: dict) -> None:
+    """DIR/NAME.md and DIR/NAME.json, each written whole; the markdown also to standard output."""
+    os.makedirs(out, exist_ok=True)
+    atomic.write_text(os.path.join(out, f"{name}.md"), text)
+    atomic.write_json(os.path.join(out, f"{name}.json"), data)
+    sys.stdout.write(text)
+    print(f"\nwrote {os.path.join(out, name + '.md')} and {name}.json")

@@ -21,12 +21,10 @@ import time
 from fractions import Fraction
 
 from reports.stability_table import markdown
-from x3d_core import atomic
 
-from conformance.cli import options
 from conformance import results
-from conformance.runner import probe
 from conformance.analyses import stability as S
+from conformance.cli import options
 
 EXIT_OK, EXIT_USAGE = 0, 2
 
@@ -56,15 +54,9 @@ def to_json(outcomes: list[S.StabilityResult], cases: list[S.HardCase], backends
 
 def cmd_stability(args: argparse.Namespace) -> int:
     try:
-        cases = S.select(options.names(args.cases))
         dts = _dts(args.dts)
-    except (KeyError, ValueError, ZeroDivisionError) as e:
-        print(f"x3drbp stability: {e.args[0] if isinstance(e, KeyError) else e}", file=sys.stderr)
-        return EXIT_USAGE
-    info = probe.backend_table(args.timeout)
-    try:
-        backends = probe.named_backends(options.names(args.backends), info)
-    except ValueError as e:
+        cases, info, backends = options.chosen(args, S.select)
+    except (ValueError, ZeroDivisionError) as e:
         print(f"x3drbp stability: {e}", file=sys.stderr)
         return EXIT_USAGE
     runnable = [b for b in backends if info[b].usable]
@@ -78,11 +70,7 @@ def cmd_stability(args: argparse.Namespace) -> int:
                                           f"{info[b].unavailable}") for c in cases for dt in dts]
     data = to_json(outcomes, cases, backends, dts, info, jobs, wall_s)
     text = markdown(data)
-    os.makedirs(args.out, exist_ok=True)
-    atomic.write_json(os.path.join(args.out, "stability.json"), data)
-    atomic.write_text(os.path.join(args.out, "stability.md"), text)
-    sys.stdout.write(text)
-    print(f"\nwrote {os.path.join(args.out, 'stability.md')} and stability.json")
+    options.publish(args.out, "stability", text, data)
     return EXIT_OK
 
 
