@@ -102,6 +102,11 @@ class Measure:
             return math.inf
         return self.error / self.tolerance if self.tolerance > 0 else (0.0 if self.error == 0 else math.inf)
 
+    def figure(self) -> str:
+        """'error E > tolerance T' with the unit: how a failing measure is reported."""
+        unit = f" {self.unit}" if self.unit else ""
+        return f"error {self.error:.3g}{unit} > tolerance {self.tolerance:.3g}{unit}"
+
     @property
     def convention(self) -> bool:
         """The measure checks a reading of a point the spec leaves open."""
@@ -148,9 +153,9 @@ class Result:
             return MEANING[PASS]
         if self.verdict == CONVENTIONS:
             return f"{MEANING[CONVENTIONS]}: " + "; ".join(
-                f"{m.quantity} ({m.basis.text}): {_figure(m)}" for m in self.failing(CONVENTION))
+                f"{m.quantity} ({m.basis.text}): {m.figure()}" for m in self.failing(CONVENTION))
         return f"{MEANING[FAIL]}: " + "; ".join(
-            f"{m.quantity}" + (f" (\"{m.basis.text}\")" if m.basis else "") + f": {_figure(m)}"
+            f"{m.quantity}" + (f" (\"{m.basis.text}\")" if m.basis else "") + f": {m.figure()}"
             for m in self.failing(SPEC))
 
 
@@ -160,11 +165,6 @@ def judge(measures: Sequence[Measure]) -> str:
     if not failing:
         return PASS
     return CONVENTIONS if all(m.convention for m in failing) else FAIL
-
-
-def _figure(m: Measure) -> str:
-    unit = f" {m.unit}" if m.unit else ""
-    return f"error {m.error:.3g}{unit} > tolerance {m.tolerance:.3g}{unit}"
 
 
 def _finite_or_str(x: float) -> float | str:

@@ -46,8 +46,7 @@ def evaluate(case: Case, backend: str, traces: Sequence[TraceView], settings: Se
     except (KeyError, ValueError, IndexError) as e:
         msg = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
         return Result(case.name, backend, ERROR, f"the expectation could not read the trace: {msg}", dt=dt)
-    reason = "; ".join(("[convention] " if m.convention else "") + f"{m.quantity}: error {m.error:.3g}"
-                       f"{' ' + m.unit if m.unit else ''} > tolerance {m.tolerance:.3g}"
+    reason = "; ".join(("[convention] " if m.convention else "") + f"{m.quantity}: {m.figure()}"
                        for m in measures if not m.ok)
     return Result(case.name, backend, judge(measures), reason, measures, dt=dt)
 
