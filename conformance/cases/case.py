@@ -22,10 +22,14 @@ class Mutation:
     """A scene edit that stands for a backend ignoring what the case checks (usually its key
     field reset to the default): the case must FAIL on the mutated scene. `old` is text the
     scene holds exactly once, replaced by `new`; a case about its runs rather than a field
-    (frame_rate) replaces the runs instead (old = new = "": the scene as it is)."""
+    (frame_rate) replaces the runs instead (old = new = "": the scene as it is). `spec` is False
+    where what the edit stands for is itself a reading of a point the clause leaves open (a
+    frame-period step, friction directions that follow the motion): the edit must then make a
+    measure fail, a convention at least, and the case may still conform."""
     old: str
     new: str
     runs: tuple[Settings, ...] | None = None
+    spec: bool = True
 
     def apply(self, text: str) -> str:
         """The scene's text with the edit made (ValueError unless `old` is there exactly once)."""
