@@ -78,25 +78,42 @@ def test_every_measure_states_its_basis(real):
                 assert m.basis.text.startswith("37."), (name, m.basis.text)
 
 
-# -- damping: once a step (ODE, x3drbp) or once a frame (the spec's words) ------------------
+# -- damping: once a step (ODE, x3drbp), once a frame (the clause's words), a force (Xj3D), per second (X_ITE)
 
 def _damped(per: str, d_lin: float = DAMP.DAMP_LINEAR, d_ang: float = DAMP.DAMP_ANGULAR) -> list[Row]:
+    """The case's body damped under one reading: each frame's velocity the last one's times r."""
     s = C.BY_NAME["damping"].runs[0]
     times = np.arange(int(s.duration * s.rate) + 1) / s.rate
-    k = np.round(times / s.dt) if per == "step" else np.round(times * s.rate)
-    return _rows("Damped", {"linearVelocity": DAMP.DAMP_V0 * (1 - d_lin) ** k[:, None],
-                            "angularVelocity": DAMP.DAMP_W0 * (1 - d_ang) ** k[:, None]}, times)
+    frames = np.round(times * s.rate)
+    h = 1.0 / s.rate
+
+    def ratio(d: float, inertia: float) -> np.ndarray:
+        return {"step": (1 - d) ** np.round(times / s.dt), "frame": (1 - d) ** frames,
+                "force": (1 - d * h / inertia) ** frames, "second": (1 - d) ** (h * frames)}[per][:, None]
+    return _rows("Damped", {"linearVelocity": DAMP.DAMP_V0 * ratio(d_lin, DAMP.DAMP_MASS),
+                            "angularVelocity": DAMP.DAMP_W0 * ratio(d_ang, DAMP.DAMP_MOMENT)}, times)
 
 
-def test_damping_once_a_frame_conforms_and_differs_from_once_a_step():
-    _split(_judge("damping", _damped("step")), _judge("damping", _damped("frame")),
-           _judge("damping", _damped("step", d_lin=0.001)))  # the default factor: too little damping
-    frame = _judge("damping", _damped("frame"))
-    assert sorted(_failing(frame, results.CONVENTION)) == ["Damped.angularVelocity = w0 (1-d)^steps",
-                                                           "Damped.linearVelocity = v0 (1-d)^steps"]
-    # at the case's settings the two readings are far apart: 0.0896 against 0.547 of v0 after 1 s
+@pytest.mark.parametrize("per", ["frame", "force", "second"])
+def test_every_reading_of_damping_conforms_and_differs_from_once_a_step(per):
+    _split(_judge("damping", _damped("step")), _judge("damping", _damped(per)),
+           _judge("damping", _damped(per, d_lin=0.001)))  # the default factor, read the same way
+    assert sorted(_failing(_judge("damping", _damped(per)), results.CONVENTION)) == [
+        "Damped.angularVelocity = w0 (1-d)^steps", "Damped.linearVelocity = v0 (1-d)^steps"]
+
+
+def test_damping_ignored_violates_the_spec():
+    """A browser that leaves the factors at their default (0.001) or does not damp at all fails
+    under every reading, and the readings are far apart at the case's settings: after 1 s,
+    0.0896 of v0 once a step, 0.547 once a frame, 0.990 as a force (m = 1) or per second."""
+    for per in ("step", "frame", "force", "second"):
+        ignored = _judge("damping", _damped(per, d_lin=0.001, d_ang=0.001))
+        assert len(_failing(ignored, results.SPEC)) == 2, (per, ignored.reason)
+    still = _judge("damping", _damped("step", d_lin=0.0, d_ang=0.0))
+    assert len(_failing(still, results.SPEC)) == 2, still.reason
     assert (1 - DAMP.DAMP_LINEAR) ** 240 == pytest.approx(0.0896, abs=1e-4)
     assert (1 - DAMP.DAMP_LINEAR) ** 60 == pytest.approx(0.547, abs=1e-3)
+    assert (1 - DAMP.DAMP_LINEAR / 60) ** 60 == pytest.approx(0.990, abs=1e-3)
 
 
 def test_damping_that_turns_the_velocity_violates_the_spec():
@@ -105,8 +122,7 @@ def test_damping_that_turns_the_velocity_violates_the_spec():
         return " ".join(repr(float(x)) for x in np.array(value.split(), float)[[2, 1, 0]])
     turned = [r if r.field != "linearVelocity" or r.time == 0 else Row(r.time, r.node, r.field, swap(r.value))
               for r in rows]
-    assert "Damped.linearVelocity, each frame r x the last, (1-d)^steps <= r <= 1-d" in \
-        _failing(_judge("damping", turned), results.SPEC)
+    assert [q for q in _failing(_judge("damping", turned), results.SPEC) if q.startswith("Damped.linearVelocity")]
 
 
 # -- slider_stops: which stop the block rests at is the sign's ------------------------------
@@ -195,11 +211,32 @@ def test_motor_joint_torque_the_other_way_round_conforms(real):
     rows = real["motor_joint_torque"][1][0]
     other = _negated(rows, {"angularVelocity", "motor1AngleRate"})
     broken = [Row(r.time, r.node, r.field, " ".join(repr(2.0 * float(x)) for x in r.value.split()))
-              if r.node == "Stator" and r.field == "angularVelocity" else r for r in rows]  # not equal and opposite
+              if r.node == "UserStator" and r.field == "angularVelocity" else r for r in rows]  # not equal and opposite
     _split(_judge("motor_joint_torque", rows), _judge("motor_joint_torque", other),
            _judge("motor_joint_torque", broken))
     assert sorted(_failing(_judge("motor_joint_torque", other), results.CONVENTION)) == [
-        "Motor.motor1AngleRate", "Rotor.angularVelocity"]
+        "AutoMotor.motor1AngleRate", "UserRotor.angularVelocity"]
+
+
+def _zeroed(rows: list[Row], nodes: set[str]) -> list[Row]:
+    return [Row(r.time, r.node, r.field, " ".join("0.0" for _ in r.value.split()))
+            if r.node in nodes and r.field in ("angularVelocity", "motor1AngleRate") else r for r in rows]
+
+
+def test_motor_joint_torque_only_in_user_calculated_mode_conforms(real):
+    """The UOM's reading: no torque with autoCalc TRUE, so AutoMotor's bodies stay still and report
+    rate 0, which is their rate. A rate output that is not the bodies' rate, or a torque ignored in
+    user-calculated mode too, violates the spec."""
+    rows = real["motor_joint_torque"][1][0]
+    gated = _judge("motor_joint_torque", _zeroed(rows, {"AutoRotor", "AutoStator", "AutoMotor"}))
+    assert gated.verdict == results.CONVENTIONS, gated.reason
+    assert sorted(_failing(gated, results.CONVENTION)) == [
+        "AutoMotor.motor1AngleRate", "AutoRotor.angularVelocity, either sense (the torque acts with autoCalc TRUE)"]
+    stuck_rate = _judge("motor_joint_torque", _zeroed(rows, {"AutoMotor"}))
+    assert "|AutoMotor.motor1AngleRate| = |motor1Axis . (w1 - w2)|" in _failing(stuck_rate, results.SPEC)
+    no_torque = _judge("motor_joint_torque", _zeroed(rows, {"UserRotor", "UserStator", "AutoRotor", "AutoStator",
+                                                            "AutoMotor"}))
+    assert _failing(no_torque, results.SPEC) == ["UserRotor.angularVelocity, either sense"]
 
 
 # -- erp_cfm_spring: the sag's size is ODE's reading of ERP and CFM --------------------------
