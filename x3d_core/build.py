@@ -7,6 +7,7 @@ UNITs apply) is written once for the three encodings.
 
 from __future__ import annotations
 
+import difflib
 import re
 from dataclasses import dataclass, field
 from typing import Any, Callable
@@ -137,8 +138,9 @@ class Builder:
             for decl in node.interface:
                 if decl.name == name:
                     return None
-            self.error(loc, f"{node.label}.{name}",
-                       f"{node.type_name} has no field {name!r}")
+            near = difflib.get_close_matches(name, list(node.spec.fields), n=1, cutoff=0.7)
+            hint = f"; did you mean {near[0]!r}?" if near else ""
+            self.error(loc, f"{node.label}.{name}", f"{node.type_name} has no field {name!r}{hint}")
         return fd
 
     def set_value(self, node: Node, name: str, raw: Any, loc: Location, parse: Parser, encoding: str) -> None:
@@ -402,6 +404,8 @@ class Builder:
             target = memo[id(node)]
             decl = p.interface[pname]
             value = values[pname] if pname in values else decl.value
+            if decl.type.kind == "node":
+                value = self.proto_nodes(target, fname, pname, value, loc)
             if target.spec is None:
                 target.values[fname] = value if decl.type.kind == "node" else \
                     RawValue("vrml", F.format_vrml(decl.type, value))
@@ -418,6 +422,24 @@ class Builder:
         if def_name:
             self.defs[def_name] = first
         return first
+
+
+    def proto_nodes(self, target: Node, fname: str, pname: str, value: Any, loc: Location) -> Any:
+        """An instance's node value for an IS'd field, checked as a child of that field would be:
+        one node (or None) for an SFNode, a list for an MFNode, each of a type the field accepts."""
+        nodes = [n for n in (value if isinstance(value, list) else [value]) if n is not None]
+        fd = target.spec.fields.get(fname) if target.spec is not None else None
+        subject = f"{target.label}.{fname} (IS {pname})"
+        if fd is not None:
+            bad = [n.type_name for n in nodes if not schema.accepts(fd, n.type_name)]
+            if bad:
+                self.error(loc, subject, f"a {bad[0]} is not allowed here; allowed: {' or '.join(fd.accepts)}")
+                nodes = []
+            if not fd.type.multi:
+                if len(nodes) > 1:
+                    self.error(loc, subject, f"{fd.type.name} field takes one node, given {len(nodes)}")
+                return nodes[0] if nodes else None
+        return nodes
 
 
 def _copy(node: Node, memo: dict[int, Node], prefix: str) -> Node:

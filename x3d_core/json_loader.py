@@ -22,6 +22,9 @@ _TOKEN = re.compile(r'("[^"\\]*(?:\\.[^"\\]*)*")|([{\[])|([}\]])|(:)')
 _STATEMENTS = frozenset({"ROUTE", "ProtoDeclare", "ExternProtoDeclare", "IMPORT", "EXPORT"})
 
 
+# where X3D JSON puts a Script's source: X3dToJson and X_ITE write "#sourceText", older tools "#sourceCode"
+_SOURCE_KEYS = ("#sourceText", "#sourceCode")
+
 class _Obj(dict):
     """A JSON object that knows where it and each of its keys start in the text."""
 
@@ -225,6 +228,12 @@ class _Reader:
             if n is not None and type_name != "ProtoInstance" and n.type_name != type_name:
                 self.b.error(self.key(body, "@USE"), f"USE {use}", f"names a {n.type_name}, not a {type_name}")
                 return None
+            given = [k for k in body if k not in ("@USE", "@containerField", "#comment") and
+                     k[1:] not in _IGNORED_ATTRIBUTES]
+            if given:
+                self.b.error(self.key(body, "@USE"), f"USE {use}", f"a USE takes no field values or children, and "
+                                                                   f"{', '.join(given)} would be ignored: set them "
+                                                                   "where the node is DEFined")
             return n
         if type_name == "ProtoInstance":
             return self.proto_instance(body, loc)
@@ -241,8 +250,11 @@ class _Reader:
                     self.interface_field(node, f)
             elif key == "IS":
                 self.connects(node, value, kloc)
-            elif key == "#sourceCode" and node.declares_fields:
-                self.source_code(node, value, kloc)
+            elif key in _SOURCE_KEYS:
+                # a Script's source; other nodes' (ShaderPart's) is their text content, which the
+                # XML loader leaves aside too
+                if node.declares_fields:
+                    self.source_code(node, value, kloc)
             elif key in ("field", "fieldValue"):
                 self.b.error(kloc, node.label, f"{key} is only allowed in a Script, ProtoDeclare or ProtoInstance")
             elif key != "#comment":
@@ -272,7 +284,8 @@ class _Reader:
         if isinstance(value, list) and all(isinstance(s, str) for s in value):
             value = "\n".join(value)
         if not isinstance(value, str):
-            self.b.error(loc, f"{node.label}.sourceCode", "#sourceCode must be a string or an array of strings")
+            self.b.error(loc, f"{node.label}.sourceCode", "#sourceText/#sourceCode must be a string or an array of "
+                                                          "strings")
         elif value.strip():
             self.b.set_value(node, "sourceCode", value.strip(), loc, F.parse_json, "json")
 

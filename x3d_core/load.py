@@ -7,6 +7,7 @@ import os
 
 from .model import Diagnostic, LoadError, Location, Scene
 from .validate import apply_version_defaults, by_type, validate
+from .world import trace_names
 
 ENCODINGS = {".x3d": "xml", ".xml": "xml", ".x3dv": "vrml", ".wrl": "vrml", ".x3dj": "json", ".json": "json"}
 MAX_BYTES = 512 * 1024 * 1024
@@ -69,4 +70,15 @@ def load(path: str, check: bool = True) -> Scene:
     apply_version_defaults(scene, groups)
     if check:
         validate(scene, groups)
+        _warn_derived_names(scene)
     return scene
+
+
+def _warn_derived_names(scene: Scene) -> None:
+    """Say which physics nodes go by a derived name in traces (a trace reader looks for DEFs)."""
+    for node, name in trace_names(scene)[1]:
+        if node.spec is not None and node.spec.component.startswith("RigidBodyPhysics"):
+            why = (f"its DEF {node.def_name!r} is taken by another node" if node.def_name
+                   else f"{name.rsplit('_', 1)[0]}_k names up to it are DEF names")
+            scene.diagnostics.append(Diagnostic("warning", node.loc, node.label,
+                                                f"goes by {name!r} in traces: {why}"))

@@ -12,7 +12,8 @@ from . import fields as F
 from .build import Builder
 from .model import Location, Node, Scene
 
-_HEADER = re.compile(rb"^\s*#(X3D V[34]\.\d+|VRML V2\.0) [A-Za-z0-9_-]+")
+# the rest of the header line is a comment (Titania and X_ITE write their names there)
+_HEADER = re.compile(rb"^\s*#(X3D V[34]\.\d+|VRML V2\.0) [A-Za-z0-9_-]+[^\r\n]*")
 # A string may lack its closing quote only at the end of the file: the loader reports it.
 # Possessive (*+, ++) throughout: a file ending in a long run of blanks made the regex try
 # every way of splitting it (2^n: a hang), and a string of 10^7 characters took 1.3 GiB of

@@ -104,17 +104,40 @@ class World:
 
 
 def node_names(scene: Scene) -> dict[int, str]:
-    """The name each node goes by in traces: its DEF, else TYPE_k with k counting that
-    type's nodes without a DEF in file order (depth first, from 1)."""
+    """The name each node goes by in traces (unique: see trace_names)."""
+    return trace_names(scene)[0]
+
+
+def trace_names(scene: Scene) -> tuple[dict[int, str], list[tuple[Node, str]]]:
+    """The name each node goes by in traces, and the nodes whose name had to be derived.
+
+    A node goes by its DEF, else TYPE_k with k counting that type's nodes without a DEF in
+    file order (depth first, from 1). Names must be unique, or two bodies' columns merge in a
+    trace: a DEF met again (two PROTO instances' inner DEFs, a redefined DEF) becomes DEF_2,
+    DEF_3...; a TYPE_k that a DEF already takes (a DEF RigidBody_1 beside an unnamed body)
+    moves on to the next free k. Those nodes are returned with their derived names."""
+    nodes = list(scene.nodes())
+    taken = {n.def_name for n in nodes if n.def_name}
     names: dict[int, str] = {}
+    derived: list[tuple[Node, str]] = []
+    used: set[str] = set()
     counts: dict[str, int] = {}
-    for n in scene.nodes():
-        if n.def_name:
-            names[id(n)] = n.def_name
+    for n in nodes:
+        if n.def_name and n.def_name not in used:
+            name = n.def_name
         else:
-            counts[n.type_name] = counts.get(n.type_name, 0) + 1
-            names[id(n)] = f"{n.type_name}_{counts[n.type_name]}"
-    return names
+            base = n.def_name or n.type_name
+            k = counts.get(base, 1 if n.def_name else 0) + 1
+            natural = k
+            while f"{base}_{k}" in taken or f"{base}_{k}" in used:
+                k += 1
+            counts[base] = k
+            name = f"{base}_{k}"
+            if n.def_name or k != natural:
+                derived.append((n, name))
+        names[id(n)] = name
+        used.add(name)
+    return names, derived
 
 
 def worlds(scene: Scene) -> list[World]:

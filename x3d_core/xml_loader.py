@@ -161,6 +161,11 @@ class _Reader:
             if n is not None and tag != "ProtoInstance" and n.type_name != tag:
                 self.b.error(loc, f"USE {use}", f"names a {n.type_name}, not a {tag}")
                 return None
+            given = [a for a in el.attrib if a not in _IGNORED_ATTRIBUTES and not a.startswith("{")]
+            given += [c.tag for c in el if isinstance(c.tag, str)]
+            if given:
+                self.b.error(loc, f"USE {use}", f"a USE takes no field values or children, and {', '.join(given)} "
+                                                "would be ignored: set them where the node is DEFined")
             return n
         if tag == "ProtoInstance":
             return self.proto_instance(el)
