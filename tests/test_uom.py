@@ -10,14 +10,15 @@ from lxml import etree
 
 from conftest import UOM
 from x3d_core import fields as F
-from x3d_core.schema import NODE_TYPES
+from x3d_core import standard_nodes
+from x3d_core.schema import NODE_TYPES, definition, node_type, standard_names
+from x3d_core.uom import STATEMENTS, field_type, generate, interface_fields, parents
+from x3d_core.uom import default as uom_default
 
 RBP = ["RigidBodyCollection", "RigidBody", "BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint",
        "SliderJoint", "UniversalJoint", "MotorJoint", "CollisionCollection", "CollisionSpace", "CollisionSensor",
        "CollidableShape", "CollidableOffset", "Contact",
        "X3DRigidJointNode", "X3DNBodyCollidableNode", "X3DNBodyCollisionSpaceNode"]
-# Attributes of every XML element, not fields of a node; 'field' is Script's <field> element
-NOT_FIELDS = {"DEF", "USE", "class", "id", "style", "IS", "field"}
 # Where x3drbp's range is the spec's and the UOM gives none, or the UOM's rounds pi:
 # listed so that any other difference fails.
 SPEC_RANGES = {"mass", "errorCorrection", "constantForceMix", "contactSurfaceThickness", "iterations",
@@ -40,15 +41,7 @@ def uom():
 def uom_fields(uom, name):
     el = uom.xpath(f'//ConcreteNode[@name="{name}"] | //AbstractNodeType[@name="{name}"]')
     assert el, f"{name} is not in the UOM"
-    return {f.get("name"): f for f in el[0].find("InterfaceDefinition").findall("field")
-            if f.get("name") not in NOT_FIELDS}
-
-
-def uom_default(f, ftype):
-    text = f.get("default")
-    if text is None or ftype.kind == "node":
-        return F.empty(ftype)
-    return F.parse_xml(ftype, text)
+    return interface_fields(el[0])
 
 
 @pytest.mark.parametrize("name", RBP)
@@ -101,3 +94,49 @@ def test_component_has_fourteen_concrete_and_three_abstract_types():
     rbp = [t for t in NODE_TYPES.values() if t.name in RBP]
     assert sum(not t.abstract for t in rbp) == 14
     assert sum(t.abstract for t in rbp) == 3
+
+
+def test_standard_nodes_table_is_what_the_uom_gives(uom):
+    """x3d_core/standard_nodes.py is the generator's output for this UOM and node_defs.py
+    (stale after either changes: regenerate with python -m x3d_core.uom)."""
+    with open(standard_nodes.__file__, encoding="utf-8") as f:
+        assert f.read() == generate(uom), "x3d_core/standard_nodes.py is stale: run python -m x3d_core.uom"
+
+
+def test_every_x3d4_type_derives_as_the_uom_says(uom):
+    """Every X3D 4.0 type, hand-written or generated, is served with the UOM's parents, and
+    every concrete one with its default containerField; nothing else is generated."""
+    generated = set()
+    for el in uom.iter("AbstractNodeType", "AbstractObjectType", "ConcreteNode"):
+        name = el.get("name")
+        if name in STATEMENTS:
+            continue
+        t = definition(name)
+        assert t is not None and t.parents == tuple(parents(el)), name
+        assert t.abstract == (el.tag != "ConcreteNode"), name
+        if not t.abstract:
+            assert t.container_field == el.find("InterfaceDefinition/containerField").get("default"), name
+        if name not in NODE_TYPES:
+            generated.add(name)
+    assert generated == set(standard_names())
+
+
+def test_every_generated_node_type_has_the_uoms_fields(uom):
+    """What the table's text reads back as, field by field, against the UOM's own values."""
+    for el in uom.iter("ConcreteNode"):
+        name = el.get("name")
+        if name in NODE_TYPES or name in STATEMENTS:
+            continue
+        t = node_type(name)
+        comp = el.find("InterfaceDefinition/componentInfo")
+        assert t.component == f"{comp.get('name')} {comp.get('level')}", name
+        theirs = interface_fields(el)
+        assert list(t.fields) == list(theirs), name
+        for fname, f in theirs.items():
+            fd = t.fields[fname]
+            assert (fd.type, fd.access, fd.range, fd.unit) == (field_type(f), f.get("accessType"), None, None), \
+                f"{name}.{fname}"
+            assert F.values_equal(fd.type, fd.default, uom_default(f, fd.type)), f"{name}.{fname} default"
+            accepted = f.get("acceptableNodeTypes")
+            assert fd.accepts == (tuple(accepted.split("|")) if accepted and fd.type.kind == "node" else ()), \
+                f"{name}.{fname} accepted node types"

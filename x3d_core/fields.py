@@ -324,7 +324,7 @@ def format_xml(ftype: FieldType, value: Any) -> str:
 
 
 def format_vrml(ftype: FieldType, value: Any) -> str:
-    """The ClassicVRML text of a value (MF values in brackets)."""
+    """The ClassicVRML text of a value (MF values in brackets; an SFImage, held as an array, not)."""
     k = ftype.kind
     if k == "string":
         text = " ".join(_quote(s) for s in value) if ftype.multi else _quote(value)
@@ -333,7 +333,7 @@ def format_vrml(ftype: FieldType, value: Any) -> str:
         text = " ".join("TRUE" if v else "FALSE" for v in vals)
     else:
         text = _numbers_text(value, ftype, ", ")
-    return f"[ {text} ]" if ftype.multi else text
+    return f"[ {text} ]" if ftype.multi and ftype.name != "SFImage" else text
 
 
 def empty(ftype: FieldType) -> Any:

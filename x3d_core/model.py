@@ -82,8 +82,10 @@ class Node:
 
     @property
     def declares_fields(self) -> bool:
-        """Whether the file may declare fields on this node (a Script, or a node x3drbp does not model)."""
-        return self.spec is None or self.spec.is_a("X3DScriptNode")
+        """Whether the file may declare fields on this node, or give its source as the
+        element's text (a Script, a shader, or a node x3drbp does not model). A ShaderPart
+        only has source: the loaders ask this one question for both."""
+        return self.spec is None or "sourceCode" in self.spec.fields or self.spec.is_a("X3DProgrammableShaderObject")
 
     @property
     def label(self) -> str:

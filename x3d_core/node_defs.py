@@ -3,7 +3,8 @@
 Drafted from the X3D Unified Object Model 4.0 and completed from ISO/IEC 19775-1
 clause 37 where the UOM leaves a range out (mass (0,inf), errorCorrection [0,1],
 joint angles [-pi,pi], ...). tests/test_uom.py checks names, types, access types,
-defaults and UOM ranges against the UOM itself.
+defaults and UOM ranges against the UOM itself. Every other X3D 4.0 node type comes from
+standard_nodes.py, generated from the UOM (x3d_core/uom.py); a type defined here wins.
 
 Line forms:
   node NAME : PARENTS @containerField       a concrete node type

@@ -1,4 +1,4 @@
-"""Node types and field definitions, read once from node_defs.DEFINITIONS."""
+"""Node types and field definitions: node_defs.py's by hand, standard_nodes.py's from the UOM."""
 
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ import numpy as np
 
 from . import fields as F
 from .node_defs import DEFINITIONS
+from .standard_nodes import DEFINITIONS as STANDARD
 
 ACCESS_TYPES = ("initializeOnly", "inputOnly", "outputOnly", "inputOutput")
 
@@ -74,14 +75,25 @@ class NodeType:
     container_field: str = "children"
     component: str = ""
     fields: dict[str, FieldDef] = field(default_factory=dict)
-    ancestors: frozenset[str] = frozenset()
+
+    @functools.cached_property
+    def ancestors(self) -> frozenset[str]:
+        """Every type this one derives from, found on first use (a parent may be read later)."""
+        seen: set[str] = set()
+        stack = list(self.parents)
+        while stack:
+            p = stack.pop()
+            if p not in seen:
+                seen.add(p)
+                stack.extend(definition(p).parents)
+        return frozenset(seen)
 
     def is_a(self, type_name: str) -> bool:
         return type_name == self.name or type_name in self.ancestors
 
 
-# Abstract types whose every concrete X3D 4.0 node type is typed here: a node of
-# an unknown type can never be one of them.
+# Abstract types that only X3D 4.0's own node types implement: a node of an unknown type
+# (an EXTERNPROTO instance, a later version's or a browser's node) can never be one of them.
 CLOSED_ABSTRACT = frozenset({"X3DNBodyCollidableNode", "X3DNBodyCollisionSpaceNode",
                              "X3DRigidJointNode", "X3DMetadataObject"})
 
@@ -118,42 +130,63 @@ def _field(node: str, line: str) -> FieldDef:
     return FieldDef(name, ftype, access, default, rng, unit, accepts)
 
 
-def _read(text: str) -> dict[str, NodeType]:
-    types: dict[str, NodeType] = {}
-    current: NodeType | None = None
-    for raw in text.splitlines():
-        line = raw.split("#", 1)[0].rstrip()
-        if not line.strip():
-            continue
-        if line.startswith(("node ", "abstract ")):
-            kind, rest = line.split(" ", 1)
-            comp = raw.split("#", 1)[1].strip() if "#" in raw else ""
-            rest, _, cf = rest.partition("@")
-            name, _, parents = rest.partition(":")
-            current = NodeType(name.strip(), kind == "abstract", tuple(parents.split()),
-                               cf.strip() or "children", comp)
-            types[current.name] = current
-        else:
-            assert current is not None
-            fd = _field(current.name, line.strip())
-            current.fields[fd.name] = fd
-    for t in types.values():
-        seen: set[str] = set()
-        stack = list(t.parents)
-        while stack:
-            p = stack.pop()
-            if p not in seen:
-                seen.add(p)
-                stack.extend(types[p].parents)
-        t.ancestors = frozenset(seen)
-    return types
+_HEADER = re.compile(r"^(?:node|abstract) (\w+)", re.M)
 
 
-NODE_TYPES: dict[str, NodeType] = _read(DEFINITIONS)
+def _blocks(text: str) -> dict[str, str]:
+    """Each type's definition (its header line and field lines) by type name, unread."""
+    heads = [(m.start(), m.group(1)) for m in _HEADER.finditer(text)]
+    ends = [start for start, _ in heads[1:]] + [len(text)]
+    return {name: text[start:end] for (start, name), end in zip(heads, ends)}
+
+
+def _read(block: str) -> NodeType:
+    """One type from its definition."""
+    header, *lines = block.splitlines()
+    kind, rest = header.split("#", 1)[0].split(" ", 1)
+    comp = header.split("#", 1)[1].strip() if "#" in header else ""
+    rest, _, cf = rest.partition("@")
+    name, _, parents = rest.partition(":")
+    t = NodeType(name.strip(), kind == "abstract", tuple(parents.split()), cf.strip() or "children", comp)
+    for raw in lines:
+        line = raw.split("#", 1)[0].strip()
+        if line:
+            fd = _field(t.name, line)
+            t.fields[fd.name] = fd
+    return t
+
+
+# The hand-written types (with ranges and units), read at import
+NODE_TYPES: dict[str, NodeType] = {name: _read(block) for name, block in _blocks(DEFINITIONS).items()}
+
+
+@functools.cache
+def _standard_blocks() -> dict[str, str]:
+    """Every other X3D 4.0 type's definition, generated from the UOM: split on first use."""
+    return _blocks(STANDARD)
+
+
+@functools.cache
+def _standard(name: str) -> NodeType:
+    return _read(_standard_blocks()[name])
+
+
+def definition(name: str) -> NodeType | None:
+    """The type of that name, concrete or abstract: hand-written, else X3D 4.0's from the UOM."""
+    t = NODE_TYPES.get(name)
+    if t is None and name in _standard_blocks():  # only real names are cached, not a file's typos
+        t = _standard(name)
+    return t
+
+
+def standard_names() -> list[str]:
+    """The names of the types generated from the UOM (node_defs.py defines none of them)."""
+    return list(_standard_blocks())
 
 
 def node_type(name: str) -> NodeType | None:
-    t = NODE_TYPES.get(name)
+    """The type of a concrete node type name; None for an abstract or unknown one."""
+    t = definition(name)
     return t if t is not None and not t.abstract else None
 
 
