@@ -3,7 +3,10 @@
 A backend is one module exposing `BACKEND`, an instance of a Backend subclass. It
 declares, per feature name (the names of x3d_core.analysis), whether the engine honours
 it natively, approximately (and how) or not at all (and why); anything it does not
-declare is unsupported. `build(world, dt)` returns an
+declare is unsupported. A declaration may name the one value its engine holds anyway
+(unsupported(..., native_at=0): a rigid solver's CFM): there the feature is native, since
+the scene asks for nothing the engine lacks. judged() weighs a scene's uses, each with its
+value, against them. `build(world, dt)` returns an
 x3d_core.engine.Simulation: step, read state in bulk, set velocities.
 
 Backends are found through the entry point group `x3drbp.backends` (registry()): each
@@ -23,8 +26,12 @@ import importlib.metadata
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from enum import Enum
+from typing import Any
 
+from x3d_core import fields as F
+from x3d_core.analysis import Use, run_uses
 from x3d_core.engine import Simulation
+from x3d_core.model import Scene
 from x3d_core.world import World
 
 GROUP = "x3drbp.backends"  # the entry point group of backends
@@ -42,6 +49,9 @@ class Support(Enum):
 class Declared:
     support: Support
     note: str = ""  # how it is approximated, or why it is unsupported
+    # the one value the engine holds anyway (a rigid joint's CFM 0): a scene giving it asks for
+    # nothing the engine lacks, so there the feature is native (judged)
+    native_at: Any = None
 
 
 def native(*features: str) -> dict[str, Declared]:
@@ -52,8 +62,9 @@ def approximate(note: str, *features: str) -> dict[str, Declared]:
     return {f: Declared(Support.APPROXIMATE, note) for f in features}
 
 
-def unsupported(note: str, *features: str) -> dict[str, Declared]:
-    return {f: Declared(Support.UNSUPPORTED, note) for f in features}
+def unsupported(note: str, *features: str, native_at: Any = None) -> dict[str, Declared]:
+    """Features the engine cannot honour (why: note), except at native_at where one is given."""
+    return {f: Declared(Support.UNSUPPORTED, note, native_at) for f in features}
 
 
 # What x3d_core does itself for every backend: the frame loop, outputs, damping,
@@ -141,6 +152,21 @@ class Backend(ABC):
 
     def table(self) -> dict[str, Declared]:
         return {**EVALUATOR, **self.declared}
+
+
+def judge(backend: Backend, use: Use) -> Declared:
+    """What the backend does with one use: its declaration of the feature, native where the
+    scene's value is the one the declaration says the engine holds anyway."""
+    d = backend.support(use.feature)
+    if d.native_at is not None and use.value is not None and F.values_equal(use.ftype, use.value, d.native_at):
+        return Declared(Support.NATIVE)
+    return d
+
+
+def judged(backend: Backend, scene: Scene) -> list[tuple[Use, Declared]]:
+    """Each use a run of the scene needs (x3d_core.analysis.run_uses), judged by the backend:
+    what `x3drbp run` refuses (naming the use, field and value) or notes as approximated."""
+    return [(u, judge(backend, u)) for u in run_uses(scene)]
 
 
 @dataclass(frozen=True)

@@ -688,7 +688,8 @@ class BulletBackend(Backend):
                       "contacts (none where a bounce applies: see CollisionCollection.bounce)",
                       "RigidBodyCollection.errorCorrection"),
         **unsupported("pybullet's multibody constraint rows (limits, loop joints) carry no CFM: the value cannot "
-                      "reach them (tree joints are exact either way)", "RigidBodyCollection.constantForceMix"),
+                      "reach them (tree joints are exact either way); 0, rigid, is pybullet's own",
+                      "RigidBodyCollection.constantForceMix", native_at=0.0),
         **approximate(f"pybullet has one first-order integrator: {_SUBSTEPS_ACCURATE} internal substeps per step",
                       "RigidBodyCollection.preferAccuracy"),
         **unsupported("pybullet's multibody joints have no compliance and its constraint rows no CFM: ODE's "

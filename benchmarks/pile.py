@@ -63,7 +63,6 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 from backends import base  # noqa: E402
-from x3d_core.analysis import run_features  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
 from x3d_core.evaluator import RunSettings, run  # noqa: E402
 from x3d_core.load import load  # noqa: E402
@@ -477,7 +476,7 @@ def contact_counts(trace) -> float:
 
 def refusal(name: str, backend: base.Backend, path: str) -> str | None:
     """Why `x3drbp run` would refuse the scene on this backend (exit 3), or None."""
-    refused = [f for f in run_features(load(path)) if backend.support(f).support is base.Support.UNSUPPORTED]
+    refused = [str(u) for u, d in base.judged(backend, load(path)) if d.support is base.Support.UNSUPPORTED]
     return f"{name} refuses {', '.join(refused)}" if refused else None
 
 

@@ -17,8 +17,8 @@ _FEATURE = re.compile(r"^(?:[A-Z][\w]*(?:\.[\w\-]+)*|not planar)$")
 
 
 def _features(reason: str) -> str:
-    """The feature names a refusal gives (`FEATURE: note; ...`), or the whole reason."""
-    names = [part.split(": ", 1)[0] for part in reason.split("; ") if ": " in part]
+    """The feature names a refusal gives (`FEATURE = VALUE: note; ...`), or the whole reason."""
+    names = [part.split(": ", 1)[0].split(" = ", 1)[0] for part in reason.split("; ") if ": " in part]
     names = list(dict.fromkeys(n for n in names if _FEATURE.match(n)))
     # a node type refused whole stands for its fields
     names = [n for n in names if n.rpartition(".")[0] not in names]

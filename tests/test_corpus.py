@@ -101,6 +101,10 @@ def test_round_trip_gives_an_equal_model(path, writer, ext, tmp_path):
     assert writer(b) == out.read_bytes()
 
 
+# both bodies enabled FALSE: `run` says there is nothing to simulate (exit 1, no trace)
+EMPTY = {"cobweb/Hierarchy.x3d"}
+
+
 @pytest.fixture(scope="module")
 def corpus_runs(tmp_path_factory):
     """Every corpus scene for 5 simulated seconds on every installed backend, through the CLI,
@@ -126,8 +130,11 @@ def corpus_runs(tmp_path_factory):
 def test_corpus_scene_runs_five_seconds_or_names_what_it_lacks(name, backend, corpus_runs):
     status, stderr, last = corpus_runs[(name, backend)]
     assert "Traceback" not in stderr and "blew up" not in stderr, stderr
-    refused = [line.split(f"unsupported by {backend}: ", 1)[1].split(":", 1)[0]
+    refused = [line.split(f"unsupported by {backend}: ", 1)[1].split(":", 1)[0].split(" = ", 1)[0]
                for line in stderr.splitlines() if f"unsupported by {backend}: " in line]
+    if name in EMPTY:
+        assert status == 1 and "nothing to simulate" in stderr and last is None, stderr
+        return
     if status == 0:
         assert name not in SCRIPTED, "a scene its Scripts drive ran as if they were not there"
         assert last == pytest.approx(RUN_SECONDS) and not refused

@@ -175,3 +175,28 @@ def test_a_file_that_cannot_be_read_is_still_a_load_error(tmp_path):
     path = _write(tmp_path, "bad.x3dv", "#X3D V9.9 utf8 Titania\nGroup {}\n")
     with pytest.raises(LoadError, match="unknown header"):
         load(path)
+
+
+def test_unquoted_output_names_get_a_hint_to_quote_each(tmp_path):
+    joint = """    <RigidBodyCollection>
+      <RigidBody DEF='A' position='0 1 0'/><RigidBody DEF='B' fixed='true'/>
+      <SingleAxisHingeJoint DEF='H' forceOutput={value}>
+        <RigidBody USE='A' containerField='body1'/><RigidBody USE='B' containerField='body2'/>
+      </SingleAxisHingeJoint>
+    </RigidBodyCollection>"""
+    unquoted = _write(tmp_path, "unquoted.x3d", XML.format(body=joint.format(value="'angle angleRate'")))
+    assert _one_error(unquoted).endswith("""; quote each name: '"angle" "angleRate"'""")
+    wrong = _write(tmp_path, "wrong.x3d", XML.format(body=joint.format(value="'angle speed'")))
+    assert "quote each name" not in _one_error(wrong)  # 'speed' is no output: quoting would not help
+    quoted = load(_write(tmp_path, "quoted.x3d", XML.format(body=joint.format(value="""'"angle" "angleRate"'"""))))
+    assert not quoted.errors and quoted.of_type("SingleAxisHingeJoint")[0]["forceOutput"] == ["angle", "angleRate"]
+
+
+def test_a_body_listed_twice_in_one_collection_is_not_said_to_be_in_two(tmp_path):
+    path = _write(tmp_path, "twice.x3d", XML.format(body="""    <RigidBodyCollection DEF='World'>
+      <RigidBody DEF='Ball' position='0 1 0'/>
+      <RigidBody USE='Ball'/>
+    </RigidBodyCollection>"""))
+    assert [str(w) for w in load(path).warnings] == [
+        f"{path}:5:7: warning: RigidBody Ball: body is listed 2 times in RigidBodyCollection World's bodies; it is "
+        "one body, simulated once"]

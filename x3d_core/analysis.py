@@ -1,28 +1,36 @@
 """Scene analysis: what a scene holds and which features it needs.
 
 Feature names join scenes, backends, cases and reports. A run models only what its scene
-needs, and refuses by name each feature its backend declares unsupported (backends/base.py,
-Backend.support; `x3drbp run` exits 3): nothing is ignored silently. 'RigidBody' for a
-node type in use, 'RigidBody.mass' for an input field given a value other than its
-default, and derived names for what a field alone does not say
+needs, and refuses by name and value each feature its backend declares unsupported at the
+scene's value (backends/base.py, Backend.support and judged; `x3drbp run` exits 3): nothing
+is ignored silently. 'RigidBody' for a node type in use, 'RigidBody.mass' for an input field
+given a value other than its default, and derived names for what a field alone does not say
 ('RigidBody.inertia.offDiagonal', 'SingleAxisHingeJoint.limits',
 'CollidableShape.geometry.Cone', 'CollisionCollection.appliedParameters.SLIP-1'; its
 FRICTION_COEFFICIENT-2 only where the two frictionCoefficients differ: with equal ones the
 flag asks for nothing beyond isotropic friction).
+
+features() is what a scene uses (`x3drbp check`); run_uses() what a run of it needs: each use
+with the value the scene gives it (a backend may hold that value anyway), and only where what
+it governs exists (a joint's softness where there are joints, a contact parameter where two
+collidables can touch): a field that acts on nothing asks nothing of an engine.
 """
 
 from __future__ import annotations
 
 import math
 from collections import Counter
+from collections.abc import Iterator
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from . import fields as F
 from .applied import applied
-from .collision import collider, foreign_contacts
-from .model import Scene
+from .collision import STATIC, collider, foreign_contacts
+from .model import Node, Scene
+from .world import World, worlds
 
 RBP_TYPES = ("RigidBodyCollection", "RigidBody", "BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint",
              "SliderJoint", "UniversalJoint", "MotorJoint", "CollisionCollection", "CollisionSpace",
@@ -91,75 +99,167 @@ def summarize(scene: Scene) -> Summary:
 SCRIPT_DIRECT_OUTPUT = "Script.directOutput.routed"
 
 
-def features(scene: Scene) -> list[str]:
-    """The sorted feature names the scene uses."""
-    out: set[str] = set()
+@dataclass(frozen=True)
+class Use:
+    """One feature as a scene uses it: with the value it gives the field where the feature is
+    one field's (None for a node type, a derived name or an input). A backend judges both
+    (backends/base.py, judged): a value may be what its engine does anyway."""
+    feature: str
+    value: Any = None
+    ftype: F.FieldType | None = None
+
+    def __str__(self) -> str:
+        """As a refusal names it: 'RigidBodyCollection.constantForceMix = 0.5'."""
+        return self.feature if self.value is None else f"{self.feature} = {F.format_xml(self.ftype, self.value)}"
+
+
+_UNSEEN = ("bboxCenter", "bboxSize", "bboxDisplay", "visible", "metadata", "description")  # no physics
+
+
+def _derived(n: Node) -> Iterator[str]:
+    """The names a field alone does not say: which shape, which limits, which parameters apply."""
+    t = n.type_name
+    if t == "RigidBody":
+        m = np.asarray(n.get("inertia")).reshape(3, 3)
+        if np.any(m - np.diag(np.diag(m))):
+            yield "RigidBody.inertia.offDiagonal"
+        if n.get("massDensityModel") is not None:
+            yield f"RigidBody.massDensityModel.{n.get('massDensityModel').type_name}"
+        if n.get("forces").size:
+            yield "RigidBody.forces"
+        if n.get("torques").size:
+            yield "RigidBody.torques"
+    elif t in _ANGLE_LIMITS:
+        lo, hi = (n.get(f) for f in _ANGLE_LIMITS[t])
+        if lo > -math.pi + 1e-6 or hi < math.pi - 1e-6:
+            yield f"{t}.limits"
+    elif t == "SliderJoint":
+        yield "SliderJoint.limits"
+    elif t == "CollidableShape":
+        shape = n.get("shape")
+        geom = shape.get("geometry") if shape is not None else None
+        if geom is not None:
+            yield f"CollidableShape.geometry.{geom.type_name}"
+    if t in ("CollisionCollection", "Contact"):
+        on = applied(n.get("appliedParameters"))
+        fc = np.asarray(n.get("frictionCoefficients"), dtype=np.float64)
+        if fc[0] == fc[1]:  # one coefficient both ways: what every reading of the flag applies
+            on = on - {"FRICTION_COEFFICIENT-2"}
+        yield from (f"{t}.appliedParameters.{p}" for p in sorted(on))
+    if n.spec.is_a("X3DRigidJointNode") and n.get("forceOutput") != ["NONE"]:
+        yield f"{t}.forceOutput"
+
+
+def _node_uses(n: Node) -> Iterator[Use]:
+    """What one physics node uses: its type, each field at a value other than its default."""
+    t = n.type_name
+    yield Use(t)
+    for name, value in n.values.items():
+        fd = n.spec.fields[name]
+        if fd.type.kind != "node" and name not in _UNSEEN and not F.values_equal(fd.type, value, fd.default):
+            yield Use(f"{t}.{name}", value, fd.type)
+    yield from map(Use, _derived(n))
+
+
+def _uses(scene: Scene) -> Iterator[tuple[Node, Use]]:
+    """Every use, with the node it acts on (a route's: the node it goes into)."""
+    physics = False
     for n in scene.nodes():
-        if n.spec is None or n.type_name not in RBP_TYPES:
-            continue
-        t = n.type_name
-        out.add(t)
-        for name, value in n.values.items():
-            fd = n.spec.fields[name]
-            if fd.type.kind == "node" or fd.name in ("bboxCenter", "bboxSize", "bboxDisplay", "visible",
-                                                     "metadata", "description"):
-                continue
-            if not F.values_equal(fd.type, value, fd.default):
-                out.add(f"{t}.{name}")
-        if t == "RigidBody":
-            m = np.asarray(n.get("inertia")).reshape(3, 3)
-            if np.any(m - np.diag(np.diag(m))):
-                out.add("RigidBody.inertia.offDiagonal")
-            if n.get("massDensityModel") is not None:
-                out.add(f"RigidBody.massDensityModel.{n.get('massDensityModel').type_name}")
-            if n.get("forces").size:
-                out.add("RigidBody.forces")
-            if n.get("torques").size:
-                out.add("RigidBody.torques")
-        elif t in _ANGLE_LIMITS:
-            lo, hi = (n.get(f) for f in _ANGLE_LIMITS[t])
-            if lo > -math.pi + 1e-6 or hi < math.pi - 1e-6:
-                out.add(f"{t}.limits")
-        elif t == "SliderJoint":
-            out.add("SliderJoint.limits")
-        elif t == "CollidableShape":
-            shape = n.get("shape")
-            geom = shape.get("geometry") if shape is not None else None
-            if geom is not None:
-                out.add(f"CollidableShape.geometry.{geom.type_name}")
-        if t in ("CollisionCollection", "Contact"):
-            on = applied(n.get("appliedParameters"))
-            fc = np.asarray(n.get("frictionCoefficients"), dtype=np.float64)
-            if fc[0] == fc[1]:  # one coefficient both ways: what every reading of the flag applies
-                on = on - {"FRICTION_COEFFICIENT-2"}
-            out.update(f"{t}.appliedParameters.{p}" for p in on)
-        if n.spec.is_a("X3DRigidJointNode") and n.get("forceOutput") != ["NONE"]:
-            out.add(f"{t}.forceOutput")
+        if n.spec is not None and n.type_name in RBP_TYPES:
+            physics = True
+            yield from ((n, u) for u in _node_uses(n))
     for r in scene.routes:  # inputs that change during a run
         if r.to_node.type_name not in RBP_TYPES:
             continue
+        physics = True
         if r.to_field == "set_contacts" and r.from_node.type_name == "CollisionSensor" and r.from_field == "contacts":
             foreign = foreign_contacts(r.to_node, scene.routes)
-            out.add("RigidBodyCollection.set_contacts.fromOtherCollider" if foreign
-                    else "RigidBodyCollection.set_contacts.fromSensor")
+            yield r.to_node, Use("RigidBodyCollection.set_contacts.fromOtherCollider" if foreign
+                                 else "RigidBodyCollection.set_contacts.fromSensor")
         else:
-            out.add(f"{r.to_node.type_name}.{r.to_field}.routed")
-    if out and any(n.type_name == "Script" and n.get("directOutput") for n in scene.nodes()):
-        out.add(SCRIPT_DIRECT_OUTPUT)
-    return sorted(out)
+            yield r.to_node, Use(f"{r.to_node.type_name}.{r.to_field}.routed")
+    if physics:
+        yield from ((n, Use(SCRIPT_DIRECT_OUTPUT)) for n in scene.of_type("Script") if n.get("directOutput"))
+
+
+def features(scene: Scene) -> list[str]:
+    """The sorted feature names the scene uses, whatever they act on (`x3drbp check`)."""
+    return sorted({u.feature for _, u in _uses(scene)})
 
 
 COLLISION_FEATURES = ("CollisionCollection", "CollisionSpace", "CollisionSensor", "CollidableShape",
-                      "CollidableOffset", "RigidBodyCollection.contactSurfaceThickness",
-                      "RigidBodyCollection.maxCorrectionSpeed")
+                      "CollidableOffset")
+# RigidBodyCollection fields that act on its joints' constraint rows and on its contacts (ODE's
+# world ERP and CFM: a contact takes them unless its collider's appliedParameters say otherwise)
+JOINT_SOFTNESS = ("errorCorrection", "constantForceMix")
+# fields that act on contacts alone: a RigidBodyCollection's surface layer and correction speed,
+# and every CollisionCollection field but enabled and collidables
+CONTACT_FIELDS = frozenset({("RigidBodyCollection", f) for f in ("contactSurfaceThickness", "maxCorrectionSpeed")} | {
+    ("CollisionCollection", f) for f in ("appliedParameters", "bounce", "minBounceSpeed", "frictionCoefficients",
+                                         "surfaceSpeed", "slipFactors", "softnessErrorCorrection",
+                                         "softnessConstantForceMix")})
+
+
+@dataclass(frozen=True)
+class _Reach:
+    """What a run's enabled collections act on, by node id: whether any has a collider, the
+    collections whose joints constrain two bodies, and the collections and colliders under
+    which two collidables can touch."""
+    colliding: bool
+    jointed: frozenset[int]
+    touching: frozenset[int]
+
+
+def _constrains(w: World) -> bool:
+    """Whether a joint of the world holds two bodies together (a MotorJoint only pushes)."""
+    return any(j.type != "MotorJoint" and j.body1 != j.body2 for j in w.joints)
+
+
+def _can_touch(w: World) -> bool:
+    """Whether the world's collision set holds a pair it tests with a moving body in it: a
+    contact between two static or fixed collidables moves nothing."""
+    c = w.collisions
+    if c is None:
+        return False
+    moving = [g for g in c.geometries if g.body != STATIC and not w.bodies.fixed[g.body]]
+    return any(c.may_touch(a, b) for a in moving for b in c.geometries)
+
+
+def _reach(scene: Scene) -> _Reach:
+    """What the worlds a run builds act on (x3d_core/world.py, the same worlds and collision sets)."""
+    ws = worlds(scene)
+    touching = [w for w in ws if _can_touch(w)]
+    return _Reach(colliding=any(collider(w.node, scene.routes) is not None for w in ws),
+                  jointed=frozenset(id(w.node) for w in ws if _constrains(w)),
+                  touching=frozenset(id(n) for w in touching for n in (w.node, w.collisions.collider)))
+
+
+def _acts(node: Node, use: Use, r: _Reach) -> bool:
+    """Whether a use acts in a run: whether what it governs exists there."""
+    kind, _, rest = use.feature.partition(".")
+    field_name = rest.partition(".")[0]
+    if kind == "Contact":  # only set_contacts gives a Contact an effect, and its route counts
+        return False
+    if kind == "RigidBodyCollection" and field_name in JOINT_SOFTNESS:
+        return id(node) in r.jointed or id(node) in r.touching
+    if (kind, field_name) in CONTACT_FIELDS:
+        return id(node) in r.touching
+    return r.colliding or not use.feature.startswith(COLLISION_FEATURES)
+
+
+def run_uses(scene: Scene) -> list[Use]:
+    """The uses a run of the scene needs, sorted, each (feature, value) once: a use counts only
+    where what it governs exists. Collision geometry and sensors only where some enabled
+    RigidBodyCollection has a collider, its own or the one its routed contacts come from;
+    contact parameters (its collider's, and its contactSurfaceThickness and
+    maxCorrectionSpeed) only where that collider holds two collidables that can touch, one
+    on a moving body; errorCorrection and constantForceMix only where the collection has
+    such contacts or a joint between two bodies; a Contact node never by itself."""
+    r = _reach(scene)
+    out = {str(u): u for n, u in _uses(scene) if _acts(n, u, r)}
+    return [out[k] for k in sorted(out)]
 
 
 def run_features(scene: Scene) -> list[str]:
-    """The features a run of the scene needs. Collision geometry and contact settings count
-    only where some enabled RigidBodyCollection has a collider, its own or the one its
-    routed contacts come from (otherwise nothing collides); a Contact node counts never by
-    itself: only set_contacts gives it an effect, and its route is counted."""
-    colliding = any(collider(c, scene.routes) is not None
-                    for c in scene.of_type("RigidBodyCollection") if c.get("enabled"))
-    return [f for f in features(scene)
-            if not f.startswith("Contact") and (colliding or not f.startswith(COLLISION_FEATURES))]
+    """The sorted feature names a run of the scene needs (run_uses)."""
+    return sorted({u.feature for u in run_uses(scene)})

@@ -24,6 +24,12 @@ def by_type(scene: Scene) -> dict[str, list[Node]]:
     return groups
 
 
+def diagnostic(scene: Scene, node: Node, field: str, message: str, severity: str = "warning") -> Diagnostic:
+    """A diagnostic about a node's field, at the field's place in the file (else the node's)."""
+    subject = f"{node.label}.{field}" if field else node.label
+    return Diagnostic(severity, scene.locate(node.field_locs.get(field, node.loc), subject), subject, message)
+
+
 def _joints(groups: dict[str, list[Node]]) -> list[Node]:
     return [j for t in AXIS_FIELDS.keys() | {"BallJoint", "SliderJoint"} for j in groups.get(t, [])]
 
@@ -41,13 +47,10 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
     out: list[Diagnostic] = []
 
     def warn(node: Node, field: str, message: str) -> None:
-        subject = f"{node.label}.{field}" if field else node.label
-        out.append(Diagnostic("warning", scene.locate(node.field_locs.get(field, node.loc), subject), subject,
-                              message))
+        out.append(diagnostic(scene, node, field, message))
 
     def err(node: Node, field: str, message: str) -> None:
-        subject = f"{node.label}.{field}"
-        out.append(Diagnostic("error", scene.locate(node.field_locs.get(field, node.loc), subject), subject, message))
+        out.append(diagnostic(scene, node, field, message, "error"))
 
     owners: dict[int, list[Node]] = {}
     body_owners: dict[int, list[Node]] = {}
@@ -60,8 +63,9 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
             for f in ("body1", "body2"):
                 b = j.get(f)
                 if b is not None and id(b) not in bodies:
-                    warn(j, f, f"{b.label} is not in the joint's collection {coll.label}; "
-                               "the spec leaves such a joint undefined")
+                    warn(j, f, f"{b.label} is not in the joint's collection {coll.label}; the spec leaves such "
+                               f"a joint undefined: a run ties this end to the static world, as if {f} were NULL, "
+                               f"and the joint does not act on {b.label}")
     for joint in _joints(groups):
         colls = owners.get(id(joint), [])
         if len(colls) > 1:
@@ -87,9 +91,13 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
         if "inertia" in body.values and body.get("massDensityModel") is None:
             _physical_inertia(body, err)
     for body_id, colls in body_owners.items():
-        if len(colls) > 1:
-            body = next(b for b in colls[0].get("bodies") if id(b) == body_id)
-            warn(body, "", f"body is in {len(colls)} collections; the spec leaves this undefined")
+        body = next(b for b in colls[0].get("bodies") if id(b) == body_id)
+        distinct = list({id(c): c for c in colls}.values())
+        if len(distinct) > 1:
+            warn(body, "", f"body is in {len(distinct)} collections; the spec leaves this undefined")
+        elif len(colls) > 1:
+            warn(body, "", f"body is listed {len(colls)} times in {distinct[0].label}'s bodies; it is one body, "
+                           "simulated once")
     for node in groups.get("CollisionCollection", []) + groups.get("Contact", []):
         for v in node.get("appliedParameters"):
             if canonical(v) is None:
@@ -120,7 +128,11 @@ def _force_output(joint: Node, err) -> None:
     names = joint.get("forceOutput")
     for v in names:
         if v not in ("ALL", "NONE") and v not in outputs:
+            # forceOutput='angle angleRate' in XML is one string: each value needs its own quotes
+            words = v.split()
+            quote = ("; quote each name: '" + " ".join(f'"{w}"' for w in words) + "'"
+                     if len(words) > 1 and all(w in outputs for w in words) else "")
             err(joint, "forceOutput", f"{v!r} is not an output of {joint.type_name}; allowed: "
-                                      f"ALL, NONE{', ' if outputs else ''}{', '.join(outputs)}")
+                                      f"ALL, NONE{', ' if outputs else ''}{', '.join(outputs)}{quote}")
     if len(names) > 1 and ("ALL" in names or "NONE" in names):
         err(joint, "forceOutput", "ALL and NONE stand alone, not in a list of names")

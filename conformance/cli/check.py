@@ -8,6 +8,7 @@ import sys
 from x3d_core.analysis import features, summarize
 from x3d_core.load import load
 from x3d_core.model import LoadError
+from x3d_core.outcome import outcome_warnings
 from x3d_core.paths import scene_files
 
 
@@ -30,6 +31,7 @@ def cmd_check(args: argparse.Namespace) -> int:
             print(f"{path}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it")
             failed += 1
             continue
+        scene.diagnostics.extend(outcome_warnings(scene))
         for d in scene.diagnostics:
             if d.severity == "error" or not args.quiet:
                 print(d)

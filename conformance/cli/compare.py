@@ -12,9 +12,11 @@ real-time factor. Prints the tables; --json writes all of it, the per-frame seri
 --rerun a rerun recording of every run side by side with the divergence series
 (reports/rerun_recording.py), and the seconds it took on stderr.
 
-Exit status: 0 when at least one pair was compared, whatever the divergences (they are
-results); 1 when nothing could be compared: the scene does not load (each error one
-line), or fewer than two backends ran (the verdicts say why); 2 on bad usage: an unknown
+The scene's warnings are printed once on stderr, before any run. Exit status: 0 when at
+least one pair was compared, whatever the divergences (they are results); 1 when nothing
+could be compared: the scene does not load (each error one line), it has nothing to
+simulate (no enabled RigidBody in an enabled RigidBodyCollection: one line), or fewer than
+two backends ran (the verdicts say why); 2 on bad usage: an unknown
 backend, fewer than two backends named (or installed), a threshold or setting that is
 not a positive number.
 """
@@ -29,6 +31,7 @@ from reports.compare_text import render
 from x3d_core import atomic
 
 from conformance.cli import options
+from conformance.cli.run import scene_to_run
 from conformance.runner import children, probe
 from conformance.results import Settings
 from conformance.analyses.compare import DEFAULT_THRESHOLDS, compare_all
@@ -52,7 +55,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
         value = getattr(args, name)
         if not (math.isfinite(value) and value > 0):
             return _usage(f"--{name.replace('_', '-')} must be a positive number, not {value:g}")
-    scene = options.load_scene(args.scene)
+    scene = scene_to_run(args.scene)
     if scene is None:
         return EXIT_NOTHING_COMPARED
     info = probe.backend_table(args.timeout)

@@ -8,9 +8,10 @@ import time
 
 from backends import base
 from x3d_core import atomic
-from x3d_core.analysis import run_features
 from x3d_core.engine import BlewUp, Engine, Simulation, Unsupported
 from x3d_core.evaluator import RunSettings, run
+from x3d_core.model import Scene
+from x3d_core.outcome import EMPTY, NOTHING_TO_SIMULATE, outcome_warnings, simulates
 from x3d_core.trace import Trace, TraceView
 from x3d_core.world import World, worlds
 
@@ -51,8 +52,24 @@ def _write_trace(trace: Trace, path: str | None) -> None:
         sys.stdout.write(trace.text())
 
 
+def scene_to_run(path: str) -> Scene | None:
+    """The scene, its warnings printed once on stderr (before any backend, so once however
+    many run it); None after one line saying why where it has errors or nothing to simulate
+    (the commands that run it exit 1 then, and write no trace)."""
+    scene = options.load_scene(path)
+    if scene is None:
+        return None
+    for d in scene.warnings + outcome_warnings(scene):
+        if d.message != NOTHING_TO_SIMULATE:  # said below as the reason the run stops
+            print(d, file=sys.stderr)
+    if not simulates(scene):
+        print(f"{path}: nothing to simulate: {EMPTY} (no trace written)", file=sys.stderr)
+        return None
+    return scene
+
+
 def cmd_run(args: argparse.Namespace) -> int:
-    scene = options.load_scene(args.scene)
+    scene = scene_to_run(args.scene)
     if scene is None:
         return EXIT_ERROR
     try:
@@ -61,12 +78,11 @@ def cmd_run(args: argparse.Namespace) -> int:
         print(f"x3drbp run: backend {args.backend}: {e}", file=sys.stderr)
         return EXIT_ERROR
     refused = []
-    for f in run_features(scene):
-        d = backend.support(f)
+    for use, d in base.judged(backend, scene):  # each named with its value
         if d.support is base.Support.UNSUPPORTED:
-            refused.append(f"{f}: {d.note}")
+            refused.append(f"{use}: {d.note}")
         elif d.support is base.Support.APPROXIMATE:
-            print(f"{args.scene}: note: {args.backend} approximates {f}: {d.note}", file=sys.stderr)
+            print(f"{args.scene}: note: {args.backend} approximates {use}: {d.note}", file=sys.stderr)
     if refused:
         for line in refused:
             print(f"{args.scene}: unsupported by {args.backend}: {line}", file=sys.stderr)
