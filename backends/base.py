@@ -163,10 +163,11 @@ def judge(backend: Backend, use: Use) -> Declared:
     return d
 
 
-def judged(backend: Backend, scene: Scene) -> list[tuple[Use, Declared]]:
-    """Each use a run of the scene needs (x3d_core.analysis.run_uses), judged by the backend:
-    what `x3drbp run` refuses (naming the use, field and value) or notes as approximated."""
-    return [(u, judge(backend, u)) for u in run_uses(scene)]
+def judged(backend: Backend, scene: Scene, ws: list[World] | None = None) -> list[tuple[Use, Declared]]:
+    """Each use a run of the scene needs (x3d_core.analysis.run_uses, on its worlds ws where
+    built already), judged by the backend: what `x3drbp run` refuses (naming the use, field
+    and value) or notes as approximated."""
+    return [(u, judge(backend, u)) for u in run_uses(scene, ws)]
 
 
 @dataclass(frozen=True)

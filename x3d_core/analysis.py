@@ -225,9 +225,8 @@ def _can_touch(w: World) -> bool:
     return any(c.may_touch(a, b) for a in moving for b in c.geometries)
 
 
-def _reach(scene: Scene) -> _Reach:
+def _reach(scene: Scene, ws: list[World]) -> _Reach:
     """What the worlds a run builds act on (x3d_core/world.py, the same worlds and collision sets)."""
-    ws = worlds(scene)
     touching = [w for w in ws if _can_touch(w)]
     return _Reach(colliding=any(collider(w.node, scene.routes) is not None for w in ws),
                   jointed=frozenset(id(w.node) for w in ws if _constrains(w)),
@@ -247,15 +246,16 @@ def _acts(node: Node, use: Use, r: _Reach) -> bool:
     return r.colliding or not use.feature.startswith(COLLISION_FEATURES)
 
 
-def run_uses(scene: Scene) -> list[Use]:
+def run_uses(scene: Scene, ws: list[World] | None = None) -> list[Use]:
     """The uses a run of the scene needs, sorted, each (feature, value) once: a use counts only
     where what it governs exists. Collision geometry and sensors only where some enabled
     RigidBodyCollection has a collider, its own or the one its routed contacts come from;
     contact parameters (its collider's, and its contactSurfaceThickness and
     maxCorrectionSpeed) only where that collider holds two collidables that can touch, one
     on a moving body; errorCorrection and constantForceMix only where the collection has
-    such contacts or a joint between two bodies; a Contact node never by itself."""
-    r = _reach(scene)
+    such contacts or a joint between two bodies; a Contact node never by itself. ws: the
+    scene's worlds where the caller has built them already (a run builds them once)."""
+    r = _reach(scene, worlds(scene) if ws is None else ws)
     out = {str(u): u for n, u in _uses(scene) if _acts(n, u, r)}
     return [out[k] for k in sorted(out)]
 

@@ -31,13 +31,14 @@ def simulates(scene: Scene) -> bool:
                for b in c.get("bodies"))
 
 
-def outcome_warnings(scene: Scene) -> list[Diagnostic]:
-    """Every warning of this module, in the order of its kinds; none for a scene with errors."""
+def outcome_warnings(scene: Scene, ws: list[World] | None = None) -> list[Diagnostic]:
+    """Every warning of this module, in the order of its kinds; none for a scene with errors.
+    ws: the scene's worlds where the caller has built them already (a run builds them once)."""
     if scene.errors:
         return []
     groups = by_type(scene)
     return [*_nothing_to_simulate(scene, groups), *_in_no_collection(scene, groups), *_transformed(scene, groups),
-            *_shared_collidables(scene, groups), *_never_colliding(scene, groups)]
+            *_shared_collidables(scene, groups), *_never_colliding(scene, groups, worlds(scene) if ws is None else ws)]
 
 
 def _nothing_to_simulate(scene: Scene, groups: dict[str, list[Node]]) -> list[Diagnostic]:
@@ -123,13 +124,13 @@ def _shared_collidables(scene: Scene, groups: dict[str, list[Node]]) -> list[Dia
     return out
 
 
-def _never_colliding(scene: Scene, groups: dict[str, list[Node]]) -> list[Diagnostic]:
+def _never_colliding(scene: Scene, groups: dict[str, list[Node]], ws: list[World]) -> list[Diagnostic]:
     """Per collection, the enabled bodies that carry collision geometry of which collision.plan
     makes nothing that can touch another shape, with why. A body in the collision set whose
     every partner is joined to it is not counted: the joint rule keeps them apart, not the
     collider."""
     out: list[Diagnostic] = []
-    for w in worlds(scene):
+    for w in ws:
         carriers = [(row, b) for row, b in enumerate(w.bodies.nodes) if w.bodies.enabled[row] and b.get("geometry")]
         if not carriers or foreign_contacts(w.node, scene.routes):  # refused by name: analysis.features
             continue

@@ -55,9 +55,10 @@ def cmd_compare(args: argparse.Namespace) -> int:
         value = getattr(args, name)
         if not (math.isfinite(value) and value > 0):
             return _usage(f"--{name.replace('_', '-')} must be a positive number, not {value:g}")
-    scene = scene_to_run(args.scene)
-    if scene is None:
+    loaded = scene_to_run(args.scene)
+    if loaded is None:
         return EXIT_NOTHING_COMPARED
+    scene = loaded[0]
     info = probe.backend_table(args.timeout)
     try:
         backends = probe.named_backends(options.names(args.backends), info)

@@ -52,33 +52,36 @@ def _write_trace(trace: Trace, path: str | None) -> None:
         sys.stdout.write(trace.text())
 
 
-def scene_to_run(path: str) -> Scene | None:
-    """The scene, its warnings printed once on stderr (before any backend, so once however
+def scene_to_run(path: str) -> tuple[Scene, list[World]] | None:
+    """The scene and its worlds (built once: the warnings, the backend's judgement and the run
+    all read them), its warnings printed once on stderr (before any backend, so once however
     many run it); None after one line saying why where it has errors or nothing to simulate
     (the commands that run it exit 1 then, and write no trace)."""
     scene = options.load_scene(path)
     if scene is None:
         return None
-    for d in scene.warnings + outcome_warnings(scene):
+    ws = worlds(scene)
+    for d in scene.warnings + outcome_warnings(scene, ws):
         if d.message != NOTHING_TO_SIMULATE:  # said below as the reason the run stops
             print(d, file=sys.stderr)
     if not simulates(scene):
         print(f"{path}: nothing to simulate: {EMPTY} (no trace written)", file=sys.stderr)
         return None
-    return scene
+    return scene, ws
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    scene = scene_to_run(args.scene)
-    if scene is None:
+    loaded = scene_to_run(args.scene)
+    if loaded is None:
         return EXIT_ERROR
+    scene, ws = loaded
     try:
         backend = base.load(args.backend)
     except (KeyError, ImportError) as e:
         print(f"x3drbp run: backend {args.backend}: {e}", file=sys.stderr)
         return EXIT_ERROR
     refused = []
-    for use, d in base.judged(backend, scene):  # each named with its value
+    for use, d in base.judged(backend, scene, ws):  # each named with its value
         if d.support is base.Support.UNSUPPORTED:
             refused.append(f"{use}: {d.note}")
         elif d.support is base.Support.APPROXIMATE:
@@ -91,7 +94,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     try:
         started = time.perf_counter()
         clock = _StepClock(backend) if args.timing else None
-        trace = run(worlds(scene), clock or backend, settings)
+        trace = run(ws, clock or backend, settings)
         simulation_s = time.perf_counter() - started
     except Unsupported as e:
         print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
