@@ -92,15 +92,15 @@ class _Contacts:
             sim.space.add(shape)
             self.index[shape] = k
         n = len(c.geometries)
-        self.allowed = np.array([[c.may_touch(a, b) for b in c.geometries] for a in c.geometries],
-                                dtype=bool).reshape(n, n)
+        first, second = np.indices((n, n)).reshape(2, -1)
+        self.allowed = c.may_touch(first, second).reshape(n, n)
         for i, j in found.apart:  # shapes in parallel planes that never meet in 3D
             self.allowed[i, j] = self.allowed[j, i] = False
         self.speed = float(p.surface_speed[0])
         self.min_bounce = p.min_bounce_speed if p.bounce > 0 else 0.0
-        moving = [sim.body_of(g.body) is not sim.space.static_body for g in c.geometries]
-        filtered = any(not self.allowed[i, j] for i in range(n) for j in range(n)
-                       if i != j and (moving[i] or moving[j]) and c.geometries[i].body != c.geometries[j].body)
+        moving = np.array([sim.body_of(g.body) is not sim.space.static_body for g in c.geometries], dtype=bool)
+        body = np.array([g.body for g in c.geometries])
+        filtered = (~self.allowed & (moving[:, None] | moving) & (body[:, None] != body)).any()
         begin = self._begin if filtered else None
         pre_solve = self._pre_solve if self.speed or self.min_bounce > 0 else None
         if begin or pre_solve:

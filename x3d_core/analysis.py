@@ -221,8 +221,8 @@ def _can_touch(w: World) -> bool:
     c = w.collisions
     if c is None:
         return False
-    moving = [g for g in c.geometries if g.body != STATIC and not w.bodies.fixed[g.body]]
-    return any(c.may_touch(a, b) for a in moving for b in c.geometries)
+    moving = np.array([g.body != STATIC and not w.bodies.fixed[g.body] for g in c.geometries], dtype=bool)
+    return bool((moving & c.touchable()).any())
 
 
 def _reach(scene: Scene, ws: list[World]) -> _Reach:

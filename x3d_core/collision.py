@@ -30,6 +30,7 @@ The rules (clause 37.4), as x3drbp reads them:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -98,12 +99,36 @@ class Collisions:
     collider: Node
     sensors: list[tuple[str, Node]] = field(default_factory=list)  # enabled CollisionSensors on this collider
 
-    def may_touch(self, a: Geometry, b: Geometry) -> bool:
-        """Whether two geometries of this collision set are tested against each other."""
-        if a.body == b.body:
-            return False
-        pair = (min(a.body, b.body), max(a.body, b.body))
-        return pair not in self.excluded
+    def may_touch(self, first: np.ndarray, second: np.ndarray) -> np.ndarray:
+        """Whether each pair of geometries (index arrays into geometries) is tested: not one
+        body's, not a joined pair. In bulk: a scene of n geometries has n^2/2 pairs."""
+        body, span, joined = self._pair_keys
+        a, b = body[np.asarray(first, dtype=np.int64)], body[np.asarray(second, dtype=np.int64)]
+        out = a != b
+        if len(joined):
+            out &= ~np.isin((np.minimum(a, b) + 1) * span + np.maximum(a, b) + 1, joined)
+        return out
+
+    def touchable(self) -> np.ndarray:
+        """Whether each geometry may touch any other of the set: some geometry is neither its
+        body's nor a joined body's. Counted per body, in linear time."""
+        body, _, _ = self._pair_keys
+        count = np.bincount(body + 1, minlength=int(body.max(initial=STATIC)) + 2)
+        blocked = count.copy()  # per body (shifted by 1): its geometries and its joined bodies'
+        pairs = np.array([p for p in self.excluded if p[0] != p[1]], dtype=np.int64).reshape(-1, 2) + 1
+        pairs = pairs[(pairs < len(count)).all(axis=1)]  # a joined body with no geometry blocks none
+        np.add.at(blocked, pairs[:, 0], count[pairs[:, 1]])
+        np.add.at(blocked, pairs[:, 1], count[pairs[:, 0]])
+        return len(body) - blocked[body + 1] > 0
+
+    @cached_property
+    def _pair_keys(self) -> tuple[np.ndarray, int, np.ndarray]:
+        """Each geometry's body row, and the joined body pairs as integer keys (rows and STATIC
+        shifted to 0.. as the digits of base `span`)."""
+        body = np.array([g.body for g in self.geometries], dtype=np.int64)
+        span = int(max(body.max(initial=STATIC), *(hi for _, hi in self.excluded), STATIC)) + 2
+        joined = np.array(sorted((lo + 1) * span + hi + 1 for lo, hi in self.excluded), dtype=np.int64)
+        return body, span, joined
 
 
 def friction_directions(normal: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -208,9 +208,9 @@ def sections(world: World, planes: np.ndarray) -> tuple[list[Section | None], se
         if isinstance(s, str):
             reasons.append(f"CollidableShape {g.name} ({g.kind}) {s}")
         out.append(s)
-    for a, b in zip(*np.nonzero(np.triu(moving[:, None] & moving[None, :], 1))):
-        if contact_z[a] == contact_z[b] or not c.may_touch(geoms[a], geoms[b]):
-            continue
+    first, second = np.nonzero(np.triu(moving[:, None] & moving[None, :], 1))
+    kept = (contact_z[first] != contact_z[second]) & c.may_touch(first, second)
+    for a, b in zip(first[kept], second[kept]):
         if abs(contact_z[a] - contact_z[b]) >= half[a] + half[b] - TOLERANCE:
             apart.add((int(a), int(b)))
         else:

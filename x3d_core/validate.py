@@ -53,11 +53,11 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
         out.append(diagnostic(scene, node, field, message, "error"))
 
     owners: dict[int, list[Node]] = {}
-    body_owners: dict[int, list[Node]] = {}
+    body_owners: dict[int, tuple[Node, list[Node]]] = {}
     for coll in groups.get("RigidBodyCollection", []):
         bodies = {id(b) for b in coll.get("bodies")}
         for b in coll.get("bodies"):
-            body_owners.setdefault(id(b), []).append(coll)
+            body_owners.setdefault(id(b), (b, []))[1].append(coll)
         for j in coll.get("joints"):
             owners.setdefault(id(j), []).append(coll)
             for f in ("body1", "body2"):
@@ -90,8 +90,7 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
     for body in groups.get("RigidBody", []):
         if "inertia" in body.values and body.get("massDensityModel") is None:
             _physical_inertia(body, err)
-    for body_id, colls in body_owners.items():
-        body = next(b for b in colls[0].get("bodies") if id(b) == body_id)
+    for body, colls in body_owners.values():
         distinct = list({id(c): c for c in colls}.values())
         if len(distinct) > 1:
             warn(body, "", f"body is in {len(distinct)} collections; the spec leaves this undefined")

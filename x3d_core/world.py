@@ -229,11 +229,7 @@ def _joint(node: Node, rows: dict[int, int], fixed: np.ndarray, names: dict[int,
 
 
 def _world(coll: Node, names: dict[int, str]) -> World:
-    nodes = [b for b in coll.get("bodies")]
-    unique: list[Node] = []
-    for b in nodes:
-        if all(b is not u for u in unique):
-            unique.append(b)
+    unique = list({id(b): b for b in coll.get("bodies")}.values())  # a body listed twice is one body
     bodies = _bodies(unique, names)
     rows = {id(b): i for i, b in enumerate(unique)}
     joints = [_joint(j, rows, bodies.fixed, names) for j in coll.get("joints")]
