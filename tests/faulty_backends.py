@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-FAULTS = ("segv", "hang", "raise", "nan", "huge")
+FAULTS = ("segv", "hang", "stuck", "raise", "nan", "huge")
 FAULT_AT = 0.1  # seconds: the first frames run clean, so a blow-up has frames to keep
 
 
@@ -32,6 +32,9 @@ class _FaultySim:
         if self._fault == "segv":
             os.kill(os.getpid(), signal.SIGSEGV)
         elif self._fault == "hang":
+            time.sleep(3600)
+        elif self._fault == "stuck":  # as an engine's C loop: no Python runs, no signal handler either
+            signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGALRM, signal.SIGINT})
             time.sleep(3600)
         elif self._fault == "raise":
             raise RuntimeError("the engine refused to step")

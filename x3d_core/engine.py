@@ -19,12 +19,20 @@ class Unsupported(Exception):
     (a slider closing a loop of joints, say); the message says what."""
 
 
-class BlewUp(RuntimeError):
-    """A body's state stopped being finite (or sane, see evaluator.STATE_BOUND), or the
-    engine gave up on it; the message says what (the evaluator adds when). `trace`, set by
-    the evaluator, holds every frame before the one that blew up: what did run is kept."""
+class Stopped(RuntimeError):
+    """The run ended before its duration; the message says why. `trace`, set by the
+    evaluator, holds every frame before: what did run is kept."""
 
     trace = None
+
+
+class BlewUp(Stopped):
+    """A body's state stopped being finite (or sane, see evaluator.STATE_BOUND), or the
+    engine gave up on it; the message says what (the evaluator adds when)."""
+
+
+class TimedOut(Stopped):
+    """The run passed its wall-clock limit (`x3drbp run --timeout`), raised between steps."""
 
 
 class Simulation(Protocol):

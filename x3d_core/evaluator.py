@@ -17,7 +17,7 @@ import numpy as np
 from . import rotation as R
 from . import fields as F
 from .collision import ContactPoints, friction_directions
-from .engine import BlewUp, Engine, Simulation
+from .engine import BlewUp, Engine, Simulation, Stopped
 from .joint_outputs import JointOutputs
 from .trace import Column, Trace
 from .world import STATIC, State, World
@@ -252,7 +252,7 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
             for rec in recorders:
                 rec.record(trace, float(t))
             whole = len(trace.blocks)
-    except BlewUp as e:
+    except Stopped as e:
         del trace.blocks[whole:]
         e.trace = trace
         raise

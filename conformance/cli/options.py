@@ -44,6 +44,50 @@ def thresholds(values: list[str] | None) -> dict[str, float]:
     return out
 
 
+# A run records at most this many frames and takes at most this many steps: past them a setting
+# is a mistake (--frame-rate 1e9 wanted 7.7 GiB; --dt 1e-12 would step for days), said at once.
+MAX_FRAMES = 10**6
+MAX_STEPS = 10**9
+
+
+def settings_error(args: argparse.Namespace) -> str | None:
+    """Why --duration, --dt and --frame-rate (and --timeout where the command has one) cannot
+    run, in one line; None when they can."""
+    for name in ("duration", "dt", "frame_rate", "timeout"):
+        value = getattr(args, name, 1.0)
+        if value is not None and not (math.isfinite(value) and value > 0):
+            return f"--{name.replace('_', '-')} must be a positive number, not {value:g}"
+    frames, steps = args.duration * args.frame_rate, args.duration / args.dt
+    if frames > MAX_FRAMES:
+        return (f"--duration {args.duration:g} at --frame-rate {args.frame_rate:g} makes {frames:.3g} frames; "
+                f"a run records at most {MAX_FRAMES:g}")
+    if steps > MAX_STEPS:
+        return f"--duration {args.duration:g} at --dt {args.dt:g} makes {steps:.3g} steps; a run takes at most {MAX_STEPS:g}"
+    return None
+
+
+def positive(text: str) -> float:
+    """An argparse type: a positive finite number (a time limit, say)."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a positive number, not {text!r}")
+    return value
+
+
+def count(text: str) -> int:
+    """An argparse type: a whole number of at least 1 (processes in parallel, say)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number of at least 1, not {text!r}")
+    return value
+
+
 def add_run_settings(p: argparse.ArgumentParser) -> None:
     """--duration, --dt, --frame-rate: how a scene is run (`x3drbp run` and the commands that run it)."""
     p.add_argument("--duration", type=float, default=1.0, help="simulated seconds (default 1)")
@@ -75,9 +119,9 @@ def add_matrix_options(p: argparse.ArgumentParser, verb: str, case_names: list[s
                    help=f"backends to {verb}, comma-separated (default: every installed one)")
     p.add_argument("--cases", action="append", metavar="NAMES",
                    help=f"cases to {verb}, comma-separated (default: all: {', '.join(case_names)})")
-    p.add_argument("--timeout", type=float, default=timeout, metavar="S",
+    p.add_argument("--timeout", type=positive, default=timeout, metavar="S",
                    help=f"time limit per run in seconds (default {timeout:g})")
-    p.add_argument("--jobs", type=int, default=None, metavar="N",
+    p.add_argument("--jobs", type=count, default=None, metavar="N",
                    help="runs in parallel (default: the number of CPUs)")
 
 

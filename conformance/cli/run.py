@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import os
+import signal
 import sys
+import threading
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from backends import base
 from x3d_core import atomic
-from x3d_core.engine import BlewUp, Engine, Simulation, Unsupported
+from x3d_core.engine import Engine, Simulation, Stopped, TimedOut, Unsupported
 from x3d_core.evaluator import RunSettings, run
 from x3d_core.model import Scene
 from x3d_core.outcome import EMPTY, NOTHING_TO_SIMULATE, outcome_warnings, simulates
@@ -17,7 +22,8 @@ from x3d_core.world import World, worlds
 
 from conformance.cli import options
 
-EXIT_OK, EXIT_ERROR, EXIT_UNSUPPORTED = 0, 1, 3
+EXIT_OK, EXIT_ERROR, EXIT_USAGE, EXIT_UNSUPPORTED = 0, 1, 2, 3
+STUCK_GRACE = 5.0  # s an engine call may run past --timeout before the process ends without a trace
 
 
 class _StepClock:
@@ -70,16 +76,54 @@ def scene_to_run(path: str) -> tuple[Scene, list[World]] | None:
     return scene, ws
 
 
+@contextmanager
+def time_limit(seconds: float | None, said: str) -> Iterator[None]:
+    """TimedOut raised in the main thread once `seconds` of wall time have passed (between two
+    steps: the evaluator keeps the frames before); should an engine call hold the interpreter
+    STUCK_GRACE s past that, the process ends with exit 1 and one line `said` + why, since no
+    Python runs until the call returns."""
+    if seconds is None:
+        yield
+        return
+
+    def expire(signum: int, frame: object) -> None:
+        raise TimedOut(f"passed its time limit of {seconds:g} s")
+
+    def stuck() -> None:
+        print(f"{said}: passed its time limit of {seconds:g} s inside one engine call (no trace written)",
+              file=sys.stderr, flush=True)
+        os._exit(EXIT_ERROR)
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    watchdog = threading.Timer(seconds + STUCK_GRACE, stuck)
+    watchdog.daemon = True
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    watchdog.start()
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        watchdog.cancel()
+        signal.signal(signal.SIGALRM, previous)
+
+
 def cmd_run(args: argparse.Namespace) -> int:
+    problem = options.settings_error(args)
+    if problem:
+        print(f"x3drbp run: {problem}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        backend = base.load(args.backend)
+    except KeyError as e:  # a name no backend registers: bad usage
+        print(f"x3drbp run: {e.args[0]}", file=sys.stderr)
+        return EXIT_USAGE
+    except ImportError as e:
+        print(f"x3drbp run: backend {args.backend}: {e}", file=sys.stderr)
+        return EXIT_ERROR
     loaded = scene_to_run(args.scene)
     if loaded is None:
         return EXIT_ERROR
     scene, ws = loaded
-    try:
-        backend = base.load(args.backend)
-    except (KeyError, ImportError) as e:
-        print(f"x3drbp run: backend {args.backend}: {e}", file=sys.stderr)
-        return EXIT_ERROR
     refused = []
     for use, d in base.judged(backend, scene, ws):  # each named with its value
         if d.support is base.Support.UNSUPPORTED:
@@ -94,12 +138,13 @@ def cmd_run(args: argparse.Namespace) -> int:
     try:
         started = time.perf_counter()
         clock = _StepClock(backend) if args.timing else None
-        trace = run(ws, clock or backend, settings)
+        with time_limit(args.timeout, f"{args.scene}: {args.backend}"):
+            trace = run(ws, clock or backend, settings)
         simulation_s = time.perf_counter() - started
     except Unsupported as e:
         print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
         return EXIT_UNSUPPORTED
-    except BlewUp as e:
+    except Stopped as e:  # blew up or timed out
         kept = "no trace written"
         if e.trace is not None:
             _write_trace(e.trace, args.trace)
@@ -138,6 +183,8 @@ def add_commands(sub) -> None:
     r.add_argument("--backend", required=True, help=f"one of {', '.join(base.engines())} (the "
                    "registered backends: `x3drbp backends` says which are usable)")
     options.add_run_settings(r)
+    r.add_argument("--timeout", type=float, metavar="S", help="stop the simulation after S seconds of wall "
+                   "time (engine build and steps), keeping the frames before; exit 1 (default: no limit)")
     r.add_argument("--trace", help="write the trace CSV here (default: standard output)")
     r.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording of the run (open it with `rerun OUT.rrd`)")
     r.add_argument("--timing", metavar="FILE", help="write the simulation's wall time (plan, engine build, "

@@ -111,16 +111,6 @@ def cmd_record(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _positive(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = float("nan")
-    if not value > 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"must be a positive number, not {text!r}")
-    return value
-
-
 def add_command(sub) -> None:
     p = sub.add_parser("x-ite", help="run the X_ITE browser headless on the conformance cases or a scene, "
                                      "and judge its traces", description=__doc__,
@@ -134,13 +124,13 @@ def add_command(sub) -> None:
                    help="divergence thresholds, as for x3drbp compare")
     c.add_argument("--out", default=os.path.join("out", "x_ite"), metavar="DIR",
                    help="folder for x_ite.json, x_ite.md, traces/ and recordings/ (default out/x_ite)")
-    c.add_argument("--timeout", type=_positive, default=children.DEFAULT_TIMEOUT, metavar="S",
+    c.add_argument("--timeout", type=options.positive, default=children.DEFAULT_TIMEOUT, metavar="S",
                    help="seconds per run, for X_ITE's and each backend's")
     c.set_defaults(func=cmd_cases)
     r = modes.add_parser("record", help="X_ITE's trace of a scene, for x3drbp validate")
     r.add_argument("scene")
     r.add_argument("--trace", required=True, metavar="OUT.csv")
-    r.add_argument("--frame-rate", type=_positive, default=60.0, metavar="F", help="frames per second (default 60)")
-    r.add_argument("--duration", type=_positive, default=5.0, metavar="S", help="seconds (default 5)")
-    r.add_argument("--timeout", type=_positive, default=children.DEFAULT_TIMEOUT, metavar="S")
+    r.add_argument("--frame-rate", type=options.positive, default=60.0, metavar="F", help="frames per second (default 60)")
+    r.add_argument("--duration", type=options.positive, default=5.0, metavar="S", help="seconds (default 5)")
+    r.add_argument("--timeout", type=options.positive, default=children.DEFAULT_TIMEOUT, metavar="S")
     r.set_defaults(func=cmd_record)
