@@ -23,10 +23,14 @@ from __future__ import annotations
 
 import functools
 import importlib.metadata
+import sys
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass
 from enum import Enum
 from typing import Any
+
+import numpy as np
 
 from x3d_core import fields as F
 from x3d_core.analysis import Use, run_uses
@@ -126,6 +130,27 @@ JOINTS = ("BallJoint", "BallJoint.anchorPoint", "SingleAxisHingeJoint", "SingleA
           "SliderJoint.minSeparation", "SliderJoint.maxSeparation", "UniversalJoint", "UniversalJoint.anchorPoint",
           "UniversalJoint.axis1", "UniversalJoint.axis2")
 
+# The smallest normal double: a positive value below it (a subnormal, 1e-320) has no finite
+# inverse (1/x overflows), and engines that invert masses or inertias then freeze or abort.
+SMALLEST_NORMAL = sys.float_info.min
+
+
+def below(limit: float, why: str) -> Callable[[Any], str | None]:
+    """A value check (Backend.limits): refuses a value with a non-zero component of magnitude
+    under limit, saying why (the value itself is named by the refusal)."""
+    def check(value: Any) -> str | None:
+        a = np.abs(np.asarray(value, dtype=np.float64))
+        return why if np.any((a > 0) & (a < limit)) else None
+    return check
+
+
+def above(limit: float, why: str) -> Callable[[Any], str | None]:
+    """A value check (Backend.limits): refuses a value with a component of magnitude over limit."""
+    def check(value: Any) -> str | None:
+        return why if np.any(np.abs(np.asarray(value, dtype=np.float64)) > limit) else None
+    return check
+
+
 NOT_YET = "not implemented by this backend yet"
 ROUTED = Declared(Support.UNSUPPORTED, "x3drbp runs no ROUTEs or Scripts: this input would keep the file's value")
 
@@ -133,6 +158,11 @@ ROUTED = Declared(Support.UNSUPPORTED, "x3drbp runs no ROUTEs or Scripts: this i
 class Backend(ABC):
     name: str
     declared: dict[str, Declared]
+    # Values of a feature the engine cannot take though it honours the feature (a subnormal
+    # mass whose inverse overflows): feature -> check(value), the reason or None (below, above).
+    # judge() refuses such a use by value; limits that need the whole world or the step (a
+    # CFM divided by dt) are refused by build() raising x3d_core.engine.Unsupported.
+    limits: dict[str, Callable[[Any], str | None]] = {}
 
     @abstractmethod
     def version(self) -> str:
@@ -156,10 +186,16 @@ class Backend(ABC):
 
 def judge(backend: Backend, use: Use) -> Declared:
     """What the backend does with one use: its declaration of the feature, native where the
-    scene's value is the one the declaration says the engine holds anyway."""
+    scene's value is the one the declaration says the engine holds anyway, unsupported where
+    the value is one the engine cannot take (Backend.limits)."""
     d = backend.support(use.feature)
     if d.native_at is not None and use.value is not None and F.values_equal(use.ftype, use.value, d.native_at):
         return Declared(Support.NATIVE)
+    check = getattr(backend, "limits", {}).get(use.feature) if use.value is not None else None
+    if check is not None and d.support is not Support.UNSUPPORTED:
+        why = check(use.value)
+        if why:
+            return Declared(Support.UNSUPPORTED, why)
     return d
 
 

@@ -45,13 +45,19 @@ import pybullet as p
 
 from x3d_core import rotation as R
 from x3d_core.collision import ContactPoints, friction_directions
-from x3d_core.engine import Unsupported
+from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
 from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
-_MAX_SPEED = 1e6  # pybullet clamps joint speeds to 100 rad/s unless told otherwise
+# pybullet clamps joint speeds to 100 rad/s unless told otherwise; the clamp set instead holds every
+# generalized velocity component (a free base's too: measured, gravity -1e308 stops at -1e6 m/s), so
+# state() calls a body at it blown up
+_MAX_SPEED = 1e6
+# pybullet takes a free body lighter than this (DBL_EPSILON) as static: measured, a body of
+# 2.2e-16 kg stays where it is, one of 2.3e-16 kg falls
+_MIN_FREE_MASS = float(np.finfo(np.float64).eps)
 _MAX_FORCE = 1e12  # a loop constraint's impulse bound (pybullet's default is 500 N)
 _SUBSTEPS_ACCURATE = 4  # internal steps per step when preferAccuracy asks for more
 # the gap within which pybullet's solver takes a contact point (its contactProcessingThreshold): 0
@@ -212,7 +218,8 @@ class BulletSimulation:
         if world.collisions is not None:
             self._contacts_setup()
         self.moving = np.flatnonzero(~b.fixed)
-        self.weight = -b.mass[:, None] * world.gravity * ~b.use_gravity[:, None]  # cancels gravity where it is off
+        with np.errstate(over="ignore", invalid="ignore"):  # an overflowing weight blows up as a non-finite state
+            self.weight = -b.mass[:, None] * world.gravity * ~b.use_gravity[:, None]  # cancels gravity where it is off
         self.set_loads(b.forces, b.torques)
         self.set_velocities(b.linear_velocity, b.angular_velocity)
 
@@ -224,6 +231,9 @@ class BulletSimulation:
         moments, principal = _principal(b.inertia[i])
         q = b.orientation[i]
         if parent == World.FREE:
+            if 0 < b.mass[i] < _MIN_FREE_MASS:
+                raise Unsupported(f"RigidBody {b.names[i]}: mass {b.mass[i]:g}: pybullet takes a free body lighter "
+                                  f"than {_MIN_FREE_MASS:.4g} kg as static (it would not move)")
             self.trees.append(_Tree(free=True, parts=[_Part(
                 row=i, parent=-1, joint_type=p.JOINT_FIXED, axis=np.zeros(3), position=b.position[i], orientation=q,
                 offset=np.zeros(3), inertial=b.com[i], principal=principal, mass=b.mass[i], moments=moments)]))
@@ -579,6 +589,9 @@ class BulletSimulation:
         s.linear_velocity[b.fixed] = 0.0
         s.angular_velocity[b.fixed] = 0.0
         com, q, v, w = self._read(velocities=True)
+        if len(v) and max(np.abs(v).max(), np.abs(w).max()) >= _MAX_SPEED:
+            raise BlewUp(f"a body reached pybullet's speed clamp ({_MAX_SPEED:g} m/s or rad/s in a component), "
+                         "where pybullet holds it: its motion since is not the physics")
         if self.turned:
             q = R.multiply(q, self.unturn)
         rows, on = self.rows[self.bodies], self.bodies

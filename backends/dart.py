@@ -58,7 +58,7 @@ from x3d_core.collision import Collisions, ContactPoints, Geometry
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
-from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
+from .base import BODIES, JOINTS, SMALLEST_NORMAL, Backend, approximate, below, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 _LOOPS = dart.constraint.DynamicJointConstraint  # holds the loop constraints' class-wide parameters
@@ -525,6 +525,9 @@ class DartSimulation:
 
 class DartBackend(Backend):
     name = "dart"
+    # measured (dartpy 6.20): a free body of 1e-308 kg (subnormal) stays where it is, 1e-307 falls
+    limits = {"RigidBody.mass": below(SMALLEST_NORMAL, f"DART inverts the mass: under {SMALLEST_NORMAL:.4g} kg (a "
+                                      "subnormal) the inverse overflows and the body would not move")}
     declared = {
         **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity"),
         **approximate("set on the loop constraints (DART's tree joints and predictive stops need none); DART's "
@@ -646,6 +649,14 @@ class DartBackend(Backend):
         return dart.__version__
 
     def build(self, world: World, dt: float) -> DartSimulation:
+        b = world.bodies
+        with np.errstate(over="ignore", invalid="ignore"):
+            weight = b.mass * np.abs(world.gravity).max(initial=0.0) * b.use_gravity
+        heavy = np.flatnonzero(~np.isfinite(weight) & ~b.fixed)
+        if len(heavy):  # measured: 1e308 kg under 9.8 m/s^2 stays where it is, 1e307 kg falls
+            i = int(heavy[0])
+            raise Unsupported(f"RigidBody {b.names[i]}: mass {b.mass[i]:g} under gravity {world.gravity.tolist()}: "
+                              "its weight overflows, and DART zeroes a non-finite force (the body would not fall)")
         return DartSimulation(world, dt)
 
 

@@ -34,6 +34,8 @@ normal frame[0:3] from geom1 to geom2, depth -dist.
 
 from __future__ import annotations
 
+import sys
+
 import mujoco
 import numpy as np
 
@@ -43,6 +45,16 @@ from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, World, State
 
 from .base import BODIES, JOINTS, Backend, Declared, Support, approximate, native, unsupported
+
+def _warning(text: str) -> None:
+    """MuJoCo's warnings, out of MUJOCO_LOG.TXT: each is counted in d.warning, and step() turns
+    those of a state MuJoCo reset into a blow-up (so they are not printed again); others go
+    to stderr as one line."""
+    if not text.startswith("Nan, Inf or huge value"):
+        print(f"MuJoCo warning: {text.strip()}", file=sys.stderr)
+
+
+mujoco.set_mju_user_warning(_warning)
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 # ODE's motors reach their target velocity in one step if the torque limit allows. A
@@ -190,7 +202,11 @@ class MujocoSimulation:
         n = len(self.ids)
         contiguous = n and np.array_equal(self.ids, np.arange(self.ids[0], self.ids[0] + n))
         self.rows = slice(int(self.ids[0]), int(self.ids[0]) + n) if contiguous else self.ids
-        self.bad_acceleration = self.data.warning[mujoco.mjtWarning.mjWARN_BADQACC]
+        # MuJoCo resets the state when one is non-finite or beyond mjMAXVAL (1e10) and goes on: the
+        # three counters it raises then, read after every batch of steps (three integers)
+        self.bad = [(self.data.warning[k], what) for k, what in (
+            (mujoco.mjtWarning.mjWARN_BADQPOS, "position"), (mujoco.mjtWarning.mjWARN_BADQVEL, "velocity"),
+            (mujoco.mjtWarning.mjWARN_BADQACC, "acceleration"))]
         # free bodies with nothing hanging from them take velocities directly (the usual
         # case for big scenes); anything jointed goes through a least-squares fit
         moving = ~b.fixed
@@ -493,9 +509,10 @@ class MujocoSimulation:
     # -- running ------------------------------------------------------------
     def step(self, n: int = 1) -> None:
         mujoco.mj_step(self.model, self.data, nstep=n)
-        if self.bad_acceleration.number:  # MuJoCo resets the state and goes on: a blow-up it would hide
-            raise BlewUp("MuJoCo found a non-finite or huge acceleration at degree of freedom "
-                         f"{self.bad_acceleration.lastinfo}")
+        for stat, what in self.bad:  # MuJoCo reset the state and went on: a blow-up it would hide
+            if stat.number:
+                raise BlewUp(f"MuJoCo found a non-finite or huge {what} (beyond 1e10) at degree of freedom "
+                             f"{stat.lastinfo} and reset the simulation")
 
     def _forward_kinematics(self) -> None:
         m, d = self.model, self.data

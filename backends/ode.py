@@ -35,16 +35,17 @@ mu as a force bound in newtons).
 from __future__ import annotations
 
 import ctypes
+import sys
 
 import numpy as np
 
 from x3d_core import rotation as R
 from x3d_core.collision import Collisions, ContactPoints, ContactParameters, Geometry
-from x3d_core.engine import BlewUp, Unsupported
+from x3d_core.engine import BlewUp, Unsupported, engine_abort
 from x3d_core.world import STATIC, Joint, State, World
 
 from . import ode_lib as ode
-from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
+from .base import BODIES, JOINTS, SMALLEST_NORMAL, Backend, approximate, below, native, unsupported
 
 lib = ode.lib
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
@@ -52,6 +53,56 @@ _Z_TO_Y = R.from_axis_angle(np.array([1.0, 0.0, 0.0, -np.pi / 2]))  # ODE's cyli
 _CONE_SIDES = 64  # a cone is the convex hull of a 64-gon and its apex
 _PER_PAIR = 16  # the most contacts dCollide returns for one pair of geoms
 _SLACK = 1e-9  # m: bounding volumes this close count as overlapping
+
+
+def _fatal(kind: str, number: int, text: str) -> None:
+    """ODE's error and debug handler: ODE aborts the process once it returns (an assertion
+    such as a quaternion it cannot normalise, after an infinite spin), so the run ends here
+    as a blow-up, with the frames before it (x3d_core.engine.engine_abort)."""
+    engine_abort(f"ODE {kind} {number}: {text.strip()}")
+
+
+def _message(number: int, text: str) -> None:
+    """ODE's non-fatal messages, on stderr as ODE prints them."""
+    print(f"ODE Message {number}: {text.strip()}", file=sys.stderr)
+
+
+ode.handlers(_fatal, _message)
+
+# sqrt of the largest double: ODE squares lengths (dot products, norms, bounding boxes), so
+# one beyond it overflows and ODE aborts (measured: a box of size 1e154 runs, 1e200 aborts)
+_MAX_LENGTH = float(np.sqrt(sys.float_info.max))
+_INVERTED = (f"ODE inverts it: a value under {SMALLEST_NORMAL:.4g} (a subnormal) has an infinite inverse, "
+             "and ODE aborts (measured: inertia 1e-308 runs, 1e-320 aborts) or the state turns non-finite")
+
+
+def _refused(world: World, dt: float) -> str | None:
+    """Why ODE cannot take this world at this step, naming the value, or None (checked in bulk
+    before anything is handed over: ODE would abort the process on these)."""
+    b = world.bodies
+    for name, arr in (("position", b.position), ("orientation", b.orientation), ("linearVelocity", b.linear_velocity),
+                      ("angularVelocity", b.angular_velocity), ("forces", b.forces), ("torques", b.torques),
+                      ("mass", b.mass), ("inertia", b.inertia)):
+        bad = ~np.isfinite(arr).reshape(len(arr), -1).all(axis=1)
+        if bad.any():
+            return f"RigidBody {b.names[int(np.flatnonzero(bad)[0])]}: a non-finite {name} (ODE would abort)"
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        cfm = {"RigidBodyCollection.constantForceMix": world.constant_force_mix}
+        if world.collisions is not None and world.collisions.parameters.softness_cfm is not None:
+            cfm["CollisionCollection.softnessConstantForceMix"] = world.collisions.parameters.softness_cfm
+        for name, value in cfm.items():
+            if not np.isfinite(float(value) / dt):
+                return (f"{name} = {float(value):g}: ODE divides it by the step ({dt:g} s) and the quotient "
+                        "overflows (ODE would abort)")
+        if world.collisions is not None:
+            for g in world.collisions.geometries:
+                extent = [np.abs(g.size).max(initial=0.0)]
+                if g.vertices is not None and len(g.vertices):
+                    extent.append(np.abs(g.vertices).max())
+                if max(extent) > _MAX_LENGTH:
+                    return (f"{g.name}: a {g.kind} {max(extent):g} m across: ODE squares lengths and beyond "
+                            f"{_MAX_LENGTH:.4g} m they overflow (ODE would abort)")
+    return None
 
 
 def _cone(radius: float, height: float) -> tuple[np.ndarray, np.ndarray, list[list[int]]]:
@@ -533,6 +584,7 @@ class OdeSimulation:
 
 class OdeBackend(Backend):
     name = "ode"
+    limits = {"RigidBody.mass": below(SMALLEST_NORMAL, _INVERTED), "RigidBody.inertia": below(SMALLEST_NORMAL, _INVERTED)}
     declared = {
         **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBody.finiteRotationAxis", "RigidBodyCollection.errorCorrection",
                  "RigidBodyCollection.constantForceMix", "RigidBodyCollection.iterations",
@@ -575,6 +627,9 @@ class OdeBackend(Backend):
         return ode.version()
 
     def build(self, world: World, dt: float) -> OdeSimulation:
+        why = _refused(world, dt)
+        if why:
+            raise Unsupported(why)
         return OdeSimulation(world, dt)
 
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 import ctypes
 import ctypes.util
 import os
+import platform
 
 import numpy as np
 
@@ -122,6 +123,12 @@ for _name, (_res, _args) in _SIGNATURES.items():
     _fn = getattr(lib, _name)
     _fn.restype, _fn.argtypes = _res, _args
 
+# ODE's message callbacks: void (*)(int errnum, const char *msg, va_list ap)
+MESSAGE_FUNCTION = ctypes.CFUNCTYPE(None, ctypes.c_int, ctypes.c_char_p, ctypes.c_void_p)
+for _name in ("dSetErrorHandler", "dSetDebugHandler", "dSetMessageHandler"):
+    _fn = getattr(lib, _name)
+    _fn.restype, _fn.argtypes = None, [MESSAGE_FUNCTION]
+
 if not lib.dCheckConfiguration(b"ODE_double_precision"):
     raise ImportError(f"the ODE library was built without double precision ({lib.dGetConfiguration().decode()}): "
                       f"x3drbp's binding is laid out for dReal = double, as Debian's build is ({INSTALL})")
@@ -150,6 +157,46 @@ CONTACT = np.dtype([
 assert CONTACT.itemsize == 248 and CONTACT.fields["pos"][1] == 120 and CONTACT.fields["fdir1"][1] == 216
 GEOM_OFFSET = CONTACT.fields["pos"][1]  # where a dContact's dContactGeom starts
 MASS_REALS = 17
+
+
+# x86-64's va_list is an array, so a callback receives a pointer vsnprintf takes as it is;
+# elsewhere the message's format is shown unformatted
+_libc = ctypes.CDLL(None) if platform.machine() in ("x86_64", "AMD64") else None
+if _libc is not None:
+    _libc.vsnprintf.restype = ctypes.c_int
+    _libc.vsnprintf.argtypes = [ctypes.c_char_p, ctypes.c_size_t, ctypes.c_char_p, ctypes.c_void_p]
+
+
+def message_text(fmt: bytes | None, ap: int | None) -> str:
+    """An ODE message's text: its printf format filled from its va_list (may be called once)."""
+    if fmt is None:
+        return ""
+    if _libc is not None and ap:
+        buf = ctypes.create_string_buffer(1024)
+        _libc.vsnprintf(buf, len(buf), fmt, ap)
+        return buf.value.decode(errors="replace")
+    return fmt.decode(errors="replace")
+
+
+# the callbacks installed (handlers()): kept here, alive as long as the library
+_installed: list = []
+
+
+def handlers(fatal, message) -> None:
+    """Install ODE's error and debug handlers as fatal(kind, number, text) and its message
+    handler as message(number, text). ODE calls abort() (dDebug, its assertions) or exit(1)
+    (dError) once a fatal handler returns, so fatal must end the process itself; it cannot
+    raise through C. The ctypes callback objects are kept alive here."""
+    def wrap(kind):
+        def call(num, fmt, ap):
+            fatal(kind, num, message_text(fmt, ap))
+        return MESSAGE_FUNCTION(call)
+    error, debug = wrap("error"), wrap("internal error")
+    msg = MESSAGE_FUNCTION(lambda num, fmt, ap: message(num, message_text(fmt, ap)))
+    _installed[:] = [error, debug, msg]
+    lib.dSetErrorHandler(error)
+    lib.dSetDebugHandler(debug)
+    lib.dSetMessageHandler(msg)
 
 
 def version() -> str:

@@ -6,7 +6,10 @@ table and the registry).
 
 from __future__ import annotations
 
-from typing import Protocol
+import os
+import sys
+from collections.abc import Callable
+from typing import NoReturn, Protocol
 
 import numpy as np
 
@@ -33,6 +36,56 @@ class BlewUp(Stopped):
 
 class TimedOut(Stopped):
     """The run passed its wall-clock limit (`x3drbp run --timeout`), raised between steps."""
+
+
+class Progress:
+    """How far the run in progress has come, kept by the evaluator (x3d_core.evaluator.run) for
+    engine_abort: the trace so far, how many of its blocks are whole frames, and the time the
+    engine is stepping towards."""
+
+    def __init__(self, trace=None):
+        self.trace, self.whole, self.t = trace, 0, 0.0
+
+
+progress: Progress | None = None  # the run in progress, or None
+_on_abort: Callable[[BlewUp], None] | None = None
+EXIT_ABORTED = 1  # the exit status after an engine abort, as `x3drbp run` exits on a blow-up
+
+
+def on_engine_abort(hook: Callable[[BlewUp], None] | None) -> Callable[[BlewUp], None] | None:
+    """Install what an engine abort does before the process exits (engine_abort): called with a
+    BlewUp whose .trace holds every whole frame so far (None before the first), it does what
+    its caller does with a BlewUp raised (`x3drbp run`: writes e.trace, prints one line).
+    Returns the hook it replaces."""
+    global _on_abort
+    previous, _on_abort = _on_abort, hook
+    return previous
+
+
+def engine_abort(message: str) -> NoReturn:
+    """An engine is about to end the process from inside a step (ODE's assertions abort()):
+    called from the engine's error callback, which cannot raise through C. Makes the blow-up a
+    verdict: the BlewUp it would have been (the frames before kept) goes to the on_engine_abort
+    hook, then the process exits with EXIT_ABORTED, one line on stderr where no hook wrote one."""
+    p = progress
+    e = BlewUp(f"blew up by t={p.t:g}: {message}" if p is not None else f"blew up while building: {message}")
+    if p is not None and p.trace is not None:
+        del p.trace.blocks[p.whole:]
+        e.trace = p.trace
+    try:
+        if _on_abort is not None:
+            _on_abort(e)
+        else:
+            print(f"{e} (no trace written)", file=sys.stderr)
+    except BaseException as err:  # a hook that fails still ends in one line and the exit status
+        print(f"{e} (and writing what ran failed: {type(err).__name__}: {err})", file=sys.stderr)
+    finally:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except Exception:
+                pass
+        os._exit(EXIT_ABORTED)
 
 
 class Simulation(Protocol):

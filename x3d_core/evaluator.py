@@ -17,6 +17,7 @@ import numpy as np
 from . import rotation as R
 from . import fields as F
 from .collision import ContactPoints, friction_directions
+from . import engine as _engine
 from .engine import BlewUp, Engine, Simulation, Stopped
 from .joint_outputs import JointOutputs
 from .trace import Column, Trace
@@ -193,7 +194,8 @@ class _StepInputs:
         self.disable = _AutoDisable(world, dt)
         self.active = self.damping.active or self.motors.active or self.disable.active
         b = world.bodies
-        self.weight = b.mass[:, None] * world.gravity * b.use_gravity[:, None]
+        with np.errstate(over="ignore", invalid="ignore"):  # an overflowing weight blows up as a non-finite state
+            self.weight = b.mass[:, None] * world.gravity * b.use_gravity[:, None]
         self.held = False  # loads set with a disabled body's weight cancelled
 
     def before(self, sim: Simulation) -> None:
@@ -229,14 +231,17 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
     inputs = [_StepInputs(w, dt) for w in worlds]
     recorders = [_Recorder(w, sim) for w, sim in zip(worlds, sims)]
     trace = Trace()
-    whole = 0  # trace.blocks[:whole] are the frames recorded for every world
+    # trace.blocks[:progress.whole] are the frames recorded for every world; an engine that
+    # aborts the process from inside a step finds them there too (engine.engine_abort)
+    progress = _engine.progress = _engine.Progress(trace)
     try:
         for rec in recorders:
             rec.record(trace, 0.0)
-        whole = len(trace.blocks)
+        progress.whole = len(trace.blocks)
         steps = 0
         for t in settings.frame_times() if frame_times is None else frame_times:
             due = int(math.floor(t / dt + _STEP_SLACK))
+            progress.t = due * dt
             for sim, step_inputs in zip(sims, inputs):
                 try:
                     if step_inputs.active:
@@ -251,11 +256,14 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
             steps = max(steps, due)
             for rec in recorders:
                 rec.record(trace, float(t))
-            whole = len(trace.blocks)
+            progress.whole = len(trace.blocks)
     except Stopped as e:
-        del trace.blocks[whole:]
+        del trace.blocks[progress.whole:]
         e.trace = trace
         raise
+    finally:
+        if _engine.progress is progress:
+            _engine.progress = None
     return trace
 
 
@@ -322,7 +330,10 @@ class _Recorder:
         self.sensors = _Sensors(world) if world.collisions is not None and world.collisions.sensors else None
 
     def record(self, trace: Trace, t: float) -> None:
-        s = self.sim.state()
+        try:
+            s = self.sim.state()
+        except BlewUp as e:  # an engine that found its state unsound (pybullet at its speed clamp)
+            raise BlewUp(f"blew up at t={t:g}: {e}") from None
         for arr in (s.position, s.orientation, s.linear_velocity, s.angular_velocity):
             if not np.isfinite(arr).all():
                 row = int(np.flatnonzero(~np.isfinite(arr).reshape(len(arr), -1).all(axis=1))[0])

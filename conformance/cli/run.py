@@ -13,7 +13,7 @@ from contextlib import contextmanager
 
 from backends import base
 from x3d_core import atomic
-from x3d_core.engine import Engine, Simulation, Stopped, TimedOut, Unsupported
+from x3d_core.engine import Engine, Simulation, Stopped, TimedOut, Unsupported, on_engine_abort
 from x3d_core.evaluator import RunSettings, run
 from x3d_core.model import Scene
 from x3d_core.outcome import EMPTY, NOTHING_TO_SIMULATE, outcome_warnings, simulates
@@ -135,6 +135,17 @@ def cmd_run(args: argparse.Namespace) -> int:
             print(f"{args.scene}: unsupported by {args.backend}: {line}", file=sys.stderr)
         return EXIT_UNSUPPORTED
     settings = RunSettings(duration=args.duration, dt=args.dt, frame_rate=args.frame_rate)
+
+    def stopped(e: Stopped) -> None:
+        """What did run written, and one line: for a Stopped raised, and for an engine that
+        ends the process from inside a step (engine.engine_abort, ODE's assertions)."""
+        kept = "no trace written"
+        if e.trace is not None:
+            _write_trace(e.trace, args.trace)
+            kept = f"the frames before it written to {args.trace or 'standard output'}"
+        print(f"{args.scene}: {args.backend}: {e} ({kept})", file=sys.stderr)
+
+    on_engine_abort(stopped)
     try:
         started = time.perf_counter()
         clock = _StepClock(backend) if args.timing else None
@@ -145,11 +156,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
         return EXIT_UNSUPPORTED
     except Stopped as e:  # blew up or timed out
-        kept = "no trace written"
-        if e.trace is not None:
-            _write_trace(e.trace, args.trace)
-            kept = f"the frames before it written to {args.trace or 'standard output'}"
-        print(f"{args.scene}: {args.backend}: {e} ({kept})", file=sys.stderr)
+        stopped(e)
         return EXIT_ERROR
     except Exception as e:  # the engine refused its model: still one line, never a traceback
         print(f"{args.scene}: {args.backend} failed: {type(e).__name__}: {e}", file=sys.stderr)
