@@ -285,3 +285,12 @@ def test_a_table_of_records_becomes_rows_per_record_then_field(tmp_path):
     t.add_text(0.5, "S, odd", "x", "a\nb")
     t.write(str(tmp_path / "t.csv"))
     assert read_trace(str(tmp_path / "t.csv")) == t.rows
+
+
+def test_a_rotation_axis_of_huge_components_is_normalised_without_overflow():
+    """An axis of 1e308s once overflowed its norm: a non-unit quaternion read back as no
+    rotation, with a RuntimeWarning; its direction is all that counts."""
+    with np.errstate(all="raise"):
+        q = R.from_axis_angle(np.array([[1e308, 1e308, 0.0, 1.0], [1e-320, 0.0, 0.0, 1.0]]))
+    expected = R.from_axis_angle(np.array([[1.0, 1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0]]))
+    assert np.allclose(q, expected, rtol=0, atol=1e-15)

@@ -11,6 +11,9 @@ def from_axis_angle(rot: np.ndarray) -> np.ndarray:
     """X3D SFRotation(s) (x, y, z, angle) to quaternions; a zero axis means no rotation."""
     rot = np.asarray(rot, dtype=np.float64)
     axis = rot[..., :3]
+    # scaled by its largest component first: the norm of an axis of 1e308s would overflow
+    big = np.abs(axis).max(axis=-1, keepdims=True)
+    axis = np.divide(axis, big, out=np.zeros_like(axis), where=big > 0)
     norm = np.linalg.norm(axis, axis=-1, keepdims=True)
     unit = np.divide(axis, norm, out=np.zeros_like(axis), where=norm > 0)
     half = 0.5 * rot[..., 3:4] * (norm > 0)
