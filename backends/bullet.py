@@ -17,7 +17,8 @@ pybullet facts this relies on (measured with pybullet 3.2.7):
 createMultiBody's linkParentIndices count the base as 0; its joints carry velocity
 motors that hold them still until given zero force; multibodies are damped and joint
 speeds clamped to 100 rad/s by default; a free base or a ball joint turns at most pi/4
-per step (faster spins are clamped: 188 rad/s at dt = 1/240), a revolute joint exactly;
+per step (faster spins are clamped: 188 rad/s at dt = 1/240; state() calls one blown up),
+a revolute joint exactly;
 a multibody's links hold at most 122 degrees of freedom that read back right (_MAX_LINK_DOFS).
 
 Collisions (where the world has a collider): a moving body's first geometry is its link's
@@ -55,6 +56,10 @@ _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 # generalized velocity component (a free base's too: measured, gravity -1e308 stops at -1e6 m/s), so
 # state() calls a body at it blown up
 _MAX_SPEED = 1e6
+# Bullet's integrateTransform turns a free base or a ball joint at most pi/4 per step (its
+# ANGULAR_MOTION_THRESHOLD) whatever the angular velocity: measured, a ball spinning at 1000 rad/s
+# at dt = 1/240 turns 2.29 rad in 1/60 s, not 2.12
+_MAX_TURN = np.pi / 4
 # pybullet takes a free body lighter than this (DBL_EPSILON) as static: measured, a body of
 # 2.2e-16 kg stays where it is, one of 2.3e-16 kg falls
 _MIN_FREE_MASS = float(np.finfo(np.float64).eps)
@@ -204,6 +209,12 @@ class BulletSimulation:
         self.first = np.cumsum([0] + [len(tree.parts) for tree in self.trees])  # each tree's first part
         self.rows = np.array([pt.row for pt in parts], dtype=int)
         self.bodies = self.rows >= 0
+        # the parts pybullet turns at most pi/4 a step (a free base, a ball joint's child), and what
+        # each turns relative to (a ball joint's parent part; -1: the world)
+        turning = np.array([(self.first[t] + k, self.first[t] + pt.parent if pt.parent >= 0 else -1)
+                            for t, tree in enumerate(self.trees) for k, pt in enumerate(tree.parts)
+                            if (tree.free and k == 0) or pt.joint_type == p.JOINT_SPHERICAL], dtype=int).reshape(-1, 2)
+        self.turning, self.turning_from = turning[:, 0], turning[:, 1]
         self.unturn = R.conjugate(np.array([pt.principal for pt in parts]).reshape(-1, 4))
         self.inertial = np.array([pt.inertial for pt in parts]).reshape(-1, 3)
         self.offset = np.array([pt.offset for pt in parts]).reshape(-1, 3)
@@ -592,6 +603,12 @@ class BulletSimulation:
         if len(v) and max(np.abs(v).max(), np.abs(w).max()) >= _MAX_SPEED:
             raise BlewUp(f"a body reached pybullet's speed clamp ({_MAX_SPEED:g} m/s or rad/s in a component), "
                          "where pybullet holds it: its motion since is not the physics")
+        if len(self.turning):
+            relative = w[self.turning] - np.where(self.turning_from[:, None] >= 0, w[self.turning_from], 0.0)
+            spin = float(np.linalg.norm(relative, axis=1).max())
+            if spin * self.dt > _MAX_TURN:
+                raise BlewUp(f"a free body or ball joint spins at {spin:.4g} rad/s, past what pybullet turns in a step "
+                             f"(pi/4: {_MAX_TURN / self.dt:.4g} rad/s at dt {self.dt:g}): its orientation lags the physics")
         if self.turned:
             q = R.multiply(q, self.unturn)
         rows, on = self.rows[self.bodies], self.bodies

@@ -61,6 +61,37 @@ def test_bullet_at_its_speed_clamp_blows_up(tmp_path):
     blew_up(scene(tmp_path, collection="gravity='0 -1e308 0'"), "bullet", tmp_path / "o.csv", "speed clamp")
 
 
+# pybullet turns a free base or a ball joint at most pi/4 a step: 188.5 rad/s at dt 1/240
+def test_bullet_spinning_past_its_turn_limit_blows_up(tmp_path):
+    needs("pybullet", "bullet")
+    blew_up(scene(tmp_path, collection="gravity='0 0 0'", ball="angularVelocity='0 -1000 0'"), "bullet",
+            tmp_path / "o.csv", "spins at 1000 rad/s, past what pybullet turns in a step")
+
+
+def test_bullet_a_ball_joint_spinning_past_its_turn_limit_blows_up(tmp_path):
+    needs("pybullet", "bullet")
+    joint = ("<BallJoint containerField='joints' anchorPoint='0 1 0'><RigidBody USE='Ball' containerField='body1'/>"
+             "<RigidBody USE='Arm' containerField='body2'/></BallJoint>")
+    blew_up(scene(tmp_path, collection="gravity='0 0 0'", ball="angularVelocity='0 -1000 0'",
+                  more=f"<RigidBody DEF='Arm' position='0 1 0' fixed='true'/>{joint}"), "bullet",
+            tmp_path / "o.csv", "spins at 1000 rad/s")
+
+
+def test_bullet_under_its_turn_limit_follows_the_closed_form(tmp_path):
+    """150 rad/s about -y for 0.1 s turns 15 rad: pybullet integrates it exactly."""
+    needs("pybullet", "bullet")
+    out = tmp_path / "o.csv"
+    rc, lines = run(scene(tmp_path, collection="gravity='0 0 0'", ball="angularVelocity='0 -150 0'"), "bullet",
+                    str(out))
+    assert rc == 0, lines
+    from x3d_core import rotation as R
+    from x3d_core.trace import TraceView, read_trace
+    times, rotations = TraceView(read_trace(str(out))).series("Ball", "orientation")
+    q = R.from_axis_angle(rotations[-1])
+    expected = R.from_axis_angle([0.0, -1.0, 0.0, 150 * times[-1]])
+    assert abs(abs(float(q @ expected)) - 1) < 1e-9  # the same rotation, up to the quaternion's sign
+
+
 def test_bullet_refuses_a_free_body_it_would_take_as_static(tmp_path):
     needs("pybullet", "bullet")
     refused(scene(tmp_path, ball="mass='1e-320'"), "bullet", tmp_path / "o.csv", "mass 9.99989e-321")
