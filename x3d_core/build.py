@@ -45,6 +45,32 @@ NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
 # the standard renamed
 PRESTANDARD_NAMES = {("*", "mustOutput"): "forceOutput", ("CollisionSensor", "collidables"): "collider"}
 
+# PROTO expansion copies a body per instance, and a body may itself instantiate PROTOs: a
+# PROTO nested 20 deep whose body instantiates the one before twice is a 1 KB file that
+# expands to 2^21 nodes (103 s and 2.6 GiB before these bounds), and a body node holding a
+# 30,000-point array doubled 12 times is a 290 KB file that wants 2.9 GB of copies. A load
+# copies at most this many nodes, and this many bytes of array values, by expansion, then
+# stops with an error at the instance that passes either. An expanded node costs ~0.5 KB
+# and ~10 us through load and validation: a scene near the bound loads in ~3 s and ~150 MiB,
+# one past it is refused in ~1 s (10^6 took 16 s to load and 5 s to refuse). The corpus,
+# scenes/ and the conformance cases expand at most 5 nodes; the largest has about 100.
+MAX_EXPANDED_NODES = 250_000
+MAX_EXPANDED_BYTES = 256 * 1024 * 1024
+
+
+class _ExpansionTooLarge(Exception):
+    """A PROTO copy that would pass a bound (raised by _copy, caught by instantiate)."""
+
+
+class _Budget:
+    """What PROTO expansion may still copy in this load."""
+    __slots__ = ("nodes", "bytes")
+
+    def __init__(self) -> None:
+        self.nodes = MAX_EXPANDED_NODES
+        self.bytes = MAX_EXPANDED_BYTES
+
+
 # Node types that only present a scene: a value out of range there cannot change the
 # physics, so it is a warning, not an error.
 PRESENTATION = frozenset({"Appearance", "Material", "Background", "Viewpoint", "NavigationInfo",
@@ -75,6 +101,7 @@ class Builder:
         self.proto_stack: list[ProtoDecl] = []
         self.externs: set[str] = set()
         self.prestandard = False  # the file declares an xj3d_ component
+        self.budget = _Budget()  # what PROTO expansion may still copy
 
     # -- diagnostics --------------------------------------------------------
     def error(self, loc: Location, subject: str, message: str) -> None:
@@ -399,7 +426,16 @@ class Builder:
             return None
         memo: dict[int, Node] = {}
         prefix = def_name or name
-        body = [_copy(n, memo, prefix) for n in p.body]
+        try:
+            body = [_copy(n, memo, prefix, self.budget) for n in p.body]
+        except _ExpansionTooLarge:
+            subject = f"ProtoInstance {name}"
+            what = (f"{MAX_EXPANDED_NODES:,} nodes" if self.budget.nodes < 0 else
+                    f"{MAX_EXPANDED_BYTES // 2**20} MiB of field values")
+            raise LoadError(Diagnostic(
+                "error", self.resolve(loc, subject), subject,
+                f"PROTO instances expand the scene past {what} (x3drbp expands no further; "
+                f"instances inside PROTO bodies multiply)")) from None
         for node, fname, pname in p.links:
             target = memo[id(node)]
             decl = p.interface[pname]
@@ -442,21 +478,28 @@ class Builder:
         return nodes
 
 
-def _copy(node: Node, memo: dict[int, Node], prefix: str) -> Node:
-    """Deep copy of a PROTO body node; nodes shared by USE in the body stay shared."""
+def _copy(node: Node, memo: dict[int, Node], prefix: str, budget: _Budget) -> Node:
+    """Deep copy of a PROTO body node; nodes shared by USE in the body stay shared. Each node
+    and array copied is taken from the budget: _ExpansionTooLarge once either runs out."""
     done = memo.get(id(node))
     if done is not None:
         return done
+    budget.nodes -= 1
+    if budget.nodes < 0:
+        raise _ExpansionTooLarge
     name = f"{prefix}_{node.def_name}" if node.def_name else None
     c = Node(node.type_name, node.spec, node.loc, name)
     memo[id(node)] = c
     c.interface = node.interface
     for k, v in node.values.items():
         if isinstance(v, Node):
-            v = _copy(v, memo, prefix)
+            v = _copy(v, memo, prefix, budget)
         elif isinstance(v, list) and v and isinstance(v[0], Node):
-            v = [_copy(x, memo, prefix) for x in v]
+            v = [_copy(x, memo, prefix, budget) for x in v]
         elif isinstance(v, (np.ndarray, list)):
+            budget.bytes -= v.nbytes if isinstance(v, np.ndarray) else 8 * len(v)
+            if budget.bytes < 0:
+                raise _ExpansionTooLarge
             v = v.copy()
         c.values[k] = v
     c.field_locs = dict(node.field_locs)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import gc
 import os
 
+from .inputs import InputRefused, read_regular
 from .model import Diagnostic, LoadError, Location, Scene
 from .validate import apply_version_defaults, by_type, validate
 from .world import trace_names
@@ -29,14 +30,11 @@ def load(path: str, check: bool = True) -> Scene:
     """The scene of a file. Raises LoadError when the file cannot be read at all; every
     other problem is a diagnostic in scene.diagnostics."""
     try:
-        size = os.path.getsize(path)
-        if size > MAX_BYTES:
-            raise LoadError(Diagnostic("error", Location(path, 1, 1), "",
-                                       f"file is {size} bytes; x3drbp reads at most {MAX_BYTES}"))
-        with open(path, "rb") as f:
-            source = f.read()
-    except OSError as e:
-        raise LoadError(Diagnostic("error", Location(path, 1, 0), "", f"cannot read file: {e.strerror}")) from None
+        # a named pipe, a device or a folder is refused before a byte is read (a pipe would
+        # block forever, /dev/zero never ends); a regular file larger than MAX_BYTES too
+        source = read_regular(path, MAX_BYTES)
+    except InputRefused as e:
+        raise LoadError(Diagnostic("error", Location(path, 1, 1), "", str(e))) from None
     if not source.strip():
         raise LoadError(Diagnostic("error", Location(path, 1, 1), "", "empty file"))
     if b"\x00" in source[:1024] and not source.startswith((b"\xff\xfe", b"\xfe\xff")):

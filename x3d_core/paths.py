@@ -8,7 +8,12 @@ SCENE_EXTENSIONS = (".x3d", ".x3dv", ".x3dj")
 
 
 def scene_files(paths: list[str]) -> list[str]:
-    """Files as given, folders searched (sorted, so every run sees the same order)."""
+    """Files as given, folders searched (sorted, so every run sees the same order).
+
+    Entries are chosen by name only, never opened: a named pipe or a device named like a
+    scene is listed like any file, and load() refuses it in one line without reading (or
+    blocking on) it, so `check` reports it as an error and goes on with the rest. Reported,
+    not skipped: a folder whose scene-named entry could not be checked is not all ok."""
     out: list[str] = []
     for p in paths:
         if os.path.isdir(p):
