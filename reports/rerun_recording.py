@@ -156,8 +156,14 @@ def blueprint(backends: Sequence[str], pairs: bool, joints: bool) -> rrb.Bluepri
 def write_recording(out: str, scene: Scene, runs: Sequence[tuple[str, TraceView]],
                     pairs: Sequence[PairComparison] = ()) -> float:
     """Writes the recording of these runs (backend, parsed trace) and their comparisons to
-    `out`, atomically (rerun writes a temporary name, renamed once closed); returns the
-    seconds it took."""
+    `out`, atomically: rerun saves to a temporary file beside it (`.x3drbp-PID-NAME-*.tmp`,
+    x3d_core.atomic.replacing), renamed over `out` once rerun has closed it, so a run killed
+    while saving leaves the previous recording, or none, never a truncated one; the
+    temporary file such a kill leaves is removed by the next write to that folder. `out`
+    a symbolic link: its target is replaced; /dev/null: the recording is discarded. The
+    file gets the usual 0666 less the umask (an existing one keeps its mode). Returns the
+    seconds it took; atomic.CannotWrite (one line, the path and why) where it cannot be
+    written."""
     started = time.perf_counter()
     rec = rr.RecordingStream("x3drbp", make_default=False)
     rec.set_log_time_enabled(False)  # simulation time is the one timeline

@@ -3,11 +3,18 @@
 `value` is the field in X3D XML attribute encoding with every digit (a trace compared
 over long runs needs full precision); rotations are axis-angle, angle in [0, pi].
 A trace is written whole or not at all: to a temporary name, then renamed.
+
+Reading one (read_trace, read_view) goes through x3d_core.inputs: a named pipe or a device
+is refused, not waited on, and so is a file larger than TRACE_LIMIT bytes. A trace is the
+contract between x3drbp and other implementations, so its names are written as they are:
+a DEF name that starts with =, +, - or @ is not escaped for spreadsheets (README: "Traces
+and spreadsheets").
 """
 
 from __future__ import annotations
 
 import csv
+import io
 from dataclasses import dataclass
 from collections.abc import Sequence
 from typing import Any, Callable, Iterator, NamedTuple
@@ -16,8 +23,12 @@ import numpy as np
 
 from . import atomic
 from . import fields as F
+from .inputs import open_regular
 
 HEADER = ("time", "node", "field", "value")
+# the largest trace read: ~1.5e7 rows at full precision, what a validation holds in about a GiB
+TRACE_LIMIT = 1 << 30  # bytes
+CHUNK_BYTES = 2 << 20  # read and parsed at a time
 
 
 @dataclass(frozen=True)
@@ -142,34 +153,190 @@ def _quoted(text: str) -> str:
     return text
 
 
+def read_header(f) -> tuple[list[str] | None, int]:
+    """The first record of a binary trace file, and the number of lines it took (its
+    header); None at an empty file. UnicodeDecodeError, csv.Error as the csv module raises."""
+    first = f.readline()
+    while first.count(b'"') % 2:
+        more = f.readline()
+        if not more:
+            break
+        first += more
+    if not first:
+        return None, 1
+    header = next(csv.reader(io.StringIO(first.decode("utf-8"), newline="")), [])
+    return header, first.count(b"\n") or 1
+
+
+def chunks(f, first_line: int) -> Iterator[tuple[int, str]]:
+    """(the number of its first line, its text): the rest of a binary trace file in pieces of
+    about CHUNK_BYTES, each whole records (a quoted field's line breaks kept together)."""
+    line = first_line
+    while True:
+        lines = f.readlines(CHUNK_BYTES)
+        if not lines:
+            return
+        data = b"".join(lines)
+        while data.count(b'"') % 2:
+            more = f.readline()
+            if not more:
+                break
+            data += more
+        yield line, data.decode("utf-8")
+        line += data.count(b"\n")
+
+
+def _records(text: str) -> list[list[str]]:
+    return list(csv.reader(io.StringIO(text, newline="")))
+
+
 def read_trace(path: str) -> list[Row]:
-    with open(path, newline="", encoding="utf-8") as f:
-        r = csv.reader(f)
-        header = next(r)
-        if tuple(header) != HEADER:
-            raise ValueError(f"{path}:1: header is {','.join(header)!r}, expected {','.join(HEADER)!r}")
-        return [Row(float(t), n, fld, v) for t, n, fld, v in r]
+    """Every row (a list of Row objects: for short traces; read_view holds a long one in arrays)."""
+    with open_regular(path, TRACE_LIMIT) as f:
+        header, lines = read_header(f)
+        if header is None or tuple(header) != HEADER:
+            got = "nothing" if header is None else repr(",".join(header))
+            raise ValueError(f"{path}:1: header is {got}, expected {','.join(HEADER)!r}")
+        return [Row(float(t), n, fld, v) for _, text in chunks(f, lines + 1) for t, n, fld, v in _records(text)]
+
+
+def read_view(path: str) -> TraceView:
+    """A trace file straight into a TraceView, a chunk at a time: no object per row, so a
+    trace of millions of rows costs its arrays (read_trace's rows cost ~200 bytes each)."""
+    b = ViewBuilder()
+    with open_regular(path, TRACE_LIMIT) as f:
+        header, lines = read_header(f)
+        if header is None or tuple(header) != HEADER:
+            got = "nothing" if header is None else repr(",".join(header))
+            raise ValueError(f"{path}:1: header is {got}, expected {','.join(HEADER)!r}")
+        for _, text in chunks(f, lines + 1):
+            for t, n, fld, v in _records(text):
+                b.add_row(float(t), n, fld, v)
+            b.flush()
+    return b.view()
+
+
+class ViewBuilder:
+    """A TraceView made a piece at a time: whole arrays of one output (add_series), or rows
+    one by one (add_row: TraceView's rule, numbers where every token reads as one, else text).
+    Each output's arrays grow in place (by a quarter, a copy each time), so a trace of 10^7
+    rows peaks near the size of its arrays, not twice it as joining pieces at the end would."""
+
+    GROWTH = 1.25
+
+    def __init__(self) -> None:
+        self._series: dict[tuple[str, str], list] = {}  # key: [times, values, rows used]
+        self._rows: dict[tuple[str, str], tuple[list[float], list[list[float]]]] = {}
+        self._texts: dict[tuple[str, str], tuple[list[float], list[str]]] = {}
+        self._times: list[np.ndarray] = []
+        self._loose: list[float] = []
+        self.count = 0
+
+    def _append(self, key: tuple[str, str], times: np.ndarray, values: np.ndarray) -> None:
+        held = self._series.get(key)
+        k = len(times)
+        if held is None:
+            held = self._series[key] = [np.empty(max(k, 16)), np.empty((max(k, 16), *values.shape[1:])), 0]
+        t, v, n = held
+        if v.shape[1:] != values.shape[1:]:
+            raise ValueError(f"{key[0]}.{key[1]}: rows of {values.shape[1:]} numbers after rows of {v.shape[1:]}")
+        if n + k > len(t):
+            size = max(n + k, int(len(t) * self.GROWTH) + 16)
+            grown_t, grown_v = np.empty(size), np.empty((size, *v.shape[1:]))
+            grown_t[:n], grown_v[:n] = t[:n], v[:n]
+            held[0], held[1] = t, v = grown_t, grown_v
+        t[n:n + k], v[n:n + k] = times, values
+        held[2] = n + k
+
+    def add_series(self, key: tuple[str, str], times: np.ndarray, values: np.ndarray, counted: bool = False) -> None:
+        """values[i] at times[i]; counted: the times already given to add_times."""
+        self.flush_key(key)
+        self._append(key, times, values)
+        if not counted:
+            self.add_times(times)
+        self.count += len(times)
+
+    def add_times(self, times: np.ndarray) -> None:
+        """Times rows have (a chunk's, once for all its outputs)."""
+        self._times.append(np.unique(times))
+
+    def add_row(self, time: float, node: str, fld: str, value: str) -> None:
+        key = (node, fld)
+        self.count += 1
+        self._loose.append(time)
+        try:
+            values = [float(x) for x in value.split()]
+        except ValueError:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
+            t, s = self._texts.setdefault(key, ([], []))
+            t.append(time)
+            s.append(value)
+            return
+        t, v = self._rows.setdefault(key, ([], []))
+        t.append(time)
+        v.append(values)
+
+    def flush_key(self, key: tuple[str, str]) -> None:
+        rows = self._rows.pop(key, None)
+        if rows is not None:
+            self._append(key, np.array(rows[0]), np.array(rows[1], dtype=np.float64))
+
+    def flush(self) -> None:
+        """Rows added one by one made arrays (at the end of each chunk: bounded memory)."""
+        for key in list(self._rows):
+            self.flush_key(key)
+        if self._loose:
+            self._times.append(np.unique(np.array(self._loose)))
+            self._loose = []
+
+    def view(self) -> TraceView:
+        self.flush()
+        series = {k: (t[:n], v[:n]) for k, (t, v, n) in self._series.items()}  # views: no copy
+        texts = {k: (np.array(t), s) for k, (t, s) in self._texts.items()}
+        times = np.unique(np.concatenate(self._times)) if self._times else np.empty(0)
+        return TraceView.of(series, texts, times, self.count)
 
 
 class TraceView:
     """A trace's rows grouped by (node, field): times, and values as float arrays."""
 
-    def __init__(self, rows: Sequence[Row]):
-        groups: dict[tuple[str, str], tuple[list[float], list[list[float]]]] = {}
-        texts: dict[tuple[str, str], tuple[list[float], list[str]]] = {}
+    def __init__(self, rows: Sequence[Row] | TraceView = ()):
+        if isinstance(rows, TraceView):  # the same arrays, shared
+            self._series, self._text, self._times, self._count = rows._series, rows._text, rows._times, rows._count
+            return
+        b = ViewBuilder()
         for r in rows:
-            try:
-                values = [float(x) for x in r.value.split()]
-            except ValueError:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
-                t, s = texts.setdefault((r.node, r.field), ([], []))
-                t.append(r.time)
-                s.append(r.value)
-                continue
-            t, v = groups.setdefault((r.node, r.field), ([], []))
-            t.append(r.time)
-            v.append(values)
-        self._series = {k: (np.array(t), np.array(v, dtype=np.float64)) for k, (t, v) in groups.items()}
-        self._text = {k: (np.array(t), s) for k, (t, s) in texts.items()}
+            b.add_row(r.time, r.node, r.field, r.value)
+        v = b.view()
+        self._series, self._text, self._times, self._count = v._series, v._text, v._times, v._count
+
+    @classmethod
+    def of(cls, series: dict[tuple[str, str], tuple[np.ndarray, np.ndarray]],
+           texts: dict[tuple[str, str], tuple[np.ndarray, list[str]]], times: np.ndarray, count: int) -> TraceView:
+        """A view of arrays already grouped; times: every row's time, sorted, each once."""
+        v = cls.__new__(cls)
+        v._series, v._text, v._times, v._count = series, texts, times, count
+        return v
+
+    def __len__(self) -> int:
+        """The number of rows."""
+        return self._count
+
+    def times(self) -> np.ndarray:
+        """Every time a row has (text rows too), sorted, each once."""
+        return self._times
+
+    def end(self) -> float:
+        """The last time of any row (nan without rows)."""
+        return float(self._times[-1]) if self._times.size else float("nan")
+
+    def text_keys(self) -> list[tuple[str, str]]:
+        return list(self._text)
+
+    def retimed(self, fn: Callable[[np.ndarray], np.ndarray]) -> TraceView:
+        """The same rows, each time t moved to fn(t) (fn maps an array of times)."""
+        series = {k: (fn(t), v) for k, (t, v) in self._series.items()}
+        texts = {k: (fn(t), s) for k, (t, s) in self._text.items()}
+        return TraceView.of(series, texts, np.unique(fn(self._times)), self._count)
 
     def text(self, node: str, fld: str) -> tuple[np.ndarray, list[str]]:
         """(times (n,), values as written) of an output that is not numbers: SFBool, SFNode, MFString."""

@@ -15,21 +15,35 @@ physics', so it is reported with its line and stops the validation (exit 2). Che
   AXIS_TOLERANCE;
 - every RigidBody of an enabled collection has its position, orientation, linearVelocity
   and angularVelocity rows (what comparisons and expectations read).
+
+The file is read through x3d_core.inputs (a named pipe or a device is refused at once, a
+file over x3d_core.trace.TRACE_LIMIT too) a chunk at a time, into arrays (a TraceView): a
+chunk of plain rows (no quotes, SF number fields written with single spaces) is checked in
+bulk, one output at a time; any chunk where that finds something, or cannot decide, is
+checked again row by row, which says what is wrong and where. So a trace of 10^7 rows
+holds its numbers, not an object per row, and its problems read as they always did. After
+MAX_PROBLEMS problems the reading stops.
 """
 
 from __future__ import annotations
 
 import csv
+import gc
+import io
 import math
 import re
+import warnings
 from dataclasses import dataclass
+from itertools import repeat
+from operator import itemgetter
 
 import numpy as np
 
 from x3d_core import fields as F
 from x3d_core import schema
 from x3d_core.model import Scene
-from x3d_core.trace import HEADER, Row
+from x3d_core.inputs import InputRefused, open_regular
+from x3d_core.trace import HEADER, TRACE_LIMIT, TraceView, ViewBuilder, chunks, read_header
 from x3d_core.world import node_names, worlds
 
 # |axis| - 1: a browser writing single-precision floats with 6 digits is within 1e-6;
@@ -38,6 +52,9 @@ AXIS_TOLERANCE = 1e-3
 BODY_FIELDS = ("position", "orientation", "linearVelocity", "angularVelocity")
 _INDEXED = re.compile(r"^(\w+)\[(\d+)\](?:\.(\w+))?$")
 _NULL = ("", "NULL")  # an SFNode output holding no node
+MAX_PROBLEMS = 1000  # then the reading stops, saying so
+# a plain decimal number, as the bulk check takes it (anything else goes row by row)
+_NUMBER = r"[0-9.eE+\-]+"
 
 
 @dataclass(frozen=True)
@@ -98,37 +115,163 @@ def _value_problem(ftype: F.FieldType, value: str, names: set[str]) -> str | Non
     return None
 
 
-def check_trace(path: str, scene: Scene) -> tuple[list[Row], list[Problem]]:
-    """The trace's rows, and every problem found (no rows when the header is wrong)."""
+def check_trace(path: str, scene: Scene) -> tuple[TraceView, list[Problem]]:
+    """The trace, as a TraceView of its good rows (len() its row count; empty when the
+    header is wrong or the file cannot be read), and every problem found."""
     fields = _Fields(scene)
     names = set(fields.types)
     problems: list[Problem] = []
-    rows: list[Row] = []
+    b = ViewBuilder()
+    state = _State(fields, names)
     try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.reader(f)
-            header = next(reader, None)
+        with open_regular(path, TRACE_LIMIT) as f:
+            header, lines = read_header(f)
             if header is None or tuple(h.strip() for h in header) != HEADER:
                 got = "nothing" if header is None else repr(",".join(header))
-                return [], [Problem(path, 1, f"header is {got}, expected {','.join(HEADER)!r}")]
-            last = -math.inf
-            line = reader.line_num
-            for cols in reader:
-                where, line = line + 1, reader.line_num
-                problem = _row_problem(cols, last, fields, names)
-                if problem is not None:
-                    problems.append(Problem(path, where, problem))
-                    continue
-                row = Row(float(cols[0]), *cols[1:])
-                last = row.time
-                rows.append(row)
-    except (OSError, UnicodeDecodeError, csv.Error) as e:
-        return [], [Problem(path, 0, f"cannot read: {e}")]
-    if not rows and not problems:
+                return TraceView(), [Problem(path, 1, f"header is {got}, expected {','.join(HEADER)!r}")]
+            for first, text in chunks(f, lines + 1):
+                if not _bulk(text, state, b):
+                    _row_by_row(path, first, text, state, b, problems)
+                    if len(problems) >= MAX_PROBLEMS:
+                        problems.append(Problem(path, 0, f"stopped reading after {MAX_PROBLEMS} problems"))
+                        break
+                b.flush()
+    except (InputRefused, OSError, UnicodeDecodeError, csv.Error) as e:
+        return TraceView(), [Problem(path, 0, f"cannot read: {e}")]
+    except ValueError as e:  # an output whose good rows hold different counts of numbers (an MF output)
+        return TraceView(), [Problem(path, 0, f"cannot read as arrays: {e}")]
+    try:
+        view = b.view()
+    except ValueError as e:
+        return TraceView(), [Problem(path, 0, f"cannot read: {e}")]
+    if not len(view) and not problems:
         problems.append(Problem(path, 0, "no rows after the header"))
     if not problems:
-        problems += _missing(path, rows, scene)
-    return rows, problems
+        problems += _missing(path, set(view.keys()) | set(view.text_keys()), scene)
+    return view, problems
+
+
+class _State:
+    """What the check carries from chunk to chunk: the last good time, each output's type."""
+
+    def __init__(self, fields: _Fields, names: set[str]):
+        self.fields, self.names, self.last = fields, names, -math.inf
+        self.types: dict[tuple[str, str], F.FieldType | None] = {}  # None: not an output of the scene
+
+    def ftype(self, key: tuple[str, str]) -> F.FieldType | None:
+        if key not in self.types:
+            node, fld = key
+            t = self.fields.of(node, fld) if node in self.names else None
+            self.types[key] = None if isinstance(t, str) else t
+        return self.types[key]
+
+
+def _row_by_row(path: str, first: int, text: str, state: _State, b: ViewBuilder, problems: list[Problem]) -> None:
+    """The chunk's rows one at a time: its problems, with their lines, and its good rows."""
+    reader = csv.reader(io.StringIO(text, newline=""))
+    line = 0
+    for cols in reader:
+        where, line = first + line, reader.line_num
+        problem = _row_problem(cols, state.last, state.fields, state.names)
+        if problem is not None:
+            problems.append(Problem(path, where, problem))
+            if len(problems) >= MAX_PROBLEMS:
+                return
+            continue
+        t = float(cols[0])
+        state.last = t
+        b.add_row(t, *cols[1:])
+
+
+def _bulk(text: str, state: _State, b: ViewBuilder) -> bool:
+    """The chunk checked and added a whole output at a time; False, adding nothing, where
+    anything is wrong or not plain (row_by_row then says what)."""
+    if '"' in text or "\r" in text:
+        return False
+    text = text[:-1] if text.endswith("\n") else text
+    lines = text.split("\n")
+    if set(map(str.count, lines, repeat(",", len(lines)))) != {3}:  # four columns on every row
+        return False
+    del lines
+    enabled = gc.isenabled()
+    gc.disable()  # a chunk makes ~10^6 strings, none of them cyclic: no collection to run
+    try:
+        return _bulk_rows(text.replace("\n", ",").split(","), state, b)
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _bulk_rows(flat: list[str], state: _State, b: ViewBuilder) -> bool:
+    times, values = flat[0::4], flat[3::4]
+    parsed_times = dict.fromkeys(times)  # a frame's rows share their time: each read once
+    try:
+        for text in parsed_times:
+            parsed_times[text] = float(text)
+    except ValueError:
+        return False
+    t = np.fromiter(map(parsed_times.__getitem__, times), np.float64, len(times))
+    if not np.isfinite(t).all() or t[0] < state.last or (t.size > 1 and np.any(np.diff(t) < 0)):
+        return False
+    keys = list(zip(flat[1::4], flat[2::4]))
+    ids = {k: i for i, k in enumerate(dict.fromkeys(keys))}
+    types = [state.ftype(k) for k in ids]
+    if any(ft is None for ft in types):
+        return False
+    gid = np.fromiter(map(ids.__getitem__, keys), np.intp, len(keys))
+    del keys
+    order = np.argsort(gid, kind="stable")
+    bounds = np.concatenate([[0], np.cumsum(np.bincount(gid, minlength=len(ids)))])
+    parsed = []
+    for i, (key, ftype) in enumerate(zip(ids, types)):
+        idx = order[bounds[i]:bounds[i + 1]]
+        vals = [values[idx[0]]] if idx.size == 1 else list(itemgetter(*idx.tolist())(values))
+        got = _bulk_values(ftype, vals, state.names)
+        if got is None:
+            return False
+        parsed.append((key, t[idx], got, vals))
+    b.add_times(t)
+    for key, tk, got, vals in parsed:
+        if isinstance(got, np.ndarray):
+            b.add_series(key, tk, got, counted=True)
+        else:
+            for time, value in zip(tk.tolist(), vals):
+                b.add_row(time, key[0], key[1], value)
+    state.last = float(t[-1])
+    return True
+
+
+_PATTERNS: dict[int, re.Pattern] = {}
+
+
+def _bulk_values(ftype: F.FieldType, vals: list[str], names: set[str]) -> np.ndarray | bool | None:
+    """One output's values in a chunk: an (n, width) array where they are SF numbers written
+    plainly; True where they are good but are to be added row by row (other types); None
+    where any is not good, or the bulk check cannot tell."""
+    if ftype.kind == "float" and not ftype.multi:
+        w = ftype.width
+        pattern = _PATTERNS.get(w)
+        if pattern is None:
+            one = _NUMBER + f"(?: {_NUMBER})" * (w - 1)
+            pattern = _PATTERNS[w] = re.compile(f"{one}(?:\n{one})*")
+        joined = "\n".join(vals)
+        if pattern.fullmatch(joined) is None:
+            return None
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")
+            try:
+                arr = np.fromstring(joined, dtype=np.float64, sep=" ")
+            except (ValueError, DeprecationWarning):
+                return None
+        if arr.size != len(vals) * w or not np.isfinite(arr).all():
+            return None
+        arr = arr.reshape(len(vals), w)
+        if ftype.rotation:
+            bad = np.abs(np.linalg.norm(arr[:, :3], axis=1) - 1.0)
+            if not np.all(bad <= AXIS_TOLERANCE):
+                return None
+        return arr
+    return True if all(_value_problem(ftype, v, names) is None for v in vals) else None
 
 
 def _row_problem(cols: list[str], last: float, fields: _Fields, names: set[str]) -> str | None:
@@ -151,8 +294,8 @@ def _row_problem(cols: list[str], last: float, fields: _Fields, names: set[str])
     return _value_problem(ftype, value, names)
 
 
-def _missing(path: str, rows: list[Row], scene: Scene) -> list[Problem]:
-    """Every RigidBody field the trace lacks (bodies of enabled collections)."""
-    have = {(r.node, r.field) for r in rows}
+def _missing(path: str, have: set[tuple[str, str]], scene: Scene) -> list[Problem]:
+    """Every RigidBody field the trace lacks (bodies of enabled collections); have: the
+    (node, field) pairs it has."""
     return [Problem(path, 0, f"no rows for {b}.{f} (every RigidBody records {', '.join(BODY_FIELDS)})")
             for w in worlds(scene) for b in w.bodies.names for f in BODY_FIELDS if (b, f) not in have]

@@ -53,22 +53,28 @@ def _tidy(x: float) -> float:
     return float(f"{x:.9g}")
 
 
-def trace_settings(rows: Sequence[Row], dt: float) -> Settings:
+def _view(rows: Sequence[Row] | TraceView) -> TraceView:
+    return rows if isinstance(rows, TraceView) else TraceView(rows)
+
+
+def trace_settings(rows: Sequence[Row] | TraceView, dt: float) -> Settings:
     """The run their trace describes: until its last time, at its median frame spacing."""
-    times = np.unique([r.time for r in rows])
+    times = _view(rows).times()
     gaps = np.diff(times)
     period = float(np.median(gaps)) if gaps.size else float(times[-1])
     return Settings(_tidy(float(times[-1])), dt, _tidy(1.0 / period))
 
 
-def _aligned(rows: Sequence[Row], times: np.ndarray) -> TraceView:
+def _aligned(rows: Sequence[Row] | TraceView, times: np.ndarray) -> TraceView:
     """Their trace with each time moved onto the backend's frame time within SNAP of it."""
-    t = np.array([r.time for r in rows])
-    i = np.clip(np.searchsorted(times, t), 0, times.size - 1)
-    j = np.maximum(i - 1, 0)
-    near = np.where(np.abs(times[j] - t) < np.abs(times[i] - t), times[j], times[i])
-    snapped = np.where(np.abs(near - t) <= SNAP, near, t)
-    return TraceView([Row(float(s), r.node, r.field, r.value) for s, r in zip(snapped, rows)])
+    def snap(t: np.ndarray) -> np.ndarray:
+        if not times.size or not t.size:
+            return t
+        i = np.clip(np.searchsorted(times, t), 0, times.size - 1)
+        j = np.maximum(i - 1, 0)
+        near = np.where(np.abs(times[j] - t) < np.abs(times[i] - t), times[j], times[i])
+        return np.where(np.abs(near - t) <= SNAP, near, t)
+    return _view(rows).retimed(snap)
 
 
 def _frame_times(view: TraceView) -> np.ndarray:
@@ -84,11 +90,12 @@ def check_case(case: Case, views: Sequence[TraceView], dt: float | None,
     return verdicts.evaluate(case, THEIRS, views, settings)
 
 
-def compare_with_backends(scene: str, trace: str, rows: Sequence[Row], dt: float, backends: Sequence[str],
+def compare_with_backends(scene: str, trace: str, rows: Sequence[Row] | TraceView, dt: float, backends: Sequence[str],
                           info: Mapping[str, results.BackendInfo], thresholds: Mapping[str, float],
                           timeout: float, name: str = THEIRS) -> TraceComparison:
     """Each backend's run of the scene, with the settings of their trace, against it (their
-    trace goes by `name` in the pairs)."""
+    trace goes by `name` in the pairs; rows: its rows, or check_trace's view of them)."""
+    rows = _view(rows)
     settings = trace_settings(rows, dt)
     runs = run_backends(scene, backends, settings, info, timeout, jobs=os.cpu_count() or 1)
     pairs = {r.backend: compare_pair(name, _aligned(rows, _frame_times(v)), r.backend, v, thresholds)

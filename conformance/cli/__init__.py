@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import os
+import select
+import sys
 
 from conformance.cli.check import add_command as add_check
 from conformance.cli.compare import add_command as add_compare
@@ -14,6 +17,42 @@ from conformance.cli.stability import add_command as add_stability
 from conformance.cli.sweep import add_command as add_sweep
 from conformance.cli.validate import add_command as add_validate
 from conformance.cli.x_ite import add_command as add_x_ite
+from x3d_core.atomic import CannotWrite
+
+EXIT_INTERRUPTED = 130
+# standard output closed by its reader (`x3drbp run SCENE | head -1`): what a shell reports for
+# a command killed by SIGPIPE, 128 + 13, as `git log | head` or `cat big | head` give; not 1,
+# which says "error" (run) or "does not conform" (validate), and the reader went away by choice
+EXIT_BROKEN_PIPE = 141
+EXIT_CANNOT_WRITE = 1
+
+
+def _stdout_gone() -> bool:
+    """Whether standard output is a pipe whose reader has closed it (poll says POLLERR)."""
+    try:
+        fd = sys.stdout.fileno()
+        p = select.poll()
+        p.register(fd, select.POLLOUT)
+        return any(ev & select.POLLERR for _, ev in p.poll(0))
+    except (AttributeError, ValueError, OSError):
+        return False
+
+
+def _quiet_stdout() -> None:
+    """Python's recipe (library/signal.html, note on SIGPIPE): standard output pointed at
+    devnull, so that the interpreter's last flush at exit fails no more."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (AttributeError, ValueError, OSError):
+        pass
+
+
+def _say(line: str) -> None:
+    try:
+        print(line, file=sys.stderr)
+    except (OSError, ValueError):  # standard error closed too: the status says it
+        pass
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -33,7 +72,44 @@ def main(argv: list[str] | None = None) -> int:
     parser.set_defaults(main=main)  # `x3drbp report` runs the other commands through it
     args = parser.parse_args(argv)
     try:
-        return args.func(args)
+        status = args.func(args)
+        if sys.stdout is not None:
+            sys.stdout.flush()  # here, where a reader gone is caught, not at exit
+        return status
     except KeyboardInterrupt:
-        return 130
+        return EXIT_INTERRUPTED
+    except CannotWrite as e:  # an output file: its path, as given, and why
+        _say(f"x3drbp {args.command}: {e}")
+        return EXIT_CANNOT_WRITE
+    except BrokenPipeError as e:
+        if _stdout_gone():
+            _quiet_stdout()
+            return EXIT_BROKEN_PIPE
+        _say(f"x3drbp {args.command}: {_oserror(e, _outputs(args))}")
+        return EXIT_CANNOT_WRITE
+    except OSError as e:  # the last resort: one line, never a traceback
+        _say(f"x3drbp {args.command}: {_oserror(e, _outputs(args))}")
+        return EXIT_CANNOT_WRITE
+
+
+# the options that name an output, file or folder (and run's --trace; validate's reads one)
+OUTPUT_OPTIONS = ("out", "json", "rerun", "timing")
+
+
+def _outputs(args: argparse.Namespace) -> list[str]:
+    names = OUTPUT_OPTIONS + (("trace",) if args.command == "run" else ())
+    return [os.path.abspath(v) for v in (getattr(args, n, None) for n in names) if isinstance(v, str) and v]
+
+
+def _oserror(e: OSError, outputs: list[str] = ()) -> str:
+    """One line for an OSError: `cannot write PATH: REASON` where PATH is an output the
+    command was given (an --out folder that cannot be made, say), else `PATH: REASON`."""
+    reason = e.strerror or str(e) or type(e).__name__
+    if not e.filename:
+        return reason
+    path = os.fsdecode(e.filename) if isinstance(e.filename, (str, bytes)) else str(e.filename)
+    full = os.path.abspath(path)
+    if any(full == o or full.startswith(o + os.sep) for o in outputs):
+        return f"cannot write {path}: {reason}"
+    return f"{path}: {reason}"
 

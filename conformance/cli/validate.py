@@ -25,7 +25,6 @@ from collections.abc import Sequence
 
 from reports.validate_text import render
 from x3d_core import atomic
-from x3d_core.trace import Row
 
 from conformance.cli import options
 from conformance import results
@@ -53,9 +52,9 @@ def _usage(message: str) -> int:
     return _unreadable([f"x3drbp validate: {message}"])
 
 
-def _coverage(path: str, rows: list[Row], case: Case | None, k: int) -> list[Problem]:
+def _coverage(path: str, rows: TraceView, case: Case | None, k: int) -> list[Problem]:
     """A trace without frames, or shorter than the case's run k by more than half a frame."""
-    end = max(r.time for r in rows)
+    end = rows.end()
     if end <= 0:
         return [Problem(path, 0, "no frame after time 0")]
     run = case.runs[k] if case is not None else None

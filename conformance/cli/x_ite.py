@@ -85,6 +85,10 @@ def cmd_cases(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+class _NotRecorded(Exception):
+    """X_ITE gave no whole trace; the message says why."""
+
+
 def cmd_record(args: argparse.Namespace) -> int:
     try:
         scene = load(args.scene)
@@ -96,14 +100,15 @@ def cmd_record(args: argparse.Namespace) -> int:
     if reason:
         _say(f"X_ITE cannot run here: {reason}")
         return EXIT_FAILED
-    run = Recording(args.scene, args.trace + ".part", args.frame_rate, args.duration, what)
-    record([run], args.timeout)
-    if not run.ok:
-        if os.path.exists(run.out):
-            os.remove(run.out)
-        _say(f"{args.scene}: X_ITE did not record it: {run.error}")
+    try:
+        with atomic.replacing(args.trace) as part:  # node writes the temporary; moved over OUT.csv once whole
+            run = Recording(args.scene, part, args.frame_rate, args.duration, what)
+            record([run], args.timeout)
+            if not run.ok:
+                raise _NotRecorded(run.error)
+    except _NotRecorded as e:  # the temporary is gone, OUT.csv as it was
+        _say(f"{args.scene}: X_ITE did not record it: {e}")
         return EXIT_FAILED
-    os.replace(run.out, args.trace)
     for m in run.messages:
         _say(f"X_ITE said: {m}")
     _say(f"wrote {args.trace}: {run.frames} frames in {run.wall_s:.2f} s; "
