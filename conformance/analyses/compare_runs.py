@@ -16,7 +16,7 @@ import tempfile
 import time
 from collections.abc import Mapping, Sequence
 
-from x3d_core.trace import TraceView, read_trace
+from x3d_core.trace import TraceView, read_view
 
 from conformance import results
 from conformance.results import RAN, BackendRun, Settings
@@ -41,7 +41,7 @@ def run_backend(scene: str, backend: str, settings: Settings, folder: str,
     if out.verdict is not None:
         return BackendRun(backend, out.verdict, out.reason, child_wall_s=child_s), None
     try:
-        view = TraceView(read_trace(trace))
+        view = read_view(trace)
     except (OSError, ValueError) as e:
         return BackendRun(backend, results.ERROR, f"unreadable trace: {e}", child_wall_s=child_s), None
     return BackendRun(backend, RAN, simulated_s=settings.duration, simulation_wall_s=_simulation_wall(timing),

@@ -51,7 +51,7 @@ import numpy as np
 
 from x3d_core import rotation as R
 from x3d_core.load import load
-from x3d_core.trace import read_trace
+from x3d_core.trace import read_view
 from x3d_core.world import worlds
 
 from conformance import results
@@ -381,7 +381,7 @@ def run_one(case: HardCase, backend: str, dt: float, timeout: float = DEFAULT_TI
         if out.verdict is not None:
             return result(out.verdict, out.reason)
         try:
-            view = TraceView(read_trace(path))
+            view = read_view(path)
         except (OSError, ValueError) as e:
             return result(results.ERROR, f"unreadable trace: {e}")
     try:

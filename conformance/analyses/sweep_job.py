@@ -19,7 +19,7 @@ import numpy as np
 from x3d_core import atomic
 from x3d_core.load import load
 from x3d_core.model import LoadError
-from x3d_core.trace import TraceView, read_trace
+from x3d_core.trace import TraceView, read_view
 from x3d_core.xml_writer import write_xml
 
 from conformance import cases as C
@@ -98,7 +98,7 @@ def run_job(job: Job) -> JobResult:
             with open(timing, encoding="utf-8") as f:
                 times = json.load(f)
             step_s, simulation_s = float(times["step_wall_s"]), float(times["simulation_wall_s"])
-            view = TraceView(read_trace(trace))
+            view = read_view(trace)
         except (OSError, ValueError, KeyError) as e:
             return JobResult(results.ERROR, f"unreadable trace or timing: {e}")
     if job.case is None:

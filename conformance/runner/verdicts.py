@@ -29,7 +29,7 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import TypeVar
 
-from x3d_core.trace import TraceView, read_trace
+from x3d_core.trace import TraceView, read_view
 
 from conformance.cases.case import Case
 from conformance.results import ERROR, Convergence, Result, Settings, judge
@@ -75,7 +75,7 @@ def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
                 return Result(case.name, backend, out.verdict, out.reason, dt=dt,
                               wall_s=time.perf_counter() - started)
             try:
-                traces.append(TraceView(read_trace(path)))
+                traces.append(read_view(path))
             except (OSError, ValueError) as e:
                 return Result(case.name, backend, ERROR, f"unreadable trace: {e}", dt=dt,
                               wall_s=time.perf_counter() - started)
