@@ -40,6 +40,10 @@ class FieldType:
         return self.numeric and not self.multi and self.width > 1
 
     def describe(self) -> str:
+        if self.name == "SFImage":
+            return "integers width height components, then width*height pixels (SFImage)"
+        if self.name == "MFImage":
+            return "integers: images, each width height components then width*height pixels (MFImage)"
         what = {"bool": "a boolean", "int": "an integer", "float": "a number",
                 "string": "a string", "node": "a node"}[self.kind]
         if self.numeric and self.width > 1:
@@ -76,6 +80,7 @@ def _types() -> dict[str, FieldType]:
 FIELD_TYPES: dict[str, FieldType] = _types()
 
 _SPLIT = re.compile(r"[\s,]+")
+_INT_TEXT = re.compile(r"[+-]?(?:0[xX][0-9a-fA-F]{1,4000}|[0-9]{1,4000})\Z")  # int() reads at most 4300 digits
 _INT32 = (-(2**31), 2**31 - 1)
 
 
@@ -126,13 +131,35 @@ def _from_tokens(ftype: FieldType, tokens: list) -> Any:
             raise FieldError(f"non-finite number; expected {ftype.describe()}")
     else:
         arr = np.array([_int(t, ftype) for t in tokens], dtype=np.int64)
-        if ftype.name not in ("SFImage", "MFImage"):
+        if ftype.name in ("SFImage", "MFImage"):
+            _check_images(arr, ftype)
+        else:
             if arr.size and (arr.min() < _INT32[0] or arr.max() > _INT32[1]):
                 raise FieldError(f"integer outside the 32-bit range; expected {ftype.describe()}")
             arr = arr.astype(np.int32)
     if ftype.multi:
         return arr.reshape(-1, w) if w > 1 else arr
     return arr if w > 1 else arr[0].item()
+
+
+def _check_images(arr: np.ndarray, ftype: FieldType) -> None:
+    """An SFImage is width height components (0 to 4), then width*height pixels; an MFImage
+    is such images one after the other."""
+    values = arr.tolist()
+    at = 0
+    while at < len(values) or (at == 0 and ftype.name == "SFImage"):
+        head = values[at:at + 3]
+        if len(head) < 3:
+            raise FieldError(f"an image starts with its width, height and number of components, got "
+                             f"{len(head)} number{'' if len(head) == 1 else 's'}; expected {ftype.describe()}")
+        w, h, c = head
+        if w < 0 or h < 0 or not 0 <= c <= 4:
+            raise FieldError(f"an image of width {w}, height {h} and {c} components: width and height must be "
+                             f"at least 0, components 0 to 4; expected {ftype.describe()}")
+        pixels = len(values) - at - 3 if ftype.name == "SFImage" else min(w * h, len(values) - at - 3)
+        if pixels != w * h:
+            raise FieldError(f"a {w}x{h} image has {w * h} pixels, got {pixels}; expected {ftype.describe()}")
+        at += 3 + pixels
 
 
 def _is_float(t: Any) -> bool:
@@ -153,10 +180,9 @@ def _any_int(t: Any, ftype: FieldType) -> int:
             return int(t)
         raise FieldError(f"{t!r} is not an integer; expected {ftype.describe()}")
     s = str(t)
-    try:
-        return int(s, 16) if s.lower().startswith(("0x", "-0x", "+0x")) else int(s)
-    except ValueError:
-        raise FieldError(f"{s!r} is not an integer; expected {ftype.describe()}") from None
+    if not _INT_TEXT.match(s):  # int() alone would take 1_000 and blanks around the digits
+        raise FieldError(f"{s!r} is not an integer; expected {ftype.describe()}")
+    return int(s, 16) if s.lower().startswith(("0x", "-0x", "+0x")) else int(s)
 
 
 def _int(t: Any, ftype: FieldType) -> int:

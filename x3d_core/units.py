@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 BASE_CATEGORIES = ("angle", "force", "length", "mass")
 
 # Each unit a field may carry, as exponents of the base categories (time is always seconds).
@@ -24,5 +26,8 @@ def factor(unit: str | None, scene_units: dict[str, float]) -> float:
         return 1.0
     f = 1.0
     for category, power in DERIVED[unit].items():
-        f *= scene_units.get(category, 1.0) ** power
+        try:
+            f *= scene_units.get(category, 1.0) ** power
+        except OverflowError:  # (1e200 m)^2: the values it scales are refused as not finite
+            return math.inf
     return f

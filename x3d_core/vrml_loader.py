@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import itertools
 import re
+from array import array
 from typing import Any
 
 import numpy as np
@@ -11,6 +12,7 @@ import numpy as np
 from . import fields as F
 from .build import Builder
 from .model import Location, Node, Scene
+from .xml_loader import LineIndex
 
 # the rest of the header line is a comment (Titania and X_ITE write their names there)
 _HEADER = re.compile(rb"^\s*#(X3D V[34]\.\d+|VRML V2\.0) [A-Za-z0-9_-]+[^\r\n]*")
@@ -25,12 +27,14 @@ _ACCESS = frozenset({"inputOnly", "outputOnly", "initializeOnly", "inputOutput",
                      "eventIn", "eventOut", "field", "exposedField"})
 _KEYWORDS = frozenset({"DEF", "USE", "ROUTE", "TO", "PROTO", "EXTERNPROTO", "IS", "NULL", "IMPORT", "EXPORT",
                        "AS", "TRUE", "FALSE"})
-# Every token costs ~300 bytes here (its text, match, position, line and column): 2e6 tokens
-# load in ~2.5 s and ~650 MiB; a file of 1e7 numbers took 20 s and 3 GiB. Larger arrays
-# belong in the XML or JSON encoding, which keep numbers as text until parsed in bulk.
+# Every token costs ~100 bytes here (its text and offset; its line is counted only when a
+# location is asked for): 1.9e6 tokens peak at ~250 MiB (~690 MiB when each kept its match,
+# line and column). Larger arrays belong in the XML or JSON encoding, which keep numbers as
+# text until parsed in bulk.
 MAX_TOKENS = 2_000_000
 _END = " end of file"  # after the last token; no real token starts with a space
 _NUMBER_START = frozenset("0123456789+-.")
+_INTEGER = re.compile(r"[+-]?(?:0[xX][0-9a-fA-F]{1,16}|\d{1,18})\Z")
 
 
 def load_vrml(path: str, source: bytes, scene: Scene) -> None:
@@ -47,7 +51,16 @@ def load_vrml(path: str, source: bytes, scene: Scene) -> None:
     except UnicodeDecodeError as e:
         line = source[:e.start].count(b"\n") + 1
         raise b.fatal(Location(path, line, 1), "not UTF-8 text") from None
-    _Parser(b, path, text, m.end()).scene()
+    with np.errstate(over="ignore", invalid="ignore"):  # UNIT conversions overflowing: validate reports them
+        _Parser(b, path, text, m.end()).scene()
+
+
+def _image_size(token: str) -> int | None:
+    """An SFImage width or height token as ClassicVRML reads an SFInt32 (08 is 8, 0x10 is 16),
+    0 if negative; None if it is no integer (1.5, a string)."""
+    if not _INTEGER.match(token):
+        return None
+    return max(int(token, 16 if token[1:3].lower() == "0x" or token[:2].lower() == "0x" else 10), 0)
 
 
 class _Parser:
@@ -55,22 +68,24 @@ class _Parser:
         self.b = b
         self.path = path
         self.text = text
-        matches = list(itertools.islice(_TOKEN.finditer(text, start), MAX_TOKENS + 1))
-        if len(matches) > MAX_TOKENS:
-            line = text.count("\n", 0, matches[-1].start(1)) + 1
-            raise b.fatal(Location(path, line, 1), f"more than {MAX_TOKENS} tokens (numbers, names, brackets): "
-                                                   "x3drbp reads no larger ClassicVRML file; the XML or JSON "
-                                                   "encoding holds larger arrays")
-        self.ntok = len(matches)
-        self.toks: list[str] = [m.group(1) for m in matches] + [_END, _END]
-        self.pos: list[int] = [m.start(1) for m in matches] + [len(text)]
-        # every token's line and column at once; most are never printed, but fields keep theirs
-        line_starts = np.array([0] + [m.end() for m in re.finditer("\n", text)], dtype=np.int64)
-        pos = np.array(self.pos, dtype=np.int64)
-        lines = np.searchsorted(line_starts, pos, side="right")
-        self.tok_line: list[int] = lines.tolist()
-        self.tok_col: list[int] = (pos - line_starts[lines - 1] + 1).tolist()
-        if matches and self.toks[self.ntok - 1][0] == '"' and not _CLOSED_STRING.fullmatch(self.toks[self.ntok - 1]):
+        self.lines = LineIndex(text)
+        # each token's text and offset; its line and column are found only when asked for
+        self.toks: list[str] = []
+        pos = array("q")
+        toks_append, pos_append = self.toks.append, pos.append
+        for m in itertools.islice(_TOKEN.finditer(text, start), MAX_TOKENS + 1):
+            toks_append(m.group(1))
+            pos_append(m.start(1))
+        if len(self.toks) > MAX_TOKENS:
+            raise b.fatal(self.lines.location(path, pos[-1]),
+                          f"more than {MAX_TOKENS} tokens (numbers, names, brackets): x3drbp reads no larger "
+                          "ClassicVRML file; the XML or JSON encoding holds larger arrays")
+        self.ntok = len(self.toks)
+        self.toks += [_END, _END]
+        pos.append(len(text))
+        self.pos = pos
+        last = self.toks[self.ntok - 1] if self.ntok else ""
+        if last[:1] == '"' and not _CLOSED_STRING.fullmatch(last):
             raise b.fatal(self.loc(self.ntok - 1), "unterminated string")
         self.i = 0
         self.roots: list[Node] = []
@@ -78,7 +93,7 @@ class _Parser:
     # -- tokens ---------------------------------------------------------------
     def loc(self, i: int | None = None) -> Location:
         i = min(self.i if i is None else i, self.ntok)
-        return Location(self.path, self.tok_line[i], self.tok_col[i])
+        return self.lines.location(self.path, self.pos[i])
 
     def shown(self, k: int = 0) -> str:
         """The next token as a message shows it."""
@@ -279,9 +294,13 @@ class _Parser:
             return out
         count = ftype.width if ftype.numeric else 1
         if ftype.name == "SFImage":
+            # width height components, then width*height pixels; a width or height that is no
+            # integer (1.5) reads no pixels, and parsing the value says what is wrong
             head = self.scalars(3)
-            w, h = (int(x, 0) if _NUMBER.match(x) else 0 for x in head[:2]) if len(head) >= 2 else (0, 0)
-            return head + self.scalars(max(w * h, 0))
+            w, h = (_image_size(x) for x in head[:2]) if len(head) >= 2 else (0, 0)
+            if w is None or h is None:  # the pixels that follow are the value's too
+                return head + self.scalars(1 << 62)
+            return head + self.scalars(w * h)
         return self.scalars(count)
 
     def scalars(self, count: int) -> list[str]:

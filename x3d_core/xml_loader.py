@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import bisect
 import re
+from array import array
 
+import numpy as np
 from lxml import etree
 
 from . import fields as F
@@ -17,50 +19,206 @@ _IGNORED_ATTRIBUTES = frozenset({"DEF", "USE", "containerField", "class", "id", 
 _ENTITY_DECL = re.compile(rb"<!ENTITY", re.I)
 _ELEMENT_START = re.compile(rb"<[A-Za-z]")
 _TAG_LINES = 50  # how far back a start tag may begin before the line lxml reports
+_GUESSES = 256  # start tags looked at when only the line of an element is known
+# What can hold a '<' that starts no element (comments, CDATA, processing instructions, the
+# DOCTYPE), else an element's '<' and the first letter of its name: a match of 2 bytes
+_MARKUP = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<!DOCTYPE(?:[^\[>]++|\[.*?\])*+>|<[A-Za-z_:]",
+                     re.S)
+_TAG_NAME = re.compile(rb"<[^\s/>]+")
+_AFTER_NAME = frozenset((b" ", b"\t", b"\r", b"\n", b"/", b">"))
+_ATTRIBUTE = re.compile(rb"\s+([^\s=/>]+)\s*=\s*(?:\"[^\"]*+\"|'[^']*+')")
+_START_TAG = re.compile(rb"<[^\s/>]+(?:\s+[^\s=/>]+\s*=\s*(?:\"[^\"]*+\"|'[^']*+'))*+\s*+/?>")
+
+
+class LineIndex:
+    """Line and column of an offset into a text (str or bytes), found when a diagnostic asks.
+
+    Keeps two numbers per block of _BLOCK characters (the newlines before the block, and
+    where the last of them is), not one per line: a file of 42 MB of newlines once cost
+    2 GiB in a list of line starts. Each question reads at most one block."""
+
+    _BLOCK = 1 << 12
+
+    def __init__(self, text: str | bytes):
+        self.text = text
+        self._nl = b"\n" if isinstance(text, bytes) else "\n"
+        self._before: array | None = None  # newlines before each block
+        self._last: array | None = None  # offset of the last newline before each block, -1 if none
+        self._cursor = (0, 1, -1)  # an offset, its line, the offset of the last newline before it
+
+    def _blocks(self) -> tuple[array, array]:
+        if self._before is None:
+            text, nl, size = self.text, self._nl, self._BLOCK
+            before, last = array("q", [0]), array("q", [-1])
+            for s in range(0, len(text), size):
+                before.append(before[-1] + text.count(nl, s, s + size))
+                r = text.rfind(nl, s, s + size)
+                last.append(r if r >= 0 else last[-1])
+            self._before, self._last = before, last
+        return self._before, self._last
+
+    def locate(self, offset: int) -> tuple[int, int]:
+        """(line, column), both from 1, of an offset (at most len(text))."""
+        at, line, nl_before = self._cursor  # the last answer: loaders ask mostly in file order
+        if not at <= offset < at + self._BLOCK:
+            before, last = self._blocks()
+            b = offset // self._BLOCK
+            at = b * self._BLOCK
+            line, nl_before = before[b] + 1, last[b]
+        line += self.text.count(self._nl, at, offset)
+        r = self.text.rfind(self._nl, at, offset)
+        if r >= 0:
+            nl_before = r
+        self._cursor = (offset, line, nl_before)
+        return line, offset - nl_before
+
+    def line_start(self, line: int) -> int | None:
+        """The offset where a line (from 1) starts; None past the last line."""
+        if line == 1:
+            return 0
+        before, _ = self._blocks()
+        if line - 1 > before[-1]:
+            return None
+        b = bisect.bisect_left(before, line - 1) - 1  # the block holding the (line-1)th newline
+        s = b * self._BLOCK
+        at = s - 1
+        for _ in range(line - 1 - before[b]):
+            at = self.text.find(self._nl, at + 1)
+        return at + 1
+
+    def line_end(self, line: int) -> int:
+        """The offset just past a line's newline (the text's end for the last line)."""
+        start = self.line_start(line)
+        end = self.text.find(self._nl, start) if start is not None else -1
+        return len(self.text) if end < 0 else end + 1
+
+    def location(self, path: str, offset: int) -> Location:
+        return Location(path, *self.locate(offset))
 
 
 class XmlBuilder(Builder):
-    """Locates an attribute in the source for its diagnostic (lxml gives element lines only)."""
+    """Places an element, and the attribute a diagnostic is about, in the source: lxml gives
+    only the line where a start tag ends (the same for every element of a minified file).
+
+    One scan lists every start tag's offset in document order, the order root.iter() gives
+    the elements, so an element's start tag is found by its index; a tag's attributes are
+    read once, when a diagnostic first asks about one of them."""
 
     def __init__(self, scene: Scene, source: bytes):
         super().__init__(scene)
         scene.locate = self.resolve
         self.source = source
-        self._line_starts: list[int] | None = None
+        self.lines = LineIndex(source)
+        self._tags = array("q")  # offset of each element's start tag, in document order
+        self._order: dict[etree._Element, int] = {}  # element -> its index in document order
+        self._attributes: dict[int, dict[bytes, int]] = {}  # tag offset -> attribute name -> offset
+        self._ends: dict[int, int] = {}  # tag offset -> offset of its '>'
 
-    def _lines(self) -> list[int]:
-        if self._line_starts is None:
-            starts = [0]
-            starts.extend(m.end() for m in re.finditer(rb"\n", self.source))
-            self._line_starts = starts
-        return self._line_starts
+    def index(self, root: etree._Element) -> None:
+        """Pair the elements of the parsed tree with their start tags. Only the elements of a
+        line where two start tags of one name end (a minified file's, one another's children
+        of one type) are kept in a table: elsewhere the line and the node type name one tag."""
+        self._tags = array("q", (m.start() for m in _MARKUP.finditer(self.source) if m.end() - m.start() == 2))
+        order: dict[etree._Element, int] = {}
+        line, names, on_line, repeated = -1, set(), [], False
+        n = 0
+        for n, el in enumerate(root.iter(tag=etree.Element), 1):
+            if el.sourceline != line:
+                if repeated:
+                    order.update(on_line)
+                line, repeated = el.sourceline, False
+                names.clear()
+                on_line.clear()
+            repeated = repeated or el.tag in names
+            names.add(el.tag)
+            on_line.append((el, n - 1))
+        if repeated:
+            order.update(on_line)
+        if n == len(self._tags):
+            self._order = order
+        else:  # never expected of a file lxml parsed: fall back to the lines lxml gives
+            self._tags = array("q")
+
+    def element_loc(self, path: str, el: etree._Element) -> Location:
+        """Where an element's start tag begins, if the index pairs it; else the line lxml gives
+        (column 0: resolve() finds the tag, and the attribute, when a diagnostic asks)."""
+        i = self._order.get(el)
+        if i is None:
+            return Location(path, el.sourceline or 0, 0)
+        return self.lines.location(path, self._tags[i])
+
+    def _tag_attributes(self, tag: int) -> dict[bytes, int]:
+        """Each attribute's offset in the start tag at an offset (read once per tag)."""
+        found = self._attributes.get(tag)
+        if found is None:
+            if len(self._attributes) >= 64:
+                self._attributes.clear()
+            found = {}
+            m = _TAG_NAME.match(self.source, tag)
+            pos = m.end() if m else tag + 1
+            while (a := _ATTRIBUTE.match(self.source, pos)) is not None:
+                found.setdefault(a.group(1), a.start(1))
+                pos = a.end()
+            self._attributes[tag] = found
+        return found
 
     def resolve(self, loc: Location, subject: str) -> Location:
-        """lxml gives the line where an element's start tag ends, nothing more: find the
-        tag (named by the subject where it can) and the attribute the diagnostic is about."""
-        starts = self._lines()
-        if loc.col or loc.line < 1 or loc.line > len(starts):
+        """The place of a diagnostic about an element (a location at its start tag) or a field
+        (the attribute that gives it, where the tag has one)."""
+        if loc.line < 1:
             return loc
-        line_start = starts[loc.line - 1]
-        line_end = starts[loc.line] if loc.line < len(starts) else len(self.source)
-        window = starts[max(0, loc.line - 1 - _TAG_LINES)]
-        tag = subject.split(" ", 1)[0].split(".", 1)[0].encode()
         attribute = subject.rpartition(".")[2].encode() if "." in subject else b""
-        candidates = []  # elements whose start tag ends on the reported line, last first
-        for m in reversed(list(_ELEMENT_START.finditer(self.source, window, line_end))):
-            tag_end = self.source.find(b">", m.start())
-            if tag_end < line_start and m.start() < line_start:
+        if loc.col:
+            start = self.lines.line_start(loc.line)
+            tag = None if start is None else start + loc.col - 1
+            if tag is None or self.source[tag:tag + 1] != b"<":
+                return loc  # already exact
+        else:
+            tag = self._guess_tag(loc, subject)
+            if tag is None:
+                return Location(loc.file, loc.line, 1)
+        pos = self._tag_attributes(tag).get(attribute, tag) if attribute else tag
+        return self.lines.location(loc.file, pos)
+
+    def _guess_tag(self, loc: Location, subject: str) -> int | None:
+        """For an element known only by its line (the line where its start tag ends): among
+        the start tags that end there, the last of the subject's node type, else the last."""
+        line_start = self.lines.line_start(loc.line)
+        if line_start is None:
+            return None
+        line_end = self.lines.line_end(loc.line)
+        window = self.lines.line_start(max(1, loc.line - _TAG_LINES)) or 0
+        if self._tags:
+            hi = bisect.bisect_left(self._tags, line_end)
+            starts = self._tags[max(bisect.bisect_left(self._tags, window), hi - _GUESSES):hi]
+        else:
+            starts = array("q")
+            for m in _ELEMENT_START.finditer(self.source, window, line_end):
+                starts.append(m.start())
+                if len(starts) > 2 * _GUESSES:
+                    del starts[:_GUESSES]  # bounded work and memory on a long line
+        name = subject.split(" ", 1)[0].split(".", 1)[0].encode()
+        last = None
+        for c in reversed(starts):
+            end = self._tag_end(c)
+            if end < line_start:
                 break
-            candidates.append((m.start(), tag_end))
-        if not candidates:
-            return Location(loc.file, loc.line, 1)
-        named = [c for c in candidates if self.source.startswith(tag, c[0] + 1)]
-        pos, tag_end = (named or candidates)[0]
-        if attribute:
-            a = re.compile(rb"\s" + re.escape(attribute) + rb"\s*=").search(self.source, pos, tag_end)
-            pos = a.start() + 1 if a else pos
-        line = bisect.bisect_right(starts, pos)
-        return Location(loc.file, line, pos - starts[line - 1] + 1)
+            if end >= line_end:  # starts on the line but ends on a later one
+                continue
+            last = c if last is None else last
+            if self.source.startswith(name, c + 1) and self.source[c + 1 + len(name):c + 2 + len(name)] in _AFTER_NAME:
+                return c
+        return last
+
+    def _tag_end(self, tag: int) -> int:
+        """The offset of a start tag's '>' (kept: many diagnostics may ask about one long tag)."""
+        end = self._ends.get(tag)
+        if end is None:
+            if len(self._ends) >= 4096:
+                self._ends.clear()
+            m = _START_TAG.match(self.source, tag)
+            end = self._ends[tag] = m.end() - 1 if m else self.source.find(b">", tag)
+        return end
 
 
 def load_xml(path: str, source: bytes, scene: Scene) -> None:
@@ -83,13 +241,15 @@ def load_xml(path: str, source: bytes, scene: Scene) -> None:
                       f"not an X3D document: the root element is <{root.tag}>, expected <X3D>")
     scene.version = root.get("version", scene.version)
     scene.profile = root.get("profile", scene.profile)
+    b.index(root)
     reader = _Reader(b, path)
-    for child in root:
-        if child.tag == "head":
-            reader.head(child)
-        elif child.tag == "Scene":
-            for el in child:
-                reader.statement(el, None)
+    with np.errstate(over="ignore", invalid="ignore"):  # UNIT conversions overflowing: validate reports them
+        for child in root:
+            if child.tag == "head":
+                reader.head(child)
+            elif child.tag == "Scene":
+                for el in child:
+                    reader.statement(el, None)
     scene.roots = reader.roots
 
 
@@ -100,8 +260,8 @@ class _Reader:
         self.roots: list[Node] = []
 
     def loc(self, el: etree._Element, attribute: str | None = None) -> Location:
-        """The element's line; the column is found only if a diagnostic needs it."""
-        loc = Location(self.path, el.sourceline or 0, 0)
+        """Where the element's start tag begins, or the attribute named (if the tag has it)."""
+        loc = self.b.element_loc(self.path, el)
         return self.b.resolve(loc, f".{attribute}") if attribute else loc
 
     def head(self, head: etree._Element) -> None:
@@ -150,13 +310,13 @@ class _Reader:
             if parent is None:
                 self.roots.append(node)
             else:
-                self.b.add_child(parent, el.get("containerField"), node, Location(self.path, el.sourceline or 0))
+                self.b.add_child(parent, el.get("containerField"), node, self.loc(el))
 
     def node(self, el: etree._Element) -> Node | None:
         tag = el.tag
         use = el.get("USE")
         if use is not None:
-            loc = Location(self.path, el.sourceline or 0)
+            loc = self.loc(el)
             n = self.b.use(use, loc)
             if n is not None and tag != "ProtoInstance" and n.type_name != tag:
                 self.b.error(loc, f"USE {use}", f"names a {n.type_name}, not a {tag}")
