@@ -23,6 +23,7 @@ from conftest import ROOT
 
 from conformance.cli import main
 from x3d_core.load import load
+from x3d_core.model import LoadError
 from x3d_core.xml_loader import LineIndex
 
 RBP_X3D = ("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><head>"
@@ -102,6 +103,33 @@ def test_json_positions_cost_little_per_object(tmp_path):
                   f'"junk":[{junk}]}}}}')
     over = _peak_growth(path, prelude="json.loads(data); gc.collect()")  # load's peak above json's own
     assert over < 200 * n, f"load costs {over / n:.0f} bytes an object more than json.loads"
+
+
+@pytest.mark.parametrize("name, head, tail", [
+    ("s.x3d", b"<X3D version='4.0'><Scene><WorldInfo info='\"", b"\"'/></Scene></X3D>"),
+    ("s.x3dv", b'#X3D V4.0 utf8\nWorldInfo { info [ "', b'" ] }\n'),
+])
+def test_a_long_string_costs_its_bytes_not_a_regex_stack(tmp_path, head, name, tail):
+    # 10 MB in one quoted string: an alternation repeated per character took ~140 bytes of
+    # backtracking stack a character (1.4 GB here; 50 MB took 7 GB and 11 s)
+    path = tmp_path / name
+    path.write_bytes(head + b"a\\\"b" * 3 + tail)
+    assert not load(str(path)).errors  # the string, its escaped quotes included, is read
+    path.write_bytes(head + b"a\\\"b" * 2_000_000 + tail)
+    growth = _peak_growth(str(path))
+    assert growth < 200 * 2**20, f"peak RSS grew by {growth / 2**20:.0f} MiB for a 10 MB string"
+
+
+def test_a_file_past_the_size_bound_is_refused_before_a_byte_is_read(tmp_path):
+    from x3d_core.load import MAX_BYTES
+    path = tmp_path / "huge.x3d"
+    with open(path, "wb") as f:  # sparse: no disk is written
+        f.write(b"<X3D>")
+        f.truncate(MAX_BYTES + 1)
+    started = time.monotonic()
+    with pytest.raises(LoadError, match=f"file is {MAX_BYTES + 1} bytes; x3drbp reads at most {MAX_BYTES}"):
+        load(str(path))
+    assert time.monotonic() - started < 1
 
 
 def test_vrml_locations_across_blocks(tmp_path):

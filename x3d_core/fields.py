@@ -202,7 +202,7 @@ def _bool(t: str, ftype: FieldType) -> bool:
         raise FieldError(f"{t!r} is not a boolean; expected true or false ({ftype.name})") from None
 
 
-_STRING = re.compile(r'"((?:[^"\\]|\\.)*)"', re.S)
+_STRING = re.compile(r'"([^"\\]*+(?:\\.[^"\\]*+)*+)"', re.S)  # unrolled and possessive: a per-character alternation cost ~140 bytes of backtracking stack a character
 _UNESCAPE = re.compile(r"\\(.)", re.S)
 
 

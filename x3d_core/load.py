@@ -11,7 +11,10 @@ from .validate import apply_version_defaults, by_type, validate
 from .world import trace_names
 
 ENCODINGS = {".x3d": "xml", ".xml": "xml", ".x3dv": "vrml", ".wrl": "vrml", ".x3dj": "json", ".json": "json"}
-MAX_BYTES = 512 * 1024 * 1024
+# A load peaks at ~4.2 bytes of memory per byte read (a 200 MB string in any encoding:
+# 0.66-0.86 GB), so this bound keeps every load under 1 GiB; the largest real scenes
+# (10^7 numbers) are ~100 MB
+MAX_BYTES = 200 * 1024 * 1024
 
 
 def sniff(path: str, head: bytes) -> str | None:
