@@ -11,7 +11,7 @@ import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 
 from x3d_core import atomic  # noqa: E402
 
-from .sweep_tables import variation  # noqa: E402
+from .sweep_tables import NO_RESULTS, measured, variation  # noqa: E402
 
 _MARKERS = "os^Dv<>p*h"
 
@@ -21,13 +21,29 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     document), both axes logarithmic: a colour per backend, a line per (iterations,
     preferAccuracy) through its steps in order, the scene's Pareto front ringed in black.
     Points without an error (refused, crashed...) are not drawn; errors of exactly 0 are
-    drawn at a tenth of the smallest nonzero one, and the title says so."""
+    drawn at a tenth of the smallest nonzero one, and the title says so. A scene with no
+    point to draw gets a plot that says so (log axes of nothing are matplotlib's error)."""
     info = next(s for s in doc["scenes"] if s["name"] == scene)
-    points = [p for p in doc["points"] if p["scene"] == scene and p["error"] is not None
-              and p["wall_per_sim_s"] is not None]
+    points = measured([p for p in doc["points"] if p["scene"] == scene])
+    fig, ax = plt.subplots(figsize=(9, 6))
+    title = f"{scene}: {info['reference']}, {info['quantity']}"
+    if points:
+        title += _draw(ax, doc, points, info["unit"])
+    else:
+        ax.axis("off")
+        ax.text(0.5, 0.5, f"no results: {NO_RESULTS}", ha="center", va="center", transform=ax.transAxes)
+    ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    png = io.BytesIO()
+    fig.savefig(png, format="png", dpi=110)
+    atomic.write_bytes(path, png.getvalue())
+    plt.close(fig)
+
+
+def _draw(ax, doc: dict, points: list[dict], unit: str) -> str:
+    """The points on log axes; what the title adds (the floor that errors of 0 are drawn at)."""
     nonzero = [p["error"] for p in points if p["error"] > 0]
     floor = min(nonzero) / 10 if nonzero else 1e-16
-    fig, ax = plt.subplots(figsize=(9, 6))
     for b, backend in enumerate(doc["backends"]):  # a backend keeps its colour in every plot
         mine = [p for p in points if p["backend"] == backend]
         for v, var in enumerate(dict.fromkeys(variation(p) for p in mine)):
@@ -45,15 +61,7 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time per simulated second (s)")
-    unit = f" ({info['unit']})" if info["unit"] else ""
-    ax.set_ylabel(f"error{unit}")
-    zeros = " (0 drawn at the floor)" if any(p["error"] == 0 for p in points) else ""
-    ax.set_title(f"{scene}: {info['reference']}, {info['quantity']}{zeros}", fontsize=9)
+    ax.set_ylabel(f"error ({unit})" if unit else "error")
     ax.grid(True, which="both", alpha=0.3)
-    if points:
-        ax.legend(fontsize=6, loc="center left", bbox_to_anchor=(1.01, 0.5))
-    fig.tight_layout()
-    png = io.BytesIO()
-    fig.savefig(png, format="png", dpi=110)
-    atomic.write_bytes(path, png.getvalue())
-    plt.close(fig)
+    ax.legend(fontsize=6, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    return " (0 drawn at the floor)" if any(p["error"] == 0 for p in points) else ""

@@ -6,6 +6,14 @@ from collections import Counter
 
 from .text import escape, num
 
+NO_RESULTS = "no run gave both an error and a speed"  # what "no results" means, wherever it is said
+
+
+def measured(points: list[dict]) -> list[dict]:
+    """The points that can be drawn and ranked: those with an error and a speed (a refused,
+    crashed or timed-out run has neither)."""
+    return [p for p in points if p["error"] is not None and p["wall_per_sim_s"] is not None]
+
 
 def variation(p: dict) -> str:
     """A point's iterations and preferAccuracy, '-' where the backend keeps the scene's own."""
@@ -47,11 +55,14 @@ def markdown(doc: dict) -> str:
         points = [p for p in doc["points"] if p["scene"] == name]
         lines += ["", f"## {name}", "",
                   f"Reference: {scene['reference']} ({escape(scene['quantity'])}). "
-                  f"Plot: [sweep_{name}.png](sweep_{name}.png)", "",
-                  "Pareto front over every backend:", ""]
-        lines += _rows([p for p in points if p["pareto_scene"]], scene["unit"], mark=False)
-        lines += ["", "Each backend's own front:", ""]
-        lines += _rows([p for p in points if p["pareto_backend"]], scene["unit"], mark=True)
+                  f"Plot: [sweep_{name}.png](sweep_{name}.png)", ""]
+        if measured(points):
+            lines += ["Pareto front over every backend:", ""]
+            lines += _rows([p for p in points if p["pareto_scene"]], scene["unit"], mark=False)
+            lines += ["", "Each backend's own front:", ""]
+            lines += _rows([p for p in points if p["pareto_backend"]], scene["unit"], mark=True)
+        else:
+            lines.append(f"No results: {NO_RESULTS}.")
         missing = Counter((p["backend"], p["verdict"], p["reason"]) for p in points if p["error"] is None)
         if missing:
             lines += ["", "Without an error:", ""]

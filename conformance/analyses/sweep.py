@@ -26,17 +26,16 @@ from __future__ import annotations
 import json
 import math
 import os
-import subprocess
 import sys
 from collections.abc import Sequence
-from concurrent.futures import as_completed
+from concurrent.futures import FIRST_COMPLETED, wait
 from dataclasses import asdict, dataclass
 
 from conformance import cases as C
 from conformance import results
 from conformance.results import Settings
 from conformance.runner import children, probe
-from conformance.analyses.distribute import executor
+from conformance.analyses.distribute import executor, guarded
 from conformance.analyses.sweep_job import Job, JobResult, run_job
 from conformance.analyses.sweep_metrics import comparison_interval, pareto, window_error
 
@@ -119,20 +118,32 @@ def backend_plans(names: Sequence[str], timeout: float = children.DEFAULT_TIMEOU
                   ) -> tuple[dict[str, BackendPlan], dict[str, str]]:
     """What each usable named backend (default: every one) honours of FIELDS, asked in a child
     process (importing an engine can crash) once probe.backend_table has said which engines
-    load; and why the others cannot run. ValueError naming unknown backends."""
+    load; and why the others cannot run (all of them, where that child gave no answer).
+    ValueError naming unknown backends."""
     info = probe.backend_table(timeout)
     named = probe.named_backends(names, info) if names else list(info)  # unusable ones listed as skipped
     usable = [n for n in named if info[n].usable]
     skipped = {n: info[n].unavailable or "" for n in named if not info[n].usable}
     if not usable:
         return {}, skipped
-    done = subprocess.run([sys.executable, "-c", _DECLARED, ",".join(usable), *FIELDS], cwd=C.ROOT,
-                          capture_output=True, text=True, timeout=timeout, stdin=subprocess.DEVNULL)
+    declared, why = _declarations(usable, timeout)
+    if declared is None:
+        return {}, {**skipped, **{n: f"its declarations could not be read: {why}" for n in usable}}
+    return {n: BackendPlan(n, info[n].version, *declared[n]) for n in usable}, skipped
+
+
+def _declarations(usable: Sequence[str], timeout: float) -> tuple[dict | None, str]:
+    """What each backend declares of FIELDS, asked in a child: (the answer, or None and why not)."""
+    try:
+        done = children.call([sys.executable, "-c", _DECLARED, ",".join(usable), *FIELDS], timeout)
+    except OSError as e:
+        return None, str(e)
+    if done.returncode is None:
+        return None, f"no answer within {timeout:g} s"
     found = [ln for ln in done.stdout.splitlines() if ln.startswith("x3drbp-declared ")]
     if done.returncode != 0 or not found:
-        raise RuntimeError(f"the backends' declarations could not be read: {done.stderr.strip()[-500:]}")
-    declared = json.loads(found[-1].split(" ", 1)[1])
-    return {n: BackendPlan(n, info[n].version, *declared[n]) for n in usable}, skipped
+        return None, children.classify(done.returncode, done.stderr).reason or "the child printed nothing"
+    return json.loads(found[-1].split(" ", 1)[1]), ""
 
 
 @dataclass
@@ -232,10 +243,12 @@ def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, pro
     from tqdm import tqdm
     order = sorted(range(len(jobs)), key=lambda k: -jobs[k].settings.duration / jobs[k].settings.dt)
     with executor(scheduler, workers) as ex:
-        futures = {k: ex.submit(run_job, jobs[k]) for k in order}
+        futures = {k: ex.submit(guarded, run_job, jobs[k]) for k in order}
         with tqdm(total=len(jobs), unit="run", file=sys.stderr, disable=not progress) as bar:
-            for _ in as_completed(futures.values()):
-                bar.update()
+            pending = set(futures.values())
+            while pending:  # in slices, as children._communicate waits: a signal is handled within one
+                done, pending = wait(pending, timeout=children.SLICE, return_when=FIRST_COMPLETED)
+                bar.update(len(done))
         return [futures[k].result() for k in range(len(jobs))]
 
 

@@ -18,13 +18,13 @@ could be compared: the scene does not load (each error one line), it has nothing
 simulate (no enabled RigidBody in an enabled RigidBodyCollection: one line), or fewer than
 two backends ran (the verdicts say why); 2 on bad usage: an unknown
 backend, fewer than two backends named (or installed), a threshold or setting that is
-not a positive number.
+not a positive number; 130 or 143 when interrupted by SIGINT or SIGTERM (every run stopped,
+one line). A backend the probe gave no answer on is listed as unavailable, with why.
 """
 
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 
 from reports.compare_text import render
@@ -46,15 +46,15 @@ def _usage(message: str) -> int:
     return EXIT_USAGE
 
 
+@children.interruptible
 def cmd_compare(args: argparse.Namespace) -> int:
     try:
         thresholds = options.thresholds(args.threshold)
     except ValueError as e:
         return _usage(str(e))
-    for name in ("duration", "dt", "frame_rate", "timeout"):
-        value = getattr(args, name)
-        if not (math.isfinite(value) and value > 0):
-            return _usage(f"--{name.replace('_', '-')} must be a positive number, not {value:g}")
+    problem = options.settings_error(args)
+    if problem:
+        return _usage(problem)
     loaded = scene_to_run(args.scene)
     if loaded is None:
         return EXIT_NOTHING_COMPARED
@@ -101,6 +101,6 @@ def add_command(sub) -> None:
                    help="write a rerun recording of the runs and their divergence (open it with `rerun OUT.rrd`)")
     p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
                    help=f"time limit per run in seconds (default {children.DEFAULT_TIMEOUT:g})")
-    p.add_argument("--jobs", type=int, default=1, metavar="N",
+    p.add_argument("--jobs", type=options.count, default=1, metavar="N",
                    help="runs in parallel (default 1: runs that share cores skew each other's real-time factor)")
     p.set_defaults(func=cmd_compare)

@@ -5,7 +5,8 @@
 
 Writes DIR/matrix.md and DIR/matrix.json (DIR defaults to out/conformance) and prints the
 markdown. Exit status 0 whatever the verdicts (they are results, not errors); 2 on bad
-usage (an unknown case or backend name). With --convergence it also runs each closed-form
+usage (an unknown case or backend name); 130 or 143 when interrupted by SIGINT or SIGTERM
+(every run stopped, one line). With --convergence it also runs each closed-form
 case at dt = 1/60, 1/120, 1/240, 1/480 per backend and reports the error per dt and the
 fitted order (the slope of log error against log dt).
 """
@@ -41,6 +42,7 @@ def to_json(outcomes: list[results.Result], cases: list[C.Case], backends: list[
     }
 
 
+@children.interruptible
 def cmd_conformance(args: argparse.Namespace) -> int:
     try:
         cases, info, backends = options.chosen(args, C.select)

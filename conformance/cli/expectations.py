@@ -40,6 +40,7 @@ def write_readme(path: str) -> None:
         atomic.write_text(path, new)
 
 
+@children.interruptible
 def cmd_expectations(args: argparse.Namespace) -> int:
     try:
         cases, info, named = options.chosen(args, C.select)

@@ -17,7 +17,8 @@ Each step is the command of its name, run into a folder of DIR:
 then reports/report_page.py writes DIR/report.md and DIR/index.html from those files alone.
 --quick leaves out the sweep (the longest step). DIR defaults to out/report. Exit status 0
 whatever the verdicts (they are results); 1 where a step could not run at all (its log in
-DIR/logs/ says why); 2 on bad usage.
+DIR/logs/ says why); 2 on bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM (the
+step's runs stopped, one line). A named backend that cannot run is one line on stderr.
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ from x3d_core import atomic
 
 from conformance.cli import options
 from conformance import cases as C
-from conformance.runner import probe
+from conformance.runner import children, probe
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 EXAMPLES = os.path.join(C.ROOT, "scenes", "examples")
@@ -92,14 +93,19 @@ def features(matrix: dict, backends: list[str]) -> dict:
     return {"features": rows, "declared": declared}
 
 
+@children.interruptible
 def cmd_report(args: argparse.Namespace) -> int:
     from reports.report_page import write_report  # reports read results; imported when there are some
     info = probe.backend_table()
     try:
-        backends = [b for b in probe.named_backends(options.names(args.backends), info) if info[b].usable]
+        named = probe.named_backends(options.names(args.backends), info)
     except ValueError as e:
         print(f"x3drbp report: {e}", file=sys.stderr)
         return EXIT_USAGE
+    for b in named:
+        if not info[b].usable:
+            print(f"x3drbp report: {b} is not run: {info[b].unavailable}", file=sys.stderr)
+    backends = [b for b in named if info[b].usable]
     if len(backends) < 2:
         print("x3drbp report: needs two installed backends or more", file=sys.stderr)
         return EXIT_USAGE

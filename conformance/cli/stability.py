@@ -8,7 +8,8 @@ markdown. Each (case, backend, dt) runs in its own child process under the time 
 verdict is survived (stopped, for the impact), what gave way first and when (energy grew past
 bound, momentum drifted past bound, joint drifted past bound, drifted past bound, tunnelled,
 blew up), or unsupported, crashed, timed out, error. Exit status 0 whatever the verdicts
-(they are results, not errors); 2 on bad usage.
+(they are results, not errors); 2 on bad usage; 130 or 143 when interrupted by SIGINT or
+SIGTERM (every run stopped, one line).
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from reports.stability_table import markdown
 from conformance import results
 from conformance.analyses import stability as S
 from conformance.cli import options
+from conformance.runner import children
 
 EXIT_OK, EXIT_USAGE = 0, 2
 
@@ -52,6 +54,7 @@ def to_json(outcomes: list[S.StabilityResult], cases: list[S.HardCase], backends
     }
 
 
+@children.interruptible
 def cmd_stability(args: argparse.Namespace) -> int:
     try:
         dts = _dts(args.dts)

@@ -8,7 +8,9 @@ preferAccuracy (conformance/sweep.py says what is measured).
 Writes DIR/sweep.json (every point), DIR/sweep.md (the Pareto fronts) and DIR/sweep_SCENE.png
 (error against wall time per simulated second, one line per backend and variation); DIR
 defaults to out/sweep. Runs on a local process pool, or on a Dask cluster with --scheduler.
-Exit status 0 whatever the verdicts; 2 on bad usage.
+Exit status 0 whatever the verdicts (where no run gave a result, the files and one line on
+stderr say "no results"); 2 on bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM
+(every run stopped).
 
 The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, every
 installed backend: 288 runs) takes 83 s on 2 cores, 3 minutes while other work loads them;
@@ -67,6 +69,7 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], plans: dict[str, S.BackendPl
     }
 
 
+@children.interruptible
 def cmd_sweep(args: argparse.Namespace) -> int:
     try:
         dts = _dts(args.dts)
@@ -88,7 +91,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
                 "scheduler": args.scheduler, "workers": args.workers, "timeout": args.timeout}
     doc = to_json(sweep, chosen, plans, settings, time.perf_counter() - started)
     from reports.plots import sweep_plot  # matplotlib: only here, not in every `x3drbp run` child
-    from reports.sweep_tables import markdown
+    from reports.sweep_tables import NO_RESULTS, markdown, measured
     os.makedirs(args.out, exist_ok=True)
     atomic.write_json(os.path.join(args.out, "sweep.json"), doc)
     for t in chosen:
@@ -97,6 +100,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     atomic.write_text(os.path.join(args.out, "sweep.md"), text)
     if not args.quiet:
         sys.stdout.write(text)
+    if not measured(doc["points"]):
+        print(f"x3drbp sweep: no results: {NO_RESULTS} (sweep.md says why)", file=sys.stderr)
     print(f"wrote {os.path.join(args.out, 'sweep.md')}, sweep.json and {len(chosen)} plot(s) in {doc['wall_s']:g} s")
     return EXIT_OK
 

@@ -63,6 +63,7 @@ def _coverage(path: str, rows: TraceView, case: Case | None, k: int) -> list[Pro
     return []
 
 
+@children.interruptible
 def cmd_validate(args: argparse.Namespace) -> int:
     try:
         thresholds = options.thresholds(args.threshold)

@@ -49,6 +49,7 @@ def _say(text: str) -> None:
     print(f"x3drbp x-ite: {text}", file=sys.stderr, flush=True)
 
 
+@children.interruptible
 def cmd_cases(args: argparse.Namespace) -> int:
     from reports.x_ite_text import render  # reports render results: imported when there are some
     try:
@@ -89,6 +90,7 @@ class _NotRecorded(Exception):
     """X_ITE gave no whole trace; the message says why."""
 
 
+@children.interruptible
 def cmd_record(args: argparse.Namespace) -> int:
     try:
         scene = load(args.scene)

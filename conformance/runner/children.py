@@ -1,17 +1,29 @@
-"""One `x3drbp run` in a child process with a time limit, and the verdict of how it ended.
+"""One `x3drbp run` in a child process with a time limit, and the verdict of how it ended;
+and every child process the suite starts, kept so that none outlives an interrupted parent.
 
 An engine's segfault or endless loop is then a verdict, not a lost suite: a child that
 died by a signal is crashed, one past its time limit is timed out (its whole process
 group killed), exit 3 is unsupported with the backend's own reason.
+
+Every child (a run, the backend probe, the X_ITE browser) starts through `call`, in a session
+of its own: the terminal's Ctrl-C reaches the parent only, and the child's process group is
+the child and whatever it starts. A command wrapped in `interruptible` answers SIGINT and
+SIGTERM by stopping them all (`stop`: each group SIGTERM, then SIGKILL), and exits
+128 + the signal with one line.
 """
 
 from __future__ import annotations
 
+import argparse
+import functools
+import multiprocessing
 import os
 import signal
 import subprocess
 import sys
-from collections.abc import Sequence
+import threading
+import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from conformance.results import BLEW_UP, CRASHED, ERROR, TIMED_OUT, UNSUPPORTED, Settings
@@ -19,6 +31,28 @@ from conformance.results import BLEW_UP, CRASHED, ERROR, TIMED_OUT, UNSUPPORTED,
 DEFAULT_TIMEOUT = 60.0
 EXIT_UNSUPPORTED = 3  # conformance.cli.run
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+GRACE = 2.0  # s a child has to end on SIGTERM (X_ITE's node closes its browser) before SIGKILL
+SIGNALS = (signal.SIGINT, signal.SIGTERM)
+SLICE = 0.2  # s: the longest a wait on a child goes without running the handler of a signal (_communicate)
+
+_live: set[subprocess.Popen] = set()  # children running now (add, discard and copy are atomic under the GIL)
+_signal: int | None = None  # the signal that stopped this process's children: none starts after it
+_deferring = False  # the main thread is starting a child: the handler must not raise before it is in _live
+_handling = False  # an `interruptible` command has its handlers set
+
+
+class Interrupted(BaseException):
+    """SIGINT or SIGTERM reached this process and its children are stopped: unwind (a
+    BaseException, as KeyboardInterrupt, so that no `except Exception` keeps going) and exit."""
+
+    def __init__(self, signum: int):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+    @property
+    def status(self) -> int:
+        """The shell's convention: 128 + the signal (130 for SIGINT, 143 for SIGTERM)."""
+        return 128 + self.signum
 
 
 @dataclass
@@ -26,6 +60,14 @@ class Outcome:
     """What one child run came to: None verdict when it wrote its trace."""
     verdict: str | None
     reason: str = ""
+
+
+@dataclass
+class Ended:
+    """How a child ended: its exit status (None: killed past its time limit) and what it printed."""
+    returncode: int | None
+    stdout: str
+    stderr: str
 
 
 def _tail(text: str, lines: int = 3) -> str:
@@ -63,6 +105,151 @@ def classify(returncode: int | None, stderr: str, timed_out: bool = False, timeo
     return Outcome(ERROR, _tail(stderr) or f"exit status {returncode}")
 
 
+def _check() -> None:
+    """Interrupted if this process was: a child killed by the stop is no result, and none starts after it."""
+    if _signal is not None:
+        raise Interrupted(_signal)
+
+
+def _signal_group(proc: subprocess.Popen, signum: int) -> None:
+    try:
+        os.killpg(proc.pid, signum)  # the child's own group: it and anything it started
+    except ProcessLookupError:
+        pass
+
+
+def _running(proc: subprocess.Popen) -> bool:
+    """Whether the child has not ended, asked without reaping it: Popen.poll answers None while
+    another thread's wait on the child holds its lock."""
+    if proc.returncode is not None:
+        return False
+    try:
+        return os.waitid(os.P_PID, proc.pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is None
+    except ChildProcessError:  # reaped meanwhile
+        return False
+
+
+def _end(procs: Sequence[subprocess.Popen], workers: Sequence[multiprocessing.Process] = (),
+         first: int = signal.SIGTERM) -> None:
+    """`first` to each child's group, SIGKILL to what is left of the groups after GRACE s.
+    Each pool worker gets SIGTERM (a second one makes it SIGKILL its children at once) and
+    SIGKILL only when it has not ended GRACE s after its own children's grace."""
+    for p in procs:
+        _signal_group(p, first)
+    for w in workers:
+        w.terminate()
+    started = time.monotonic()
+    while time.monotonic() < started + GRACE and any(map(_running, procs)):
+        time.sleep(0.02)
+    for p in procs:
+        _signal_group(p, signal.SIGKILL)  # stragglers, grandchildren included
+    while time.monotonic() < started + 2 * GRACE and any(w.is_alive() for w in workers):
+        time.sleep(0.02)
+    for w in workers:
+        if w.is_alive():
+            w.kill()
+
+
+def stop(signum: int) -> None:
+    """Stop every child of this process and the multiprocessing pool's workers, and let none
+    start after: SIGTERM first, so that a child can close what it started (X_ITE's browser),
+    SIGKILL GRACE s later; a signal after the first SIGKILLs at once."""
+    global _signal
+    first = signal.SIGTERM if _signal is None else signal.SIGKILL
+    if _signal is None:
+        _signal = signum
+    _end(list(_live.copy()), multiprocessing.active_children(), first)
+
+
+def handle_signal(signum: int, frame: object) -> None:
+    """The handler `interruptible` installs: stop the children, then unwind the command, on
+    the first signal only (a second one, even inside this handler, only hastens the stop) and
+    not while the main thread starts a child (`call` raises once the child is in _live)."""
+    first = _signal is None
+    stop(signum)
+    if first and not _deferring:
+        raise Interrupted(signum)
+
+
+def _communicate(proc: subprocess.Popen, timeout: float) -> tuple[str, str]:
+    """proc.communicate() within `timeout` s (TimeoutExpired past it), in slices of SLICE s:
+    the kernel may hand SIGINT or SIGTERM to any thread (a library's, a pool's), and then the
+    main thread runs the handler only once it runs Python again, which one long wait on the
+    child would put off until the child ends (seen in pool workers)."""
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            return proc.communicate(timeout=max(0.0, min(SLICE, deadline - time.monotonic())))
+        except subprocess.TimeoutExpired:
+            if time.monotonic() >= deadline:
+                raise
+
+
+def call(cmd: Sequence[str], timeout: float, stdout: bool = True) -> Ended:
+    """`cmd` from the project root in a session of its own, its stderr (and stdout, unless
+    `stdout` is False) captured, its group ended (_end) past `timeout` s or when an exception
+    leaves this call. OSError when it cannot start; Interrupted when this process was interrupted."""
+    global _deferring
+    _check()
+    main = threading.current_thread() is threading.main_thread()  # where signal handlers run
+    proc = None
+    try:
+        if main:
+            _deferring = True
+        proc = subprocess.Popen(cmd, cwd=ROOT, stdin=subprocess.DEVNULL,
+                                stdout=subprocess.PIPE if stdout else subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                text=True, start_new_session=True)
+        _live.add(proc)
+        if main:
+            _deferring = False
+        _check()  # a signal came while it started (or, in another thread, while the stop took its list)
+        out, err = _communicate(proc, timeout)
+        returncode: int | None = proc.returncode
+    except subprocess.TimeoutExpired:
+        _end([proc])
+        out, err = proc.communicate()
+        returncode = None
+    except BaseException:
+        if proc is not None:
+            _end([proc])
+            proc.wait()
+        _check()  # an interrupt that came while it could not start outranks why
+        raise
+    finally:
+        if main:
+            _deferring = False
+        _live.discard(proc)
+    _check()
+    return Ended(returncode, out or "", err or "")
+
+
+def interruptible(command: Callable[[argparse.Namespace], int]) -> Callable[[argparse.Namespace], int]:
+    """An x3drbp command that, on SIGINT or SIGTERM, stops its children (`stop`) and returns
+    128 + the signal after one line, no traceback. A signal this process ignores (nohup, a
+    shell's background job) stays ignored; a command another runs (report's steps) leaves it
+    all to the outer one."""
+    @functools.wraps(command)
+    def run(args: argparse.Namespace) -> int:
+        global _signal, _handling
+        if _handling or threading.current_thread() is not threading.main_thread():
+            return command(args)
+        _signal, _handling, previous = None, True, {}
+        try:
+            try:
+                for s in SIGNALS:
+                    if signal.getsignal(s) is not signal.SIG_IGN:
+                        previous[s] = signal.signal(s, handle_signal)
+                return command(args)
+            finally:
+                for s, handler in previous.items():
+                    signal.signal(s, handler)
+                _handling = False
+        except Interrupted as e:  # also one that came while the handlers were set or restored
+            print(f"x3drbp {args.command}: interrupted", file=sys.stderr)
+            return e.status
+    return run
+
+
 def run_child(scene: str, backend: str, settings: Settings, trace: str,
               timeout: float = DEFAULT_TIMEOUT, extra: Sequence[str] = ()) -> Outcome:
     """`x3drbp run` (with the `extra` options) in its own process (and process group),
@@ -70,20 +257,12 @@ def run_child(scene: str, backend: str, settings: Settings, trace: str,
     cmd = [sys.executable, "-m", "conformance.cli", "run", scene, "--backend", backend, *settings.args(),
            "--trace", trace, *extra]
     try:
-        proc = subprocess.Popen(cmd, cwd=ROOT, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                                stderr=subprocess.PIPE, text=True, start_new_session=True)
+        ended = call(cmd, timeout, stdout=False)
     except OSError as e:
         return Outcome(ERROR, f"could not start {sys.executable}: {e}")
-    try:
-        _, err = proc.communicate(timeout=timeout)
-    except subprocess.TimeoutExpired:
-        try:
-            os.killpg(proc.pid, signal.SIGKILL)  # the child's own group: it and anything it started
-        except ProcessLookupError:
-            pass
-        proc.communicate()
+    if ended.returncode is None:
         return classify(None, "", timed_out=True, timeout=timeout)
-    out = classify(proc.returncode, err, backend=backend)
+    out = classify(ended.returncode, ended.stderr, backend=backend)
     if out.verdict is None and not os.path.exists(trace):
         return Outcome(ERROR, "the run succeeded but wrote no trace")
     return out

@@ -6,12 +6,12 @@ Importing an engine can crash the interpreter; the suite must survive that too.
 from __future__ import annotations
 
 import json
-import subprocess
 import sys
 from collections.abc import Sequence
 
 from conformance.results import BackendInfo
-from conformance.runner.children import DEFAULT_TIMEOUT, ROOT, classify
+from conformance.runner import children
+from conformance.runner.children import DEFAULT_TIMEOUT
 
 _PROBE = """
 import json, sys
@@ -50,9 +50,10 @@ print("\\nx3drbp-probe " + json.dumps(out))  # engines may print on import (pybu
 def _probe(names: Sequence[str], timeout: float) -> tuple[dict, str]:
     """Run the probe in a child: (what it reported, why it reported nothing)."""
     try:
-        done = subprocess.run([sys.executable, "-c", _PROBE, *names], cwd=ROOT, capture_output=True, text=True,
-                              timeout=timeout, stdin=subprocess.DEVNULL)
-    except subprocess.TimeoutExpired:
+        done = children.call([sys.executable, "-c", _PROBE, *names], timeout)
+    except OSError as e:
+        return {}, f"the backend probe could not start: {e}"
+    if done.returncode is None:
         return {}, f"the backend probe gave no answer within {timeout:g} s"
     found = [ln for ln in done.stdout.splitlines() if ln.startswith("x3drbp-probe ")]
     if done.returncode == 0 and found:
@@ -60,16 +61,22 @@ def _probe(names: Sequence[str], timeout: float) -> tuple[dict, str]:
             return json.loads(found[-1].split(" ", 1)[1]), ""
         except json.JSONDecodeError:
             pass
-    return {}, classify(done.returncode, done.stderr).reason or "the backend probe printed nothing"
+    return {}, children.classify(done.returncode, done.stderr).reason or "the backend probe printed nothing"
+
+
+class Unprobed(BackendInfo):
+    """A backend the probe gave no answer on (it hung, crashed, or left the engine out): whether
+    it is installed is unknown, so a command reports it as unavailable rather than leave it out
+    as it leaves out an engine that said it is not installed."""
 
 
 def named_backends(names: Sequence[str], info: dict[str, BackendInfo]) -> list[str]:
-    """The backends a command line names, in its order (default: every usable one);
-    ValueError naming any the registry does not know."""
+    """The backends a command line names, in its order (default: every usable one, and every
+    Unprobed one, to be reported); ValueError naming any the registry does not know."""
     unknown = [n for n in names if n not in info]
     if unknown:
         raise ValueError(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(info)}")
-    return list(names) or [n for n, i in info.items() if i.usable]
+    return list(names) or [n for n, i in info.items() if i.usable or isinstance(i, Unprobed)]
 
 
 def backend_table(timeout: float = DEFAULT_TIMEOUT) -> dict[str, BackendInfo]:
@@ -90,7 +97,7 @@ def backend_table(timeout: float = DEFAULT_TIMEOUT) -> dict[str, BackendInfo]:
     for name in dict.fromkeys([*base.engines(), *data]):
         d = data.get(name)
         if d is None:
-            out[name] = BackendInfo(name, unavailable=whys.get(name) or why or "not reported by base.available()")
+            out[name] = Unprobed(name, unavailable=whys.get(name) or why or "not reported by base.available()")
         else:
             why_not = d.get("unavailable")
             if why_not and why_not.startswith("unavailable: "):  # base.available()'s own wording

@@ -18,8 +18,6 @@ import json
 import math
 import os
 import shutil
-import signal
-import subprocess
 import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -27,6 +25,8 @@ from dataclasses import dataclass, field
 from x3d_core import atomic
 from x3d_core.model import Scene
 from x3d_core.world import worlds
+
+from conformance.runner import children
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CHROMIUM = os.environ.get("X3DRBP_CHROMIUM", "/usr/bin/chromium")
@@ -120,16 +120,12 @@ def record(runs: Sequence[Recording], timeout: float) -> None:
     with tempfile.TemporaryDirectory(prefix="x3drbp-x_ite-") as folder:
         job = os.path.join(folder, "job.json")
         atomic.write_json(job, _job(runs))
-        child = subprocess.Popen(["node", os.path.join(HERE, "record.mjs"), job], stdout=subprocess.PIPE,
-                                 stderr=subprocess.PIPE, text=True, start_new_session=True)
-        try:
-            stdout, stderr = child.communicate(timeout=timeout)
-            ended = f"the browser exited with status {child.returncode}: {_last_line(stderr)}"
-        except subprocess.TimeoutExpired:
-            os.killpg(child.pid, signal.SIGKILL)
-            stdout, _ = child.communicate()
-            ended = f"timeout: the browser passed {timeout:g} s"
-    for line in stdout.splitlines():
+        done = children.call(["node", os.path.join(HERE, "record.mjs"), job], timeout)
+    if done.returncode is None:
+        ended = f"timeout: the browser passed {timeout:g} s"
+    else:
+        ended = f"the browser exited with status {done.returncode}: {_last_line(done.stderr)}"
+    for line in done.stdout.splitlines():
         try:
             d = json.loads(line)
             r = runs[int(d["run"])]
