@@ -226,9 +226,11 @@ def test_collision_plan_follows_the_collider_spaces_and_offsets(tmp_path):
     assert R.rotate(inner.orientation, [0, 1, 0]) == pytest.approx([-1, 0, 0])
     assert (geoms["Bounded"].kind, geoms["Bounded"].size.tolist(), geoms["Bounded"].body) == ("box", [1, 1, 1], STATIC)
     assert (geoms["InSpace"].kind, geoms["InSpace"].size.tolist()) == ("sphere", [0.25])  # useGeometry: a hint
-    assert not c.may_touch(geoms["A"], inner)  # one body
-    assert not c.may_touch(geoms["A"], geoms["InSpace"])  # joined by the ball joint
-    assert c.may_touch(geoms["A"], geoms["Bounded"])
+    at = {g.name: k for k, g in enumerate(c.geometries)}
+    first = [at["A"]] * 3
+    second = [at["CollidableShape_1"], at["InSpace"], at["Bounded"]]
+    # one body; joined by the ball joint; free to touch
+    assert c.may_touch(first, second).tolist() == [False, False, True]
     assert c.parameters.bounce == 0 and c.parameters.friction.tolist() == [0, 0]  # X3D's defaults: BOUNCE, no friction
 
 
