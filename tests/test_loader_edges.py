@@ -102,7 +102,9 @@ def test_json_positions_cost_little_per_object(tmp_path):
                   '{"X3D":{"@version":"4.0","Scene":{"-children":[{"WorldInfo":{"@title":"t"}}]},'
                   f'"junk":[{junk}]}}}}')
     over = _peak_growth(path, prelude="json.loads(data); gc.collect()")  # load's peak above json's own
-    assert over < 200 * n, f"load costs {over / n:.0f} bytes an object more than json.loads"
+    # measured with VmHWM: ~200 bytes an object now (json.loads's own objects are the floor),
+    # ~460 with the per-object tuples and dicts; 300 lies between with room on both sides
+    assert over < 300 * n, f"load costs {over / n:.0f} bytes an object more than json.loads"
 
 
 @pytest.mark.parametrize("name, head, tail", [
