@@ -150,7 +150,7 @@ def _resolve(path: str) -> tuple[str, os.stat_result | None]:
         return real, None
     if stat.S_ISDIR(st.st_mode):
         raise CannotWrite(path, "it is a folder")
-    if not (stat.S_ISREG(st.st_mode) or stat.S_ISCHR(st.st_mode) or stat.S_ISFIFO(st.st_mode)):
+    if not stat.S_ISREG(st.st_mode):  # a character device or a named pipe returned above
         raise CannotWrite(path, "not a regular file, a character device or a named pipe")
     return real, st
 

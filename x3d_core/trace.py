@@ -190,29 +190,41 @@ def _records(text: str) -> list[list[str]]:
     return list(csv.reader(io.StringIO(text, newline="")))
 
 
-def read_trace(path: str) -> list[Row]:
-    """Every row (a list of Row objects: for short traces; read_view holds a long one in arrays)."""
+def header_problem(header: list[str] | None, lenient: bool = False) -> str | None:
+    """What is wrong with a trace's first record (read_header's), in words; None when it is
+    HEADER (lenient: once each name is stripped of blanks, as validate reads another's trace)."""
+    names = None if header is None else tuple(h.strip() for h in header) if lenient else tuple(header)
+    if names == HEADER:
+        return None
+    got = "nothing" if header is None else repr(",".join(header))
+    return f"header is {got}, expected {','.join(HEADER)!r}"
+
+
+def _record_chunks(path: str) -> Iterator[list[list[str]]]:
+    """The records of a trace file after its header, a chunk at a time; ValueError naming the
+    file at a wrong header."""
     with open_regular(path, TRACE_LIMIT) as f:
         header, lines = read_header(f)
-        if header is None or tuple(header) != HEADER:
-            got = "nothing" if header is None else repr(",".join(header))
-            raise ValueError(f"{path}:1: header is {got}, expected {','.join(HEADER)!r}")
-        return [Row(float(t), n, fld, v) for _, text in chunks(f, lines + 1) for t, n, fld, v in _records(text)]
+        problem = header_problem(header)
+        if problem:
+            raise ValueError(f"{path}:1: {problem}")
+        for _, text in chunks(f, lines + 1):
+            yield _records(text)
+
+
+def read_trace(path: str) -> list[Row]:
+    """Every row (a list of Row objects: for short traces; read_view holds a long one in arrays)."""
+    return [Row(float(t), n, fld, v) for records in _record_chunks(path) for t, n, fld, v in records]
 
 
 def read_view(path: str) -> TraceView:
     """A trace file straight into a TraceView, a chunk at a time: no object per row, so a
     trace of millions of rows costs its arrays (read_trace's rows cost ~200 bytes each)."""
     b = ViewBuilder()
-    with open_regular(path, TRACE_LIMIT) as f:
-        header, lines = read_header(f)
-        if header is None or tuple(header) != HEADER:
-            got = "nothing" if header is None else repr(",".join(header))
-            raise ValueError(f"{path}:1: header is {got}, expected {','.join(HEADER)!r}")
-        for _, text in chunks(f, lines + 1):
-            for t, n, fld, v in _records(text):
-                b.add_row(float(t), n, fld, v)
-            b.flush()
+    for records in _record_chunks(path):
+        for t, n, fld, v in records:
+            b.add_row(float(t), n, fld, v)
+        b.flush()
     return b.view()
 
 

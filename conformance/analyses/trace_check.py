@@ -43,7 +43,7 @@ from x3d_core import fields as F
 from x3d_core import schema
 from x3d_core.model import Scene
 from x3d_core.inputs import InputRefused, open_regular
-from x3d_core.trace import HEADER, TRACE_LIMIT, TraceView, ViewBuilder, chunks, read_header
+from x3d_core.trace import HEADER, TRACE_LIMIT, TraceView, ViewBuilder, chunks, header_problem, read_header
 from x3d_core.world import node_names, worlds
 
 # |axis| - 1: a browser writing single-precision floats with 6 digits is within 1e-6;
@@ -126,9 +126,9 @@ def check_trace(path: str, scene: Scene) -> tuple[TraceView, list[Problem]]:
     try:
         with open_regular(path, TRACE_LIMIT) as f:
             header, lines = read_header(f)
-            if header is None or tuple(h.strip() for h in header) != HEADER:
-                got = "nothing" if header is None else repr(",".join(header))
-                return TraceView(), [Problem(path, 1, f"header is {got}, expected {','.join(HEADER)!r}")]
+            problem = header_problem(header, lenient=True)
+            if problem:
+                return TraceView(), [Problem(path, 1, problem)]
             for first, text in chunks(f, lines + 1):
                 if not _bulk(text, state, b):
                     _row_by_row(path, first, text, state, b, problems)
