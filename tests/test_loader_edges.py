@@ -24,7 +24,7 @@ from conftest import PEAK_KIB, ROOT
 from conformance.cli import main
 from x3d_core.load import load
 from x3d_core.model import LoadError
-from x3d_core.xml_loader import LineIndex
+from x3d_core.line_index import LineIndex
 
 RBP_X3D = ("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><head>"
            "<component name='RigidBodyPhysics' level='2'/>{head}</head><Scene>{body}</Scene></X3D>\n")

@@ -8,6 +8,7 @@ UNITs apply) is written once for the three encodings.
 from __future__ import annotations
 
 import difflib
+import math
 import re
 from dataclasses import dataclass, field
 from typing import Any, Callable
@@ -197,8 +198,14 @@ class Builder:
 
     def store(self, node: Node, fd: schema.FieldDef, value: Any, loc: Location, convert: bool = True) -> None:
         """Keep a typed value: UNITs applied, then checked against the field's range."""
-        if convert:
-            value = self.to_si(fd, value)
+        if convert and self.scene.units:
+            with np.errstate(over="ignore", invalid="ignore"):  # said below, in one line
+                value = self.to_si(fd, value)
+            if not _finite(value):  # the encodings refuse nan and inf, but a UNIT (length 1e300) can make them
+                units = ", ".join(f"{c} {u[0]} {F._num(u[1])}" for c, u in self.scene.units.items())
+                self.error(loc, f"{node.label}.{fd.name}", "not a finite number once converted to SI units by "
+                                                           f"the file's UNIT statements ({units})")
+                return
         if fd.range is not None and not fd.type.rotation and not fd.range.contains(value):
             numbers = np.asarray(value, dtype=np.float64).ravel()
             if numbers.size:
@@ -215,8 +222,6 @@ class Builder:
         node.field_locs[fd.name] = loc
 
     def to_si(self, fd: schema.FieldDef, value: Any) -> Any:
-        if not self.scene.units:
-            return value
         units = {k: v[1] for k, v in self.scene.units.items()}
         if fd.type.rotation and "angle" in units:
             value = np.array(value, dtype=np.float64)
@@ -476,6 +481,15 @@ class Builder:
                     self.error(loc, subject, f"{fd.type.name} field takes one node, given {len(nodes)}")
                 return nodes[0] if nodes else None
         return nodes
+
+
+def _finite(value: Any) -> bool:
+    """Whether a typed value's numbers are all finite (what holds no float is)."""
+    if isinstance(value, float):
+        return math.isfinite(value)
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+        return bool(np.isfinite(value).all())
+    return True
 
 
 def _copy(node: Node, memo: dict[int, Node], prefix: str, budget: _Budget) -> Node:

@@ -17,8 +17,9 @@ import numpy as np
 
 from . import fields as F
 from .build import Builder
+from .line_index import LineIndex
 from .model import FieldDecl, LoadError, Location, Node, Scene
-from .xml_loader import _IGNORED_ATTRIBUTES, LineIndex
+from .xml_loader import _IGNORED_ATTRIBUTES
 
 # A string (as a whole, so braces inside it are not structure), or a structural character
 _TOKEN = re.compile(r'("[^"\\]*(?:\\.[^"\\]*)*")|([{\[])|([}\]])|(:)')
@@ -158,14 +159,13 @@ def load_json(path: str, source: bytes, scene: Scene) -> None:
     scene.version = reader.string(x3d, "@version", "X3D") or scene.version
     scene.profile = reader.string(x3d, "@profile", "X3D") or scene.profile
     try:
-        with np.errstate(over="ignore", invalid="ignore"):  # UNIT conversions overflowing: validate reports them
-            if "head" in x3d:
-                reader.head(x3d["head"], reader.key(x3d, "head"))
-            scene_obj = x3d.get("Scene")
-            if isinstance(scene_obj, _Obj):
-                scene.roots = reader.statements(scene_obj, "-children", "Scene")
-            elif scene_obj is not None:
-                b.error(reader.key(x3d, "Scene"), "Scene", "Scene must be a JSON object")
+        if "head" in x3d:
+            reader.head(x3d["head"], reader.key(x3d, "head"))
+        scene_obj = x3d.get("Scene")
+        if isinstance(scene_obj, _Obj):
+            scene.roots = reader.statements(scene_obj, "-children", "Scene")
+        elif scene_obj is not None:
+            b.error(reader.key(x3d, "Scene"), "Scene", "Scene must be a JSON object")
     except RecursionError:
         raise reader.too_deep(positions) from None
 

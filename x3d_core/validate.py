@@ -2,11 +2,8 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from . import fields as F
 from .applied import CANONICAL, canonical
 from .model import Diagnostic, Node, Scene
 
@@ -54,8 +51,6 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
 
     def err(node: Node, field: str, message: str) -> None:
         out.append(diagnostic(scene, node, field, message, "error"))
-
-    _finite(scene, groups, err)
 
     owners: dict[int, list[Node]] = {}
     body_owners: dict[int, tuple[Node, list[Node]]] = {}
@@ -111,29 +106,6 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
         if sensor.get("collider") is None:
             warn(sensor, "collider", "no collider: the sensor watches nothing and never reports a contact")
     scene.diagnostics.extend(out)
-
-
-def _finite(scene: Scene, groups: dict[str, list[Node]], err) -> None:
-    """Every number of a typed field is finite: the encodings refuse nan and inf, but a UNIT's
-    factor (length 1e300, or inertia's mass*length^2) can still carry a finite value out of
-    the float range. Such a value is dropped (the field keeps its default), so that nothing
-    after the load, an engine above all, meets it."""
-    if not scene.units:
-        return
-    for nodes in groups.values():
-        for node in nodes:
-            for name, value in list(node.values.items()):
-                if isinstance(value, float):
-                    finite = math.isfinite(value)
-                elif isinstance(value, np.ndarray) and value.dtype.kind == "f":
-                    finite = bool(np.isfinite(value).all())
-                else:
-                    continue
-                if not finite:
-                    units = ", ".join(f"{c} {u[0]} {F._num(u[1])}" for c, u in scene.units.items())
-                    err(node, name, f"not a finite number once converted to SI units by the file's UNIT "
-                                    f"statements ({units})")
-                    del node.values[name]
 
 
 def _physical_inertia(body: Node, err) -> None:

@@ -7,12 +7,10 @@ import re
 from array import array
 from typing import Any
 
-import numpy as np
-
 from . import fields as F
 from .build import Builder
+from .line_index import LineIndex
 from .model import Location, Node, Scene
-from .xml_loader import LineIndex
 
 # the rest of the header line is a comment (Titania and X_ITE write their names there)
 _HEADER = re.compile(rb"^\s*#(X3D V[34]\.\d+|VRML V2\.0) [A-Za-z0-9_-]+[^\r\n]*")
@@ -51,8 +49,7 @@ def load_vrml(path: str, source: bytes, scene: Scene) -> None:
     except UnicodeDecodeError as e:
         line = source[:e.start].count(b"\n") + 1
         raise b.fatal(Location(path, line, 1), "not UTF-8 text") from None
-    with np.errstate(over="ignore", invalid="ignore"):  # UNIT conversions overflowing: validate reports them
-        _Parser(b, path, text, m.end()).scene()
+    _Parser(b, path, text, m.end()).scene()
 
 
 def _image_size(token: str) -> int | None:
