@@ -179,11 +179,13 @@ def _one_line(stderr: str) -> str:
 
 # -- interrupts -------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("signals,whole_group,status", [
-    ([signal.SIGINT], True, 130),
-    ([signal.SIGTERM], False, 143),
-    ([signal.SIGINT, signal.SIGINT], True, 130),
-], ids=["ctrl-c", "sigterm", "ctrl-c-twice"])
+# (signals sent, to the whole group as a terminal's Ctrl-C does or to the parent alone, exit status)
+_SENT = [([signal.SIGINT], True, 130), ([signal.SIGTERM], False, 143), ([signal.SIGINT, signal.SIGINT], True, 130)]
+_IDS = ["ctrl-c", "sigterm", "ctrl-c-twice"]
+INTERRUPTS = pytest.mark.parametrize("signals,whole_group,status", _SENT, ids=_IDS)
+ONE_INTERRUPT = pytest.mark.parametrize("signals,whole_group,status", _SENT[:2], ids=_IDS[:2])
+
+@INTERRUPTS
 def test_conformance_interrupted_ends_a_run_that_ignores_sigterm(tmp_path, signals, whole_group, status):
     """Each run is a group of two processes ignoring SIGTERM: the command's SIGTERM, then its
     SIGKILL after children.GRACE, ends both, in both runs at once."""
@@ -199,10 +201,7 @@ def test_conformance_interrupted_ends_a_run_that_ignores_sigterm(tmp_path, signa
 
 
 @pytest.mark.parametrize("command", ["stability", "compare"])
-@pytest.mark.parametrize("signals,whole_group,status", [
-    ([signal.SIGINT], True, 130),
-    ([signal.SIGTERM], False, 143),
-], ids=["ctrl-c", "sigterm"])
+@ONE_INTERRUPT
 def test_a_real_run_is_stopped(tmp_path, command, signals, whole_group, status):
     pytest.importorskip(BACKEND)
     backends = f"{BACKEND},bullet" if command == "compare" else BACKEND
@@ -215,11 +214,7 @@ def test_a_real_run_is_stopped(tmp_path, command, signals, whole_group, status):
     _assert_none_left(procs)
 
 
-@pytest.mark.parametrize("signals,whole_group,status", [
-    ([signal.SIGINT], True, 130),
-    ([signal.SIGTERM], False, 143),
-    ([signal.SIGINT, signal.SIGINT], True, 130),
-], ids=["ctrl-c", "sigterm", "ctrl-c-twice"])
+@INTERRUPTS
 def test_sweep_interrupted_stops_its_pool_workers_and_their_runs(tmp_path, signals, whole_group, status):
     """The runs are the pool workers' children: the command stops the workers, each its run."""
     pytest.importorskip(BACKEND)
