@@ -25,14 +25,14 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     point to draw gets a plot that says so (log axes of nothing are matplotlib's error)."""
     info = next(s for s in doc["scenes"] if s["name"] == scene)
     points = measured([p for p in doc["points"] if p["scene"] == scene])
-    fig, ax = plt.subplots(figsize=(9, 6))
+    fig, ax = plt.subplots(figsize=(10, 6))
     title = f"{scene}: {info['reference']}, {info['quantity']}"
     if points:
         title += _draw(ax, doc, points, info["unit"])
     else:
         ax.axis("off")
         ax.text(0.5, 0.5, f"no results: {NO_RESULTS}", ha="center", va="center", transform=ax.transAxes)
-    ax.set_title(title, fontsize=9)
+    ax.set_title(title, fontsize=10)
     fig.tight_layout()
     png = io.BytesIO()
     fig.savefig(png, format="png", dpi=110)
@@ -49,19 +49,22 @@ def _draw(ax, doc: dict, points: list[dict], unit: str) -> str:
         for v, var in enumerate(dict.fromkeys(variation(p) for p in mine)):
             line = sorted((p for p in mine if variation(p) == var), key=lambda p: -p["dt"])
             its, acc = var.split(" | ")
-            ax.plot([p["wall_per_sim_s"] for p in line], [max(p["error"], floor) for p in line],
-                    color=f"C{b}", marker=_MARKERS[v % len(_MARKERS)], linestyle="--" if acc == "TRUE" else "-",
-                    label=f"{backend} it={its} acc={acc}", alpha=0.8)
-    front = [p for p in points if p["pareto_scene"]]
+            x = [p["wall_per_sim_s"] for p in line]
+            spread = [[m - (p.get("wall_low") or m) for m, p in zip(x, line)],
+                      [(p.get("wall_high") or m) - m for m, p in zip(x, line)]]
+            ax.errorbar(x, [max(p["error"], floor) for p in line], xerr=spread, color=f"C{b}",
+                        marker=_MARKERS[v % len(_MARKERS)], linestyle="--" if acc == "TRUE" else "-",
+                        label=f"{backend} it={its} acc={acc}", alpha=0.8, capsize=2)
+    front = [p for p in points if p["pareto_scene"] and p.get("tie_scene") is None]
     ax.scatter([p["wall_per_sim_s"] for p in front], [max(p["error"], floor) for p in front], s=180,
                facecolors="none", edgecolors="black", linewidths=1.5, label="Pareto front (all backends)", zorder=3)
     for p in front:
         ax.annotate(p["dt_label"], (p["wall_per_sim_s"], max(p["error"], floor)), textcoords="offset points",
-                    xytext=(6, 6), fontsize=7)
+                    xytext=(6, 6), fontsize=8)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall time per simulated second (s)")
+    ax.set_xlabel("wall time in the engine's steps per simulated second (s), median of the repeats and spread")
     ax.set_ylabel(f"error ({unit})" if unit else "error")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     return " (0 drawn at the floor)" if any(p["error"] == 0 for p in points) else ""

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from collections import Counter
 
+from conformance.results import dt_label
+
 from .text import escape, num
 
 NO_RESULTS = "no run gave both an error and a speed"  # what "no results" means, wherever it is said
@@ -22,45 +24,67 @@ def variation(p: dict) -> str:
     return f"{its} | {acc}"
 
 
-def _rows(points: list[dict], unit: str, mark: bool) -> list[str]:
+def speed(p: dict) -> str:
+    """A point's median speed and its repeats' spread."""
+    if p.get("wall_low") is None or p["wall_low"] == p["wall_high"]:
+        return num(p["wall_per_sim_s"])
+    return f"{num(p['wall_per_sim_s'])} ({num(p['wall_low'])}-{num(p['wall_high'])})"
+
+
+def _rows(points: list[dict], unit: str, front: str, every: list[dict]) -> list[str]:
+    """The front's points (flag `front`: pareto_scene or pareto_backend), ties folded into the
+    point that stands for them."""
     unit = f" ({unit})" if unit else ""
-    head = "| backend | dt | iterations | preferAccuracy | wall s per simulated s | error" + unit + " |"
-    lines = [head + (" on the overall front |" if mark else ""),
-             "|---|---|---:|---|---:|---:|" + ("---|" if mark else "")]
-    for p in sorted(points, key=lambda p: (p["backend"], p["wall_per_sim_s"])):
-        line = f"| {p['backend']} | {p['dt_label']} | {variation(p)} | {num(p['wall_per_sim_s'])} | {num(p['error'])} |"
-        lines.append(line + (f" {'yes' if p['pareto_scene'] else ''} |" if mark else ""))
+    tie = "tie_scene" if front == "pareto_scene" else "tie_backend"
+    lines = ["| backend | dt | iterations | preferAccuracy | wall s per simulated s (spread) | error" + unit +
+             " | self-consistency | ties |", "|---|---|---:|---|---:|---:|---:|---|"]
+    heads = [p for p in points if p[front] and p[tie] is None]
+    for p in sorted(heads, key=lambda p: (p["backend"], p["wall_per_sim_s"])):
+        ties = ", ".join(q["label"] for q in every if q[tie] == p["label"])
+        lines.append(f"| {p['backend']} | {p['dt_label']} | {variation(p)} | {speed(p)} | {num(p['error'])} | "
+                     f"{num(p.get('self_error'))} | {escape(ties)} |")
     return lines
+
+
+def reference(scene: dict) -> str:
+    """What a scene's error is measured against, in words."""
+    if scene["reference"] != "common reference":
+        return f"closed form ({escape(scene['quantity'])})"
+    if scene.get("reference_backend") is None:
+        return f"none: {escape(scene.get('reference_why_none', ''))}"
+    return (f"{scene['reference_backend']}'s run at dt {dt_label(scene['reference_dt'])} s, the most accurate available "
+            f"(its own error {num(scene['reference_error'])} m, from the same run at twice the step); "
+            f"{escape(scene['quantity'])}")
 
 
 def markdown(doc: dict) -> str:
     s = doc["settings"]
     lines = ["# x3drbp sweep", "",
              f"Speed: {doc['measured']['speed']}.", "",
-             f"Error: {doc['measured']['error']}.", "",
+             f"Error: {doc['measured']['error']}. Self-consistency: {doc['measured']['self_error']}.", "",
              f"Steps {', '.join(p for p in dict.fromkeys(q['dt_label'] for q in doc['points'])) or '-'}; "
              f"iterations {', '.join(map(str, s['iterations']))}; preferAccuracy {s['accuracy']}; "
-             f"fine-step reference at the finest step / {s['reference_refinement']}, window {s['window']:g} s. "
+             f"{s.get('repeats', 1)} timed repeats per point; "
+             f"fine step at the finest step / {s['reference_refinement']}, window {s['window']:g} s. "
              f"{len(doc['points'])} runs in {doc['wall_s']:g} s.", "",
              "Backends: " + "; ".join(
                  f"{n} {b['version']}" + "".join(f" ({f} unsupported: the scene's own)" for f, ok in
                                                  (("iterations", b["iterations"]),
                                                   ("preferAccuracy", b["preferAccuracy"])) if not ok)
                  for n, b in doc["backends"].items()), "",
-             "A point is on a Pareto front when no other point is at least as fast and as accurate and "
-             "better in one. '-' in iterations or preferAccuracy: the backend does not honour the field "
-             "and ran the scene's own value."]
+             "A point is on a Pareto front when no other point is as fast by median and as accurate and "
+             f"better in one beyond the ties; {doc['measured']['ties']}. '-' in iterations or preferAccuracy: "
+             "the backend does not honour the field and ran the scene's own value."]
     for scene in doc["scenes"]:
         name = scene["name"]
         points = [p for p in doc["points"] if p["scene"] == name]
         lines += ["", f"## {name}", "",
-                  f"Reference: {scene['reference']} ({escape(scene['quantity'])}). "
-                  f"Plot: [sweep_{name}.png](sweep_{name}.png)", ""]
+                  f"Reference: {reference(scene)}. Plot: [sweep_{name}.png](sweep_{name}.png)", ""]
         if measured(points):
             lines += ["Pareto front over every backend:", ""]
-            lines += _rows([p for p in points if p["pareto_scene"]], scene["unit"], mark=False)
+            lines += _rows(points, scene["unit"], "pareto_scene", points)
             lines += ["", "Each backend's own front:", ""]
-            lines += _rows([p for p in points if p["pareto_backend"]], scene["unit"], mark=True)
+            lines += _rows(points, scene["unit"], "pareto_backend", points)
         else:
             lines.append(f"No results: {NO_RESULTS}.")
         missing = Counter((p["backend"], p["verdict"], p["reason"]) for p in points if p["error"] is None)

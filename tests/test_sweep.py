@@ -13,20 +13,46 @@ from conformance import results
 from conformance.analyses import sweep as S
 from conformance.cli import main as cli_main
 from conformance.analyses.sweep_job import with_collection_fields
-from conformance.analyses.sweep_metrics import Positions, comparison_interval, pareto, window_error
+from conformance.analyses.sweep_metrics import Cost, Positions, comparison_interval, pareto, window_error
 from x3d_core.load import load
 
 BACKEND = "mujoco"  # a dependency, installed wherever the project is
 
 
-def test_pareto_front_is_exact():
-    costs = [1.0, 2.0, 3.0, 2.0, 4.0, 1.0, None, 0.5, 3.0]
+def _exact(*costs: float | None) -> list[Cost | None]:
+    return [None if c is None else Cost(c, c, c) for c in costs]
+
+
+def test_pareto_front_is_exact_without_spread_or_tolerance():
+    costs = _exact(1.0, 2.0, 3.0, 2.0, 4.0, 1.0, None, 0.5, 3.0)
     errors = [5.0, 2.0, 1.0, 3.0, 1.0, 5.0, 0.1, None, float("nan")]
-    # 0 and 5 tie (both on it); 3 is as fast as 1 but less accurate; 4 as accurate as 2 but slower;
-    # 6, 7, 8 lack a finite cost or error
-    assert pareto(costs, errors) == [True, True, True, False, False, True, False, False, False]
+    # 0 and 5 are equal: one front point, 0 standing for both; 3 is as fast as 1 but less
+    # accurate; 4 as accurate as 2 but slower; 6, 7, 8 lack a finite cost or error
+    assert pareto(costs, errors) == [0, 1, 2, None, None, 0, None, None, None]
     assert pareto([], []) == []
-    assert pareto([1.0, 1.0], [2.0, 1.0]) == [False, True]  # equal speed: the more accurate one only
+    assert pareto(_exact(1.0, 1.0), [2.0, 1.0]) == [None, 1]  # equal speed: the more accurate one only
+
+
+def test_pareto_merges_ties_within_the_spread_and_the_reference_error():
+    # pymunk's 10 and 50 iterations of free motion: errors apart by rounding, speeds within
+    # each other's spread: one front point, the faster median standing for both
+    assert pareto([Cost(1.0, 0.9, 1.2), Cost(1.1, 0.95, 1.3)], [0.25, 0.25 - 1e-17]) == [0, 0]
+    # the same errors, the second slower beyond both spreads: it is off the front
+    assert pareto([Cost(1.0, 0.9, 1.1), Cost(2.0, 1.9, 2.1)], [0.25, 0.25 - 1e-17]) == [0, None]
+    # without the merge the slower would sit on the front by the 17th digit
+    assert pareto(_exact(1.0, 2.0), [0.25, 0.25 - 1e-6]) == [0, 1]
+    # errors apart by less than the reference's own error tie; by more, they do not
+    assert pareto(_exact(1.0, 2.0), [0.25, 0.24], tolerance=0.02) == [0, None]
+    assert pareto(_exact(1.0, 2.0), [0.25, 0.2], tolerance=0.02) == [0, 1]
+    # more accurate beyond the tolerance and no slower within the spread: both stay (neither
+    # is faster by median and as accurate)
+    assert pareto([Cost(1.0, 0.5, 1.5), Cost(1.2, 0.9, 1.3)], [1.0, 0.1]) == [0, 1]
+
+
+def test_cost_is_the_median_and_spread_of_the_repeats():
+    c = Cost.of([3.0, 1.0, 2.0])
+    assert (c.median, c.low, c.high) == (2.0, 1.0, 3.0)
+    assert c.ties(Cost(3.5, 3.0, 4.0)) and not c.ties(Cost(3.5, 3.1, 4.0))
 
 
 def _positions(times, values, bodies=("A", "B")) -> Positions:
@@ -75,7 +101,7 @@ def test_targets_pick_the_reference():
     closed, contact, scene = S.targets(["pendulum_period", "bounce_apex",
                                         case_scene("double_pendulum_energy")], dts)
     assert (closed.reference, closed.quantity, closed.settings.duration) == (S.CLOSED_FORM, "Bob.period", 2.0)
-    assert (contact.reference, contact.case, contact.settings.frame_rate) == (S.FINE_STEP, None, 60.0)
+    assert (contact.reference, contact.case, contact.settings.frame_rate) == (S.COMMON, None, 60.0)
     assert (scene.name, scene.scene) == ("double_pendulum_energy",
                                          "conformance/cases/double_pendulum_energy/double_pendulum_energy.x3d")
     with pytest.raises(ValueError, match="neither a case"):
@@ -94,11 +120,13 @@ def test_sweep_command_writes_json_markdown_and_plot(tmp_path):
     assert [(p["dt_label"], p["iterations"], p["prefer_accuracy"]) for p in points] == \
         [("1/60", 10, False), ("1/240", 10, False)]
     assert all(p["verdict"] == results.PASS and 0 < p["wall_per_sim_s"] < p["simulation_per_sim_s"] for p in points)
+    assert all(p["wall_low"] <= p["wall_per_sim_s"] <= p["wall_high"] for p in points)
+    assert doc["settings"]["repeats"] == S.REPEATS
     # semi-implicit Euler's position error is first order: a quarter of the step, a quarter of the error
     assert points[1]["error"] / points[0]["error"] == pytest.approx(0.25, rel=0.05)
     assert points[1]["pareto_scene"] or points[0]["pareto_scene"]
     text = (out / "sweep.md").read_text()
-    assert "## projectile" in text and "| mujoco | 1/240 | 10 | FALSE |" in text
+    assert "## projectile" in text and "| mujoco | 1/240 | 10 | FALSE |" in text and "Reference: closed form" in text
     png = (out / "sweep_projectile.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 1000
     assert cli_main(["sweep", "--scenes", "no_such_case", "--out", str(out), "-q"]) == 2
@@ -119,3 +147,38 @@ def test_dask_cluster_gives_the_local_pool_s_numbers():
                                   silence_logs=50) as cluster:
         assert errors(cluster.scheduler_address) == local
     assert all(e is not None and e > 0 for *_, e in local)
+
+
+def test_common_reference_is_the_fine_run_with_the_smallest_own_error():
+    times = np.array([0.0, 0.5, 1.0])
+
+    def ran(offset: float) -> S.JobResult:
+        return S.JobResult("measured", positions=_positions(times, np.full((3, 2, 3), offset)))
+
+    job = S.Job("scene.x3d", "x", results.Settings(1.0, 1 / 8000))
+    plans = {b: S.BackendPlan(b, "1", True, True) for b in ("bullet", "mujoco", "ode")}
+    fine = {("s", "mujoco"): (job, ran(0.0), ran(0.3)),  # refining moves it 0.3 m: its own error
+            ("s", "ode"): (job, ran(1.0), ran(1.01)),
+            ("s", "bullet"): (job, ran(2.0), S.JobResult("blew up", "at t=0.1"))}
+    ref = S.common_reference("s", plans, fine)
+    assert (ref.backend, ref.error) == ("ode", pytest.approx(0.01 * np.sqrt(3)))
+    fine[("s", "ode")] = (job, ran(1.0), ran(1.3))  # equal estimates: REFERENCE_ORDER's first
+    assert S.common_reference("s", plans, fine).backend == "mujoco"
+    fine = {k: (job, S.JobResult("crashed", "signal 11"), v[2]) for k, v in fine.items()}
+    why = S.common_reference("s", plans, fine)
+    assert isinstance(why, str) and "mujoco: crashed (signal 11)" in why and "bullet: crashed" in why
+
+
+def test_every_backend_is_measured_against_one_reference(tmp_path):
+    chosen = S.targets([case_scene("double_pendulum_energy")], [1 / 60, 1 / 240])
+    plans, _ = S.backend_plans([BACKEND, "bullet"])
+    sweep = S.run_sweep(chosen, plans, [1 / 60, 1 / 240], [], [], workers=2, repeats=2)
+    ref = sweep.references["double_pendulum_energy"]
+    assert ref.backend in plans and ref.error >= 0 and ref.dt == pytest.approx(1 / 1920)
+    for p in sweep.points:
+        assert p.verdict == "measured" and p.iterations is None and p.prefer_accuracy is None
+        # the reference backend's points: its own fine run is the common reference
+        assert (p.error == p.self_error) == (p.backend == ref.backend)
+        assert p.wall_low <= p.wall_per_sim_s <= p.wall_high
+    assert any(p.pareto_scene for p in sweep.points)
+    assert set(sweep.positions) == {("double_pendulum_energy", b, dt) for b in plans for dt in (1 / 60, 1 / 240)}

@@ -1,21 +1,31 @@
 """Speed against error: scenes with a reference, swept over the physics step, the solver's
 iterations and preferAccuracy on each backend.
 
-Reference, per scene:
+Error, against one reference per scene, common to every backend:
 - closed form: a conformance case with a `convergence` measure; the error is that measure's
   (the case's own expectation, run at the swept step);
-- fine step: any other scene (a case without such a measure, or a scene file); the error is the
-  largest distance of a body from where the same backend puts it at a step REFINEMENT times
-  finer than the finest swept, with the most iterations swept and preferAccuracy on where the
-  backend honours them, over the first `window` seconds (sweep_metrics says why one window).
+- common reference: any other scene (a case without such a measure, or a scene file); the
+  error is the largest distance of a body from where the reference run puts it over the
+  first `window` seconds (sweep_metrics says why one window). The reference run is the most
+  accurate available: every backend runs the scene at a step REFINEMENT times finer than the
+  finest swept, with the most iterations swept and preferAccuracy on (MuJoCo's selects RK4),
+  and again at twice that step; the difference estimates the fine run's own error (for an
+  integrator of order p >= 1, |run(2h) - run(h)| = (2^p - 1) |run(h) - exact| >= that error,
+  asymptotically), and the fine run with the smallest estimate is the reference.
+Self-consistency, beside it: each backend against its own run at that fine step, as a
+backend's convergence says nothing of whether it converges to what the others do.
 
 Speed: wall time per simulated second, the child's own measure (`x3drbp run --timing`) of
 the time spent in the engine's steps, over the run's simulated seconds: the integration cost
-that a long simulation pays. Not counted: interpreter start-up, imports, loading the scene,
-building the engine model (which dominates short runs at coarse steps: 20-50 ms on Bullet
-against microseconds a step), the evaluator's per-frame state reads and outputs, writing the
-trace. The whole simulation's time (build, steps, reads) is kept beside it. Runs share the
-machine with each other (as many at a time as the executor has workers): a speed under that load.
+that a long simulation pays; the median of REPEATS runs in the child, with their spread.
+Not counted: interpreter start-up, imports, loading the scene, building the engine model
+(which dominates short runs at coarse steps: 20-50 ms on Bullet against microseconds a
+step), the evaluator's per-frame state reads and outputs, writing the trace. The whole
+simulation's time (build, steps, reads) is kept beside it. Runs share the machine with each
+other (as many at a time as the executor has workers): a speed under that load.
+
+Fronts: points whose speeds' spreads overlap and whose errors differ by less than the
+reference's own error (or rounding) are ties, one front point (sweep_metrics.pareto).
 
 Only what a backend honours is varied: one that declares RigidBodyCollection.iterations or
 preferAccuracy unsupported runs the scene's own value (it would refuse another).
@@ -37,16 +47,21 @@ from conformance.results import Settings
 from conformance.runner import children, probe
 from conformance.analyses.distribute import executor, guarded
 from conformance.analyses.sweep_job import Job, JobResult, run_job
-from conformance.analyses.sweep_metrics import comparison_interval, pareto, window_error
+from conformance.analyses.sweep_metrics import Cost, comparison_interval, pareto, window_error
 
 REFINEMENT = 8  # the fine-step reference's step: the finest swept over this
+REPEATS = 3  # timed runs of each point, in its child: the median and the spread
+# which backend's fine run is the common reference where own error estimates are equal:
+# MuJoCo's RK4 is fourth order where the others integrate to first order; then ODE, the
+# engine the spec's parameters come from
+REFERENCE_ORDER = ("mujoco", "ode", "dart", "bullet", "pymunk")
 DEFAULT_SCENES = ("pendulum_period", "projectile", "bounce_apex",
                   os.path.join("conformance", "cases", "double_pendulum_energy", "double_pendulum_energy.x3d"))
 DEFAULT_DTS = (1 / 60, 1 / 240, 1 / 1000, 1 / 4000)
 DEFAULT_ITERATIONS = (10, 50)
 DEFAULT_WINDOW = 1.0  # s
 FIELDS = ("RigidBodyCollection.iterations", "RigidBodyCollection.preferAccuracy")
-CLOSED_FORM, FINE_STEP = "closed form", "fine step"
+CLOSED_FORM, COMMON = "closed form", "common reference"
 
 
 @dataclass(frozen=True)
@@ -55,23 +70,26 @@ class Target:
     name: str
     scene: str  # relative to the project root where it is under it
     settings: Settings  # duration and frames (the step is swept)
-    case: str | None  # closed form: this case's convergence measure; None: fine-step reference
+    case: str | None  # closed form: this case's convergence measure; None: the common reference
     quantity: str
+    window: float = DEFAULT_WINDOW  # s compared with the common reference
 
     @property
     def reference(self) -> str:
-        return CLOSED_FORM if self.case else FINE_STEP
+        return CLOSED_FORM if self.case else COMMON
 
 
-def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_WINDOW) -> list[Target]:
+def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_WINDOW,
+            duration: float | None = None) -> list[Target]:
     """Targets for case names and scene files (ValueError naming what is wrong). A case with a
     convergence measure is judged by its closed form over its own duration; other cases and
-    scene files by the fine-step reference over the window, at frames comparison_interval apart."""
-    interval = comparison_interval([*dts, min(dts) / REFINEMENT])
+    scene files by the common reference over the window, run for `duration` (default: the
+    window), at frames comparison_interval apart."""
+    interval = comparison_interval([*dts, min(dts) / REFINEMENT, 2 * min(dts) / REFINEMENT])
     if interval > window:
         raise ValueError(f"the steps have no common multiple within the {window:g} s window "
                          f"(the shortest is {interval:g} s): choose steps like 1/60, 1/240, 1/1000")
-    fine = Settings(window, min(dts), 1.0 / interval)
+    fine = Settings(max(window, duration or window), min(dts), 1.0 / interval)
     out = []
     for name in names:
         case = C.BY_NAME.get(name)
@@ -85,7 +103,7 @@ def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_
             raise ValueError(f"{name} is neither a case ({', '.join(C.BY_NAME)}) nor a scene file")
         label = name if case is not None else os.path.splitext(os.path.basename(path))[0]
         out.append(Target(label, _relative(path), fine, None,
-                          f"max |position - fine-step position| over the first {window:g} s"))
+                          f"max |position - reference position| over the first {window:g} s", window))
     names_seen = [t.name for t in out]
     if len(set(names_seen)) != len(names_seen):
         raise ValueError(f"two targets share a name: {', '.join(names_seen)}")
@@ -156,83 +174,157 @@ class Point:
     prefer_accuracy: bool | None
     verdict: str = ""
     reason: str = ""
-    error: float | None = None
-    wall_per_sim_s: float | None = None  # the engine's steps
+    error: float | None = None  # against the scene's reference (closed form or the common one)
+    self_error: float | None = None  # against the same backend at the fine step (no closed form only)
+    wall_per_sim_s: float | None = None  # the engine's steps: the median of the repeats
+    wall_low: float | None = None  # ... the repeats' spread
+    wall_high: float | None = None
     simulation_per_sim_s: float | None = None  # the whole simulation: build, steps, per-frame reads
     pareto_backend: bool = False  # on the front of this scene's points on this backend
     pareto_scene: bool = False  # on the front of this scene's points on every backend
+    tie_backend: str | None = None  # on that front as a tie of this point (its label)
+    tie_scene: str | None = None
+
+    @property
+    def label(self) -> str:
+        its = "" if self.iterations is None else f" it={self.iterations}"
+        acc = "" if self.prefer_accuracy is None else f" acc={'TRUE' if self.prefer_accuracy else 'FALSE'}"
+        return f"{self.backend} {results.dt_label(self.dt)}{its}{acc}"
+
+    @property
+    def cost(self) -> Cost | None:
+        if self.wall_per_sim_s is None:
+            return None
+        return Cost(self.wall_per_sim_s, self.wall_low, self.wall_high)
 
     def to_json(self) -> dict:
         d = asdict(self)
         d["dt_label"] = results.dt_label(self.dt)
-        d["error"] = None if self.error is None or not math.isfinite(self.error) else self.error
+        d["label"] = self.label
+        for k in ("error", "self_error"):
+            d[k] = None if d[k] is None or not math.isfinite(d[k]) else d[k]
         return d
 
 
 def variations(plan: BackendPlan, iterations: Sequence[int], accuracy: Sequence[bool]
                ) -> list[tuple[int | None, bool | None]]:
-    """The (iterations, preferAccuracy) pairs a backend is run at: None where it does not honour the field."""
-    its: Sequence[int | None] = iterations if plan.iterations else (None,)
-    acc: Sequence[bool | None] = accuracy if plan.prefer_accuracy else (None,)
+    """The (iterations, preferAccuracy) pairs a backend is run at: None where it does not
+    honour the field, or where none are asked (the scene's own)."""
+    its: Sequence[int | None] = iterations if plan.iterations and iterations else (None,)
+    acc: Sequence[bool | None] = accuracy if plan.prefer_accuracy and accuracy else (None,)
     return [(i, a) for i in its for a in acc]
 
 
-def _reference_job(t: Target, plan: BackendPlan, dts: Sequence[float], iterations: Sequence[int],
-                   timeout: float) -> Job:
-    return Job(t.scene, plan.name, t.settings.with_dt(min(dts) / REFINEMENT),
-               max(iterations) if plan.iterations else None, True if plan.prefer_accuracy else None,
-               None, timeout)
+@dataclass(frozen=True)
+class Reference:
+    """A scene's common reference (no closed form): whose run it is and its own error."""
+    backend: str
+    dt: float
+    error: float  # m: the estimate of its own error (module docstring)
+    runs: Positions
+
+
+def _fine_jobs(t: Target, plan: BackendPlan, dts: Sequence[float], iterations: Sequence[int],
+               timeout: float) -> tuple[Job, Job]:
+    """The backend's most accurate run of the target over the window, and the same at twice
+    its step (for its own error)."""
+    window = Settings(t.window, min(dts) / REFINEMENT, t.settings.frame_rate)
+    its = max(iterations) if plan.iterations and iterations else None
+    acc = True if plan.prefer_accuracy else None
+    return (Job(t.scene, plan.name, window, its, acc, None, timeout, repeats=1),
+            Job(t.scene, plan.name, window.with_dt(2 * window.dt), its, acc, None, timeout, repeats=1))
 
 
 @dataclass
 class Sweep:
     points: list[Point]
-    references: dict[tuple[str, str], tuple[Job, JobResult]]  # (scene, backend) -> the fine-step run
+    fine: dict[tuple[str, str], tuple[Job, JobResult, JobResult]]  # (scene, backend) -> fine run, at 2x its step
+    references: dict[str, Reference | str]  # scene (no closed form) -> its common reference, or why there is none
     units: dict[str, str]  # scene -> the error's unit
+    positions: dict[tuple[str, str, float], Positions]  # (scene, backend, dt) -> a run's poses (no variation asked)
 
 
 def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequence[float],
               iterations: Sequence[int], accuracy: Sequence[bool], timeout: float = children.DEFAULT_TIMEOUT,
-              scheduler: str | None = None, workers: int | None = None, progress: bool = False) -> Sweep:
-    """Every target on every planned backend at every step and variation, on the executor."""
-    keyed: list[tuple[Point | tuple[str, str], Job]] = []
+              scheduler: str | None = None, workers: int | None = None, progress: bool = False,
+              repeats: int = REPEATS) -> Sweep:
+    """Every target on every planned backend at every step and variation, on the executor.
+    Empty iterations or accuracy: the scene's own."""
+    keyed: list[tuple[Point | tuple[str, str], Job | tuple[Job, Job]]] = []
+    jobs: list[Job] = []
     for t in chosen:
         for plan in plans.values():
             if t.case is None:
-                keyed.append(((t.name, plan.name), _reference_job(t, plan, dts, iterations, timeout)))
+                pair = _fine_jobs(t, plan, dts, iterations, timeout)
+                keyed.append(((t.name, plan.name), pair))
+                jobs += pair
             for dt in dts:
                 for its, acc in variations(plan, iterations, accuracy):
-                    keyed.append((Point(t.name, plan.name, dt, its, acc),
-                                  Job(t.scene, plan.name, t.settings.with_dt(dt), its, acc, t.case, timeout)))
-    results = execute([job for _, job in keyed], scheduler, workers, progress)
-    references = {key: (job, res) for (key, job), res in zip(keyed, results) if isinstance(key, tuple)}
-    points, units = [], {}
-    for (key, job), res in zip(keyed, results):
+                    job = Job(t.scene, plan.name, t.settings.with_dt(dt), its, acc, t.case, timeout, repeats)
+                    keyed.append((Point(t.name, plan.name, dt, its, acc), job))
+                    jobs.append(job)
+    done = iter(execute(jobs, scheduler, workers, progress))
+    ran = [(key, job, (next(done), next(done)) if isinstance(job, tuple) else next(done)) for key, job in keyed]
+    fine = {key: (job[0], *res) for key, job, res in ran if isinstance(key, tuple)}
+    references = {t.name: common_reference(t.name, plans, fine) for t in chosen if t.case is None}
+    points, units, poses = [], {}, {}
+    for key, job, res in ran:
         if isinstance(key, Point):
-            _fill(key, job, res, references.get((key.scene, key.backend)))
+            _fill(key, job, res, references.get(key.scene), fine.get((key.scene, key.backend)))
             points.append(key)
             if res.unit:
                 units.setdefault(key.scene, res.unit)
+            if res.positions is not None and job.iterations is None and job.prefer_accuracy is None:
+                poses[(key.scene, key.backend, key.dt)] = res.positions
     for t in chosen:
         units.setdefault(t.name, "m" if t.case is None else "")
-    mark_pareto(points)
-    return Sweep(points, references, units)
+    tolerances = {s: r.error if isinstance(r, Reference) else 0.0 for s, r in references.items()}
+    mark_pareto(points, tolerances)
+    return Sweep(points, fine, references, units, poses)
 
 
-def _fill(p: Point, job: Job, res: JobResult, reference: tuple[Job, JobResult] | None) -> None:
+def common_reference(scene: str, plans: dict[str, BackendPlan],
+                     fine: dict[tuple[str, str], tuple[Job, JobResult, JobResult]]) -> Reference | str:
+    """The scene's common reference: of the backends whose fine run and its check at twice the
+    step both ran, the one whose own error estimate is the smallest (REFERENCE_ORDER breaks
+    ties); else why none could be. MuJoCo's RK4 wins smooth scenes; on contacts its soft
+    constraint is tuned to the step, so refining it moves it and another engine may win."""
+    order = [b for b in REFERENCE_ORDER if b in plans] + [b for b in plans if b not in REFERENCE_ORDER]
+    found, why = [], []
+    for b in order:
+        job, run, check = fine[(scene, b)]
+        if run.positions is None or check.positions is None:
+            bad = run if run.positions is None else check
+            why.append(f"{b}: {bad.verdict}" + (f" ({bad.reason})" if bad.reason else ""))
+            continue
+        try:
+            found.append(Reference(b, job.settings.dt,
+                                   window_error(check.positions, run.positions, job.settings.duration), run.positions))
+        except ValueError as e:
+            why.append(f"{b}: {e}")
+    if not found:
+        return "no backend's fine-step run ended well: " + "; ".join(why)
+    return min(found, key=lambda r: r.error)  # min keeps the first of equals: REFERENCE_ORDER
+
+
+def _fill(p: Point, job: Job, res: JobResult, reference: Reference | str | None,
+          fine: tuple[Job, JobResult, JobResult] | None) -> None:
     p.verdict, p.reason = res.verdict, res.reason
-    if res.step_s is not None and res.simulation_s is not None:
-        p.wall_per_sim_s = res.step_s / job.settings.duration
+    if res.step_s:
+        p.wall_per_sim_s, p.wall_low, p.wall_high = (
+            getattr(Cost.of(res.step_s), k) / job.settings.duration for k in ("median", "low", "high"))
         p.simulation_per_sim_s = res.simulation_s / job.settings.duration
     if res.positions is None:
         p.error = res.error
         return
-    ref_job, ref = reference  # a run kept for its positions always has its reference
-    if ref.positions is None:
-        p.verdict, p.reason = results.ERROR, f"the reference run (dt {ref_job.settings.dt:g}) {ref.verdict}: {ref.reason}"
-        return
+    window = fine[0].settings.duration
+    own = fine[1].positions
     try:
-        p.error = window_error(res.positions, ref.positions, job.settings.duration)
+        p.self_error = None if own is None else window_error(res.positions, own, window)
+        if isinstance(reference, str):
+            p.verdict, p.reason = results.ERROR, f"no common reference: {reference}"
+            return
+        p.error = window_error(res.positions, reference.runs, window)
     except ValueError as e:
         p.verdict, p.reason = results.ERROR, str(e)
 
@@ -252,16 +344,18 @@ def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, pro
         return [futures[k].result() for k in range(len(jobs))]
 
 
-def mark_pareto(points: Sequence[Point]) -> None:
-    """Set each point's Pareto flags: per scene and backend, and per scene over all backends."""
+def mark_pareto(points: Sequence[Point], tolerances: dict[str, float] | None = None) -> None:
+    """Set each point's Pareto flags and ties: per scene and backend, and per scene over all
+    backends; errors within the scene's tolerance (its reference's own error) tie."""
     groups: dict[tuple[str, str | None], list[Point]] = {}
     for p in points:
         groups.setdefault((p.scene, p.backend), []).append(p)
         groups.setdefault((p.scene, None), []).append(p)
-    for (_, backend), group in groups.items():
-        flags = pareto([p.wall_per_sim_s for p in group], [p.error for p in group])
-        for p, flag in zip(group, flags):
+    for (scene, backend), group in groups.items():
+        heads = pareto([p.cost for p in group], [p.error for p in group], (tolerances or {}).get(scene, 0.0))
+        for p, head in zip(group, heads):
+            tie = None if head is None or group[head] is p else group[head].label
             if backend is None:
-                p.pareto_scene = flag
+                p.pareto_scene, p.tie_scene = head is not None, tie
             else:
-                p.pareto_backend = flag
+                p.pareto_backend, p.tie_backend = head is not None, tie

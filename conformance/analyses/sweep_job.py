@@ -40,14 +40,15 @@ class Job:
     prefer_accuracy: bool | None = None  # likewise
     case: str | None = None  # judge the run by this case and return its convergence measure; None: positions
     timeout: float = children.DEFAULT_TIMEOUT
+    repeats: int = 1  # timed runs in the child (x3drbp run --repeat)
 
 
 @dataclass
 class JobResult:
     verdict: str  # the runner's verdict of a judged run; MEASURED for a run kept for its positions
     reason: str = ""
-    step_s: float | None = None  # the child's own wall time in the engine's steps (x3drbp run --timing)
-    simulation_s: float | None = None  # ... and of the whole simulation (plan, build, steps, per-frame reads)
+    step_s: tuple[float, ...] = ()  # the child's own wall time in the engine's steps, each repeat (run --timing)
+    simulation_s: float | None = None  # ... the median of the whole simulation (plan, build, steps, reads)
     error: float | None = None  # the case's convergence measure
     unit: str = ""
     positions: Positions | None = None
@@ -68,15 +69,17 @@ def with_collection_fields(src: str, dst: str, iterations: int | None, prefer_ac
 
 
 def positions(view: TraceView) -> Positions:
-    """Every body's position series from a trace (bodies in the trace's order)."""
-    keys = [node for node, fld in view.keys() if fld == "position"]
-    series = [view.series(node, "position") for node in keys]
-    if not series:
+    """Every body's position and orientation series from a trace (bodies in the trace's order)."""
+    keys = view.bodies()
+    if not keys:
         raise ValueError("the trace has no body positions")
+    series = [view.series(node, fld) for fld in ("position", "orientation") for node in keys]
     times = series[0][0]
     if any(len(t) != len(times) for t, _ in series):
-        raise ValueError("the bodies' positions are recorded at different frames")
-    return Positions(times, tuple(keys), np.stack([v for _, v in series], axis=1))
+        raise ValueError("the bodies' poses are recorded at different frames")
+    n = len(keys)
+    return Positions(times, tuple(keys), np.stack([v for _, v in series[:n]], axis=1),
+                     np.stack([v for _, v in series[n:]], axis=1))
 
 
 def run_job(job: Job) -> JobResult:
@@ -91,13 +94,15 @@ def run_job(job: Job) -> JobResult:
                 return JobResult(results.ERROR, f"the scene could not be rewritten: {e}")
             scene = copy
         trace, timing = os.path.join(tmp, "trace.csv"), os.path.join(tmp, "timing.json")
-        out = children.run_child(scene, job.backend, job.settings, trace, job.timeout, extra=("--timing", timing))
+        out = children.run_child(scene, job.backend, job.settings, trace, job.timeout,
+                                 extra=("--timing", timing, "--repeat", str(job.repeats)))
         if out.verdict is not None:
             return JobResult(out.verdict, out.reason)
         try:
             with open(timing, encoding="utf-8") as f:
                 times = json.load(f)
-            step_s, simulation_s = float(times["step_wall_s"]), float(times["simulation_wall_s"])
+            step_s = tuple(float(x) for x in times["repeats"]["step_wall_s"])
+            simulation_s = float(times["simulation_wall_s"])
             view = read_view(trace)
         except (OSError, ValueError, KeyError) as e:
             return JobResult(results.ERROR, f"unreadable trace or timing: {e}")

@@ -1,5 +1,6 @@
-"""The sweep's measures, on plain data: error against a finer-step run of the same engine,
-the sampling that makes two runs comparable, and the Pareto front of speed against error.
+"""The sweep's measures, on plain data: error against a finer-step reference run, the
+sampling that makes two runs comparable, and the Pareto front of speed against error, with
+ties (speeds within the repeats' spread, errors within the reference's own error).
 
 Error without a closed form follows Erez, Tassa and Todorov (ICRA 2015): a run is compared
 with the same engine at a much finer step, over a short window, so that chaos (which parts
@@ -26,10 +27,11 @@ _TIME_DIGITS = 9  # frame times equal to a nanosecond are the same frame
 
 @dataclass
 class Positions:
-    """Every body's position at each frame of a run."""
+    """Every body's pose at each frame of a run."""
     times: np.ndarray  # (frames,) s
     bodies: tuple[str, ...]
     values: np.ndarray  # (frames, bodies, 3) m
+    orientations: np.ndarray | None = None  # (frames, bodies, 4) axis-angle, as the trace writes them
 
 
 def comparison_interval(dts: Sequence[float]) -> float:
@@ -61,14 +63,59 @@ def window_error(run: Positions, reference: Positions, window: float) -> float:
     return float(np.max(np.linalg.norm(gap, axis=-1)))
 
 
-def pareto(costs: Sequence[float | None], errors: Sequence[float | None]) -> list[bool]:
-    """Which points are on the Pareto front of cost against error (both lower is better): no
-    other point is at least as fast and as accurate and better in one of the two. Points equal
-    in both are all on it; a point without a finite cost and error is on nothing."""
-    pts = [(c, e) if c is not None and e is not None and math.isfinite(c) and math.isfinite(e) else None
+# Errors that differ by less than this fraction of themselves are one error: what the
+# integrators' rounding moves over the ~1e4 steps of a run at ~1e-16 each (1e-12), with room;
+# without it pymunk's 10 and 50 iterations sat on a front apart by the 18th digit.
+ROUNDING = 1e-9
+
+
+@dataclass(frozen=True)
+class Cost:
+    """A speed measured by repeats: the median and the spread (lowest, highest)."""
+    median: float
+    low: float
+    high: float
+
+    @classmethod
+    def of(cls, samples: Sequence[float]) -> Cost:
+        return cls(float(np.median(samples)), float(min(samples)), float(max(samples)))
+
+    def ties(self, other: Cost) -> bool:
+        """Whether the two spreads overlap: repeats cannot tell them apart."""
+        return self.low <= other.high and other.low <= self.high
+
+
+def same_error(a: float, b: float, tolerance: float) -> bool:
+    """Whether two errors are one within the reference's own error (tolerance) or rounding."""
+    return abs(a - b) <= tolerance + ROUNDING * max(abs(a), abs(b))
+
+
+def dominates(q: tuple[Cost, float], p: tuple[Cost, float], tolerance: float) -> bool:
+    """Whether point q beats p: no slower by median, no worse in error beyond the ties, and
+    better in one beyond them (faster beyond both spreads, or more accurate beyond the
+    tolerance). Requiring q's median no higher makes the relation acyclic: a front exists."""
+    (qc, qe), (pc, pe) = q, p
+    if qc.median > pc.median or not (qe <= pe or same_error(qe, pe, tolerance)):
+        return False
+    return qc.high < pc.low or (qe < pe and not same_error(qe, pe, tolerance))
+
+
+def pareto(costs: Sequence[Cost | None], errors: Sequence[float | None], tolerance: float = 0.0
+           ) -> list[int | None]:
+    """The Pareto front of cost against error (both lower is better), ties merged. For each
+    point: None when off the front (or without a finite cost and error), else the index of the
+    front point that stands for it: itself, or a faster-by-median point it ties with in both
+    speed (spreads overlap) and error (same_error)."""
+    pts = [(c, e) if c is not None and e is not None and math.isfinite(c.median) and math.isfinite(e) else None
            for c, e in zip(costs, errors)]
-    front = []
-    for p in pts:
-        front.append(p is not None and not any(
-            q is not None and q[0] <= p[0] and q[1] <= p[1] and q != p for q in pts))
-    return front
+    on = [k for k, p in enumerate(pts)
+          if p is not None and not any(q is not None and dominates(q, p, tolerance) for q in pts)]
+    out: list[int | None] = [None] * len(pts)
+    heads: list[int] = []
+    for k in sorted(on, key=lambda k: (pts[k][0].median, pts[k][1], k)):
+        c, e = pts[k]
+        head = next((h for h in heads if pts[h][0].ties(c) and same_error(pts[h][1], e, tolerance)), None)
+        if head is None:
+            heads.append(k)
+        out[k] = k if head is None else head
+    return out

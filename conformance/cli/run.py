@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import os
 import signal
+import statistics
 import sys
 import threading
 import time
@@ -147,11 +148,15 @@ def cmd_run(args: argparse.Namespace) -> int:
 
     on_engine_abort(stopped)
     try:
-        started = time.perf_counter()
-        clock = _StepClock(backend) if args.timing else None
+        step_s, simulation_s = [], []
         with time_limit(args.timeout, f"{args.scene}: {args.backend}"):
-            trace = run(ws, clock or backend, settings)
-        simulation_s = time.perf_counter() - started
+            for k in range(args.repeat):  # repeats are timed; the trace is the first run's
+                started = time.perf_counter()
+                clock = _StepClock(backend) if args.timing else None
+                ran = run(ws, clock or backend, settings)
+                simulation_s.append(time.perf_counter() - started)
+                step_s.append(clock.step_s if clock else 0.0)
+                trace = ran if k == 0 else trace
     except Unsupported as e:
         print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
         return EXIT_UNSUPPORTED
@@ -166,7 +171,10 @@ def cmd_run(args: argparse.Namespace) -> int:
         from reports.rerun_recording import write_recording  # rerun is imported when a recording is asked for
         write_recording(args.rerun, scene, [(args.backend, TraceView(trace.rows))])
     if args.timing:
-        atomic.write_json(args.timing, {"simulation_wall_s": simulation_s, "step_wall_s": clock.step_s}, indent=None)
+        atomic.write_json(args.timing, {"simulation_wall_s": statistics.median(simulation_s),
+                                        "step_wall_s": statistics.median(step_s),
+                                        "repeats": {"simulation_wall_s": simulation_s, "step_wall_s": step_s}},
+                          indent=None)
     return EXIT_OK
 
 
@@ -196,7 +204,11 @@ def add_commands(sub) -> None:
     r.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording of the run (open it with `rerun OUT.rrd`)")
     r.add_argument("--timing", metavar="FILE", help="write the simulation's wall time (plan, engine build, "
                    "steps, state readback; not the load or the trace writing) to FILE as JSON "
-                   "{\"simulation_wall_s\": S, \"step_wall_s\": T}, T the engine's steps alone")
+                   "{\"simulation_wall_s\": S, \"step_wall_s\": T, \"repeats\": {...}}, T the engine's steps "
+                   "alone, S and T the medians of the repeats, each listed under repeats")
+    r.add_argument("--repeat", type=options.count, default=1, metavar="N",
+                   help="run the simulation N times, for --timing's medians and spread (the trace, recording "
+                   "and verdict are the first run's: a run is deterministic; default 1)")
     r.set_defaults(func=cmd_run)
     b = sub.add_parser("backends", help="list the registered backends (entry point group x3drbp.backends), their "
                       "engine versions and declared features")

@@ -2,11 +2,13 @@
 preferAccuracy (conformance/sweep.py says what is measured).
 
     x3drbp sweep [--scenes NAMES] [--backends LIST] [--dts LIST] [--iterations LIST]
-                 [--accuracy both|false|true] [--window S] [--out DIR]
+                 [--accuracy both|false|true] [--window S] [--repeats N] [--out DIR]
                  [--scheduler ADDRESS] [--workers N] [--timeout S] [--quiet]
 
-Writes DIR/sweep.json (every point), DIR/sweep.md (the Pareto fronts) and DIR/sweep_SCENE.png
-(error against wall time per simulated second, one line per backend and variation); DIR
+Writes DIR/sweep.json (every point), DIR/sweep.md (the Pareto fronts, ties merged) and
+DIR/sweep_SCENE.png (error against the scene's one reference, closed form or the most
+accurate run, over the median wall time per simulated second with its spread, one line per
+backend and variation); DIR
 defaults to out/sweep. Runs on a local process pool, or on a Dask cluster with --scheduler.
 Exit status 0 whatever the verdicts (where no run gave a result, the files and one line on
 stderr say "no results"); 2 on bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM
@@ -51,22 +53,39 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], plans: dict[str, S.BackendPl
     return {
         "generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "measured": {"speed": "wall_per_sim_s: the child's wall time in the engine's steps (x3drbp run --timing) "
-                              "over the simulated seconds; not start-up, loading, the model build, per-frame reads or "
-                              "trace writing (simulation_per_sim_s: the whole simulation, build and reads included)",
-                     "error": "closed form: the case's convergence measure; fine step: the largest distance of a "
-                              "body from the same backend's run at the reference step, over the window"},
+                              "over the simulated seconds, the median of the repeats (wall_low and wall_high: their "
+                              "spread); not start-up, loading, the model build, per-frame reads or trace writing "
+                              "(simulation_per_sim_s: the whole simulation, build and reads included)",
+                     "error": "closed form: the case's convergence measure; common reference: the largest distance "
+                              "of a body from the scene's reference run (one backend's most accurate run, the same "
+                              "for every backend) over the window",
+                     "self_error": "the largest distance of a body from the same backend's run at the fine step, "
+                                   "over the window (scenes without a closed form)",
+                     "ties": "points whose speed spreads overlap and whose errors differ by less than the "
+                             "reference's own error (or rounding) are one front point: the fastest stands for them"},
         "settings": {**settings, "reference_refinement": S.REFINEMENT},
         "backends": {n: {"version": p.version, "iterations": p.iterations, "preferAccuracy": p.prefer_accuracy}
                      for n, p in plans.items()},
         "scenes": [{"name": t.name, "scene": t.scene, "reference": t.reference, "case": t.case,
                     "quantity": t.quantity, "unit": sweep.units.get(t.name, ""), "duration": t.settings.duration,
-                    "frame_rate": t.settings.frame_rate} for t in chosen],
-        "references": [{"scene": scene, "backend": backend, "dt": job.settings.dt, "iterations": job.iterations,
-                        "prefer_accuracy": job.prefer_accuracy, "verdict": res.verdict, "reason": res.reason}
-                       for (scene, backend), (job, res) in sweep.references.items()],
+                    "frame_rate": t.settings.frame_rate, **_reference(sweep.references.get(t.name))}
+                   for t in chosen],
+        "fine_runs": [{"scene": scene, "backend": backend, "dt": job.settings.dt, "iterations": job.iterations,
+                       "prefer_accuracy": job.prefer_accuracy, "verdict": res.verdict, "reason": res.reason,
+                       "check_verdict": check.verdict, "check_reason": check.reason}
+                      for (scene, backend), (job, res, check) in sweep.fine.items()],
         "points": [p.to_json() for p in sweep.points],
         "wall_s": round(wall_s, 1),
     }
+
+
+def _reference(ref: S.Reference | str | None) -> dict:
+    """A scene's common reference as sweep.json states it (nothing for a closed form)."""
+    if ref is None:
+        return {}
+    if isinstance(ref, str):
+        return {"reference_backend": None, "reference_why_none": ref}
+    return {"reference_backend": ref.backend, "reference_dt": ref.dt, "reference_error": ref.error}
 
 
 @children.interruptible
@@ -86,9 +105,10 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         return EXIT_OK
     started = time.perf_counter()
     sweep = S.run_sweep(chosen, plans, dts, iterations, ACCURACY[args.accuracy], args.timeout, args.scheduler,
-                        args.workers, progress=not args.quiet and sys.stderr.isatty())
+                        args.workers, progress=not args.quiet and sys.stderr.isatty(), repeats=args.repeats)
     settings = {"dts": dts, "iterations": iterations, "accuracy": args.accuracy, "window": args.window,
-                "scheduler": args.scheduler, "workers": args.workers, "timeout": args.timeout}
+                "repeats": args.repeats, "scheduler": args.scheduler, "workers": args.workers,
+                "timeout": args.timeout}
     doc = to_json(sweep, chosen, plans, settings, time.perf_counter() - started)
     from reports.plots import sweep_plot  # matplotlib: only here, not in every `x3drbp run` child
     from reports.sweep_tables import NO_RESULTS, markdown, measured
@@ -121,7 +141,9 @@ def add_command(sub) -> None:
     p.add_argument("--accuracy", choices=tuple(ACCURACY), default="both",
                    help="preferAccuracy values (default both; where the backend honours it)")
     p.add_argument("--window", type=float, default=S.DEFAULT_WINDOW, metavar="S",
-                   help=f"seconds compared with the fine-step reference (default {S.DEFAULT_WINDOW:g})")
+                   help=f"seconds compared with the reference (default {S.DEFAULT_WINDOW:g})")
+    p.add_argument("--repeats", type=options.count, default=S.REPEATS, metavar="N",
+                   help=f"timed runs of each point, for the median speed and its spread (default {S.REPEATS})")
     p.add_argument("--out", default=os.path.join("out", "sweep"), metavar="DIR",
                    help="folder for sweep.json, sweep.md and the plots (default out/sweep)")
     p.add_argument("--scheduler", metavar="ADDRESS",
