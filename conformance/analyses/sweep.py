@@ -33,7 +33,6 @@ preferAccuracy unsupported runs the scene's own value (it would refuse another).
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import sys
@@ -47,7 +46,7 @@ from conformance.results import Settings
 from conformance.runner import children, probe
 from conformance.analyses.distribute import executor, guarded
 from conformance.analyses.sweep_job import Job, JobResult, run_job
-from conformance.analyses.sweep_metrics import Cost, comparison_interval, pareto, window_error
+from conformance.analyses.sweep_metrics import Cost, Positions, comparison_interval, pareto, window_error
 
 REFINEMENT = 8  # the fine-step reference's step: the finest swept over this
 REPEATS = 3  # timed runs of each point, in its child: the median and the spread
@@ -127,8 +126,8 @@ _DECLARED = """
 import json, sys
 from backends import base
 fields = sys.argv[2:]
-print("x3drbp-declared " + json.dumps({n: [base.load(n).support(f).support is not base.Support.UNSUPPORTED
-                                            for f in fields] for n in sys.argv[1].split(",")}))
+print("x3drbp-answer " + json.dumps({n: [base.load(n).support(f).support is not base.Support.UNSUPPORTED
+                                          for f in fields] for n in sys.argv[1].split(",")}))
 """
 
 
@@ -152,16 +151,7 @@ def backend_plans(names: Sequence[str], timeout: float = children.DEFAULT_TIMEOU
 
 def _declarations(usable: Sequence[str], timeout: float) -> tuple[dict | None, str]:
     """What each backend declares of FIELDS, asked in a child: (the answer, or None and why not)."""
-    try:
-        done = children.call([sys.executable, "-c", _DECLARED, ",".join(usable), *FIELDS], timeout)
-    except OSError as e:
-        return None, str(e)
-    if done.returncode is None:
-        return None, f"no answer within {timeout:g} s"
-    found = [ln for ln in done.stdout.splitlines() if ln.startswith("x3drbp-declared ")]
-    if done.returncode != 0 or not found:
-        return None, children.classify(done.returncode, done.stderr).reason or "the child printed nothing"
-    return json.loads(found[-1].split(" ", 1)[1]), ""
+    return probe.ask(_DECLARED, [",".join(usable), *FIELDS], timeout, "the declarations' child")
 
 
 @dataclass

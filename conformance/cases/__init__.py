@@ -90,3 +90,13 @@ def select(names: Sequence[str] | None) -> list[Case]:
     if unknown:
         raise KeyError(f"unknown case(s) {', '.join(unknown)}; known: {', '.join(BY_NAME)}")
     return [BY_NAME[n] for n in names]
+
+
+def exercising() -> dict[str, list[str]]:
+    """Feature -> the cases that exercise it with non-default values, in case order: what a
+    verdict says about a feature a scene uses."""
+    out: dict[str, list[str]] = {}
+    for case in CASES:
+        for f in case.exercises:
+            out.setdefault(f, []).append(case.name)
+    return out

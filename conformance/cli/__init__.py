@@ -7,6 +7,7 @@ import os
 import select
 import sys
 
+from conformance.cli.advise import add_command as add_advise
 from conformance.cli.check import add_command as add_check
 from conformance.cli.compare import add_command as add_compare
 from conformance.cli.conformance import add_command as add_conformance
@@ -60,6 +61,7 @@ def main(argv: list[str] | None = None) -> int:
         prog="x3drbp", description="Conformance and comparison suite for the X3D RigidBodyPhysics component.")
     sub = parser.add_subparsers(dest="command", required=True)
     add_check(sub)
+    add_advise(sub)
     add_commands(sub)
     add_compare(sub)
     add_conformance(sub)

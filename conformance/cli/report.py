@@ -76,10 +76,7 @@ def features(matrix: dict, backends: list[str]) -> dict:
     """Per backend and feature exercised by a case: what the backend declares, and the verdicts
     of the cases that exercise it (a feature declared native whose case fails is a finding)."""
     verdicts = {(r["case"], r["backend"]): r["verdict"] for r in matrix["results"]}
-    exercised: dict[str, list[str]] = {}
-    for case in C.CASES:
-        for f in case.exercises:
-            exercised.setdefault(f, []).append(case.name)
+    exercised = C.exercising()
     rows = []
     for feature in sorted(exercised):
         cells = {}

@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import sys
 from collections.abc import Sequence
+from typing import Any
 
 from conformance.results import BackendInfo
 from conformance.runner import children
@@ -43,25 +44,36 @@ for name, b in found.items():
             out[name] = {"version": str(b.version())}
         except Exception as e:  # a backend whose engine imports but cannot say its version
             out[name] = {"unavailable": f"version() failed: {type(e).__name__}: {e}"}
-print("\\nx3drbp-probe " + json.dumps(out))  # engines may print on import (pybullet does)
+print("\\nx3drbp-answer " + json.dumps(out))
 """
+
+
+ANSWER = "x3drbp-answer "  # the line an asking script prints its JSON answer on
+
+
+def ask(script: str, args: Sequence[str], timeout: float, what: str) -> tuple[Any, str]:
+    """Run a Python script that imports engines in a child (importing one can crash) and read
+    the JSON it prints after ANSWER (engines may print on import: pybullet does): (the answer,
+    or None and why there is none, naming `what` was asked)."""
+    try:
+        done = children.call([sys.executable, "-c", script, *args], timeout)
+    except OSError as e:
+        return None, f"{what} could not start: {e}"
+    if done.returncode is None:
+        return None, f"{what} gave no answer within {timeout:g} s"
+    found = [ln for ln in done.stdout.splitlines() if ln.startswith(ANSWER)]
+    if done.returncode == 0 and found:
+        try:
+            return json.loads(found[-1][len(ANSWER):]), ""
+        except json.JSONDecodeError:
+            pass
+    return None, children.classify(done.returncode, done.stderr).reason or f"{what} printed nothing"
 
 
 def _probe(names: Sequence[str], timeout: float) -> tuple[dict, str]:
     """Run the probe in a child: (what it reported, why it reported nothing)."""
-    try:
-        done = children.call([sys.executable, "-c", _PROBE, *names], timeout)
-    except OSError as e:
-        return {}, f"the backend probe could not start: {e}"
-    if done.returncode is None:
-        return {}, f"the backend probe gave no answer within {timeout:g} s"
-    found = [ln for ln in done.stdout.splitlines() if ln.startswith("x3drbp-probe ")]
-    if done.returncode == 0 and found:
-        try:
-            return json.loads(found[-1].split(" ", 1)[1]), ""
-        except json.JSONDecodeError:
-            pass
-    return {}, children.classify(done.returncode, done.stderr).reason or "the backend probe printed nothing"
+    found, why = ask(_PROBE, names, timeout, "the backend probe")
+    return found or {}, why
 
 
 class Unprobed(BackendInfo):

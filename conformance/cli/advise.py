@@ -1,0 +1,141 @@
+"""`x3drbp advise`: which backend and which step for each of your scenes, and why.
+
+    x3drbp advise SCENE_OR_FOLDER... [--budget S] [--tolerance M] [--backends LIST]
+                  [--dts LIST] [--duration S] [--window S] [--repeats N] [--verdicts matrix.json]
+                  [--json OUT.json] [--timeout S] [--workers N] [-q]
+
+For each scene (folders are searched for .x3d, .x3dv, .x3dj): what each backend makes of the
+features it uses (refused, approximated, and the verdicts of the conformance cases that
+exercise them: the pinned ones, or those of a conformance run's matrix.json with
+--verdicts), then the scene on every backend that can run it at each step, each run's error
+against one common reference over the first --window seconds (the most accurate run
+available, with its own error), its speed (the engine's steps, median of --repeats timed
+runs), and how long it stays within 1 mm / 1 mrad of each other backend at that step; then
+the recommendation by the rule conformance/analyses/advice.py states (README too): of the
+runs that fit --budget (wall seconds per simulated second, default 1: real time), the
+fastest within --tolerance of the reference (default 1 mm), else the most accurate.
+
+Exit status 0 when every scene got its advice (a scene no backend can run is advice too); 1
+when a scene does not load or has nothing to simulate (one line each; the others are still
+advised); 2 on bad usage; 130 or 143 when interrupted (every run stopped).
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import sys
+import time
+from fractions import Fraction
+
+from reports.advice_text import render
+from x3d_core import atomic
+from x3d_core.paths import scene_files
+
+from conformance.cli import options
+from conformance.cli.run import scene_to_run
+from conformance.runner import children
+from conformance.analyses import advice as A
+from conformance.analyses import sweep as S
+
+EXIT_OK, EXIT_SCENE, EXIT_USAGE = 0, 1, 2
+
+
+def _usage(message: str) -> int:
+    print(f"x3drbp advise: {message}", file=sys.stderr)
+    return EXIT_USAGE
+
+
+def _verdicts(path: str | None) -> dict[tuple[str, str], str] | None:
+    """(case, backend) -> verdict from a conformance matrix.json; None: the pins. ValueError
+    naming the file where it is not one."""
+    if path is None:
+        return None
+    try:
+        with open(path, encoding="utf-8") as f:
+            return {(r["case"], r["backend"]): r["verdict"] for r in json.load(f)["results"]}
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        raise ValueError(f"--verdicts {path}: not a conformance matrix.json ({type(e).__name__}: {e})") from None
+
+
+@children.interruptible
+def cmd_advise(args: argparse.Namespace) -> int:
+    try:
+        dts = sorted({float(Fraction(v)) for v in options.names(args.dts)} or set(A.DEFAULT_DTS), reverse=True)
+        if any(dt <= 0 for dt in dts):
+            raise ValueError("steps must be positive")
+        verdicts = _verdicts(args.verdicts)
+    except (ValueError, ZeroDivisionError) as e:
+        return _usage(str(e))
+    files = scene_files(args.paths)
+    if not files:
+        return _usage("no X3D files (.x3d, .x3dv, .x3dj) under the given paths")
+    scenes, status = {}, EXIT_OK
+    for path in files:  # each scene's errors and warnings once, before any run
+        loaded = scene_to_run(path)
+        if loaded is None:
+            status = EXIT_SCENE
+        else:
+            scenes[path] = loaded[0]
+    if not scenes:
+        return status
+    try:
+        S.targets(list(scenes)[:1], dts, args.window, args.duration)  # the steps' common frames
+        plans, skipped = S.backend_plans(options.names(args.backends), args.timeout)
+    except ValueError as e:
+        return _usage(str(e))
+    for name, why in skipped.items():
+        print(f"x3drbp advise: {name} is not run: {why}", file=sys.stderr)
+    if not plans:
+        print("x3drbp advise: no backend is available here", file=sys.stderr)
+        return EXIT_SCENE
+    started = time.perf_counter()
+    judged, why = A.judge(list(scenes), list(plans), verdicts, args.timeout)
+    if judged is None:
+        print(f"x3drbp advise: the scenes could not be judged: {why}", file=sys.stderr)
+        return EXIT_SCENE
+    progress = not args.quiet and sys.stderr.isatty()
+    advice = A.advise(list(scenes), scenes, plans, judged, dts, args.duration, args.window, args.budget,
+                      args.tolerance, args.timeout, args.workers, progress, args.repeats)
+    doc = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+           "settings": {"dts": dts, "duration": args.duration, "window": args.window, "budget": args.budget,
+                        "tolerance": args.tolerance, "repeats": args.repeats, "verdicts": args.verdicts or "pinned"},
+           "backends": {n: p.version for n, p in plans.items()},
+           "scenes": [a.to_json() for a in advice], "wall_s": round(time.perf_counter() - started, 1)}
+    if args.json:
+        atomic.write_json(args.json, doc)
+    sys.stdout.write(render(doc))
+    return status
+
+
+def add_command(sub) -> None:
+    p = sub.add_parser("advise", help="which backend and step for each of your scenes, and why",
+                       description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("paths", nargs="+", metavar="SCENE_OR_FOLDER",
+                   help="scene files, or folders searched for .x3d/.x3dv/.x3dj files")
+    p.add_argument("--budget", type=options.positive, default=A.DEFAULT_BUDGET, metavar="S",
+                   help=f"wall seconds the engine's steps may take per simulated second (default "
+                        f"{A.DEFAULT_BUDGET:g}: real time; a browser sharing its frame with rendering wants less)")
+    p.add_argument("--tolerance", type=options.positive, default=A.DEFAULT_TOLERANCE, metavar="M",
+                   help=f"metres from the reference that count as accurate (default {A.DEFAULT_TOLERANCE:g})")
+    p.add_argument("--backends", action="append", metavar="LIST",
+                   help="backends, comma-separated (default: every installed one)")
+    p.add_argument("--dts", action="append", metavar="LIST",
+                   help="physics steps, comma-separated, as 1/240 or 0.004 (default 1/60,1/240,1/1000)")
+    p.add_argument("--duration", type=options.positive, default=A.DEFAULT_DURATION, metavar="S",
+                   help=f"simulated seconds each run is watched for parting (default {A.DEFAULT_DURATION:g})")
+    p.add_argument("--window", type=options.positive, default=S.DEFAULT_WINDOW, metavar="S",
+                   help=f"seconds compared with the reference (default {S.DEFAULT_WINDOW:g})")
+    p.add_argument("--repeats", type=options.count, default=S.REPEATS, metavar="N",
+                   help=f"timed runs of each, for the median speed and its spread (default {S.REPEATS})")
+    p.add_argument("--verdicts", metavar="matrix.json",
+                   help="the conformance verdicts of a run (x3drbp conformance --out DIR: DIR/matrix.json) "
+                        "instead of the pinned ones")
+    p.add_argument("--json", metavar="OUT.json", help="write every figure behind the advice")
+    p.add_argument("--timeout", type=options.positive, default=children.DEFAULT_TIMEOUT, metavar="S",
+                   help=f"time limit per run in seconds (default {children.DEFAULT_TIMEOUT:g})")
+    p.add_argument("--workers", type=options.count, default=None, metavar="N",
+                   help="runs in parallel (default: the number of CPUs)")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=cmd_advise)

@@ -1,0 +1,129 @@
+"""`x3drbp advise` as text and as markdown, from its JSON document (advice.json) alone."""
+
+from __future__ import annotations
+
+from conformance.results import dt_label
+
+from .text import escape, num
+
+
+def _find(scene: dict, key: dict | None) -> dict | None:
+    if key is None:
+        return None
+    return next(o for o in scene["options"] if o["backend"] == key["backend"] and o["dt"] == key["dt"])
+
+
+def _run(o: dict) -> str:
+    return f"{o['backend']} at dt {dt_label(o['dt'])}"
+
+
+def _speed(o: dict) -> str:
+    median = o["wall_per_sim_s"]
+    factor = f", {1 / median:,.0f}x real time" if median > 0 else ""
+    return f"{num(median)} s per simulated s ({num(o['wall_low'])}-{num(o['wall_high'])}){factor}"
+
+
+def _reference(scene: dict) -> str:
+    ref = scene["reference"]
+    if ref["backend"] is None:
+        return f"no reference: {ref['why_none']}"
+    return f"reference: {ref['backend']} at dt {dt_label(ref['dt'])}, its own error {num(ref['error'])} m"
+
+
+def _agreement(o: dict, duration: float) -> str:
+    if not o["parts"]:
+        return "no other backend ran at this step"
+    stays = [b for b, t in o["parts"].items() if t is None]
+    parts = [f"{b} at {t:.3g} s" for b, t in sorted(((b, t) for b, t in o["parts"].items() if t is not None),
+                                                     key=lambda p: p[1])]
+    said = []
+    if stays:
+        said.append(f"within 1 mm / 1 mrad of {', '.join(stays)} for all {duration:g} s")
+    if parts:
+        said.append(f"parts from {', '.join(parts)}")
+    return "; ".join(said)
+
+
+def _cases(j: dict) -> str:
+    failing = ", ".join(f"{c} ({v})" for c, v in j["failing"].items())
+    if not j["passing"] and not failing:
+        return "no case exercises them"
+    return f"{j['passing']} pass" + (f"; not: {failing}" if failing else "")
+
+
+def _versus(o: dict, best: dict) -> str:
+    cost = o["wall_per_sim_s"] / best["wall_per_sim_s"] if best["wall_per_sim_s"] > 0 else float("inf")
+    return (f"{_run(o)}: {num(cost)}x the cost, error {num(o['error'])} m "
+            f"({'+' if o['error'] >= best['error'] else '-'}{num(abs(o['error'] - best['error']))} m)")
+
+
+def scene_lines(scene: dict, settings: dict) -> list[str]:
+    """One scene's advice as indented lines."""
+    best = _find(scene, scene["recommended"])
+    head = f"{scene['scene']} ({scene['kind']}): "
+    lines = []
+    if best is None:
+        ran = [o for o in scene["options"] if o.get("wall_per_sim_s") is not None and o["error"] is not None]
+        fastest = min(ran, key=lambda o: o["wall_per_sim_s"]) if ran else None
+        lines.append(head + f"no recommendation: {scene['rule']}" + (
+            f"; the fastest run, {_run(fastest)}, costs {_speed(fastest)} against a budget of "
+            f"{settings['budget']:g}" if fastest else ""))
+    else:
+        j = scene["judged"][best["backend"]]
+        lines += [head + f"{_run(best)} ({scene['rule']})",
+                  f"  error {num(best['error'])} m from the reference over the first {settings['window']:g} s "
+                  f"({_reference(scene)}); self-consistency {num(best['self_error'])} m",
+                  f"  speed {_speed(best)}; budget {settings['budget']:g} s per simulated s",
+                  f"  agreement at this step: {_agreement(best, settings['duration'])}",
+                  "  approximates: " + ("; ".join(j["approximated"]) or "nothing the scene uses"),
+                  f"  cases exercising the features it uses: {_cases(j)}"]
+        runners = [_find(scene, k) for k in scene["runners_up"]]
+        if runners:
+            lines.append("  runners-up:")
+            lines += [f"    {_versus(o, best)}; {_agreement(o, settings['duration'])}"
+                      + (f"; {len(scene['judged'][o['backend']]['approximated'])} approximation(s)"
+                         if scene["judged"][o["backend"]]["approximated"] else "") for o in runners]
+    refused = {b: j["refused"] for b, j in scene["judged"].items() if j["refused"]}
+    for b, why in refused.items():
+        lines.append(f"  cannot run it: {b}: {why[0]}" + (f" (and {len(why) - 1} more)" if len(why) > 1 else ""))
+    bad = [o for o in scene["options"] if o["error"] is None]
+    for o in bad:
+        lines.append(f"  did not end well: {_run(o)}: {o['verdict']}" + (f": {o['reason']}" if o["reason"] else ""))
+    return lines
+
+
+def render(doc: dict) -> str:
+    """The terminal text: each scene's advice, then the rule's settings."""
+    s = doc["settings"]
+    out = []
+    for scene in doc["scenes"]:
+        out += scene_lines(scene, s) + [""]
+    out.append(f"steps {', '.join(dt_label(d) for d in s['dts'])}; runs of {s['duration']:g} s, error over the first "
+               f"{s['window']:g} s; tolerance {s['tolerance']:g} m; budget {s['budget']:g} s per simulated s; "
+               f"speed the median of {s['repeats']} repeats; the rule: README, `x3drbp advise`")
+    return "\n".join(out) + "\n"
+
+
+def markdown(doc: dict) -> str:
+    """advice.json as the report's section body: a table of the answers, then each scene's reasons."""
+    s = doc["settings"]
+    lines = ["| scene | kind | recommended | step | error (m) | wall s per simulated s | runner-up |",
+             "|---|---|---|---|---:|---:|---|"]
+    for scene in doc["scenes"]:
+        best = _find(scene, scene["recommended"])
+        runner = _find(scene, scene["runners_up"][0]) if scene["runners_up"] else None
+        name = escape(scene["scene"])
+        if best is None:
+            lines.append(f"| {name} | {scene['kind']} | none: {escape(scene['rule'])} | - | - | - | - |")
+            continue
+        lines.append(f"| {name} | {scene['kind']} | {best['backend']} | {dt_label(best['dt'])} | {num(best['error'])} "
+                     f"| {num(best['wall_per_sim_s'])} | {escape(_versus(runner, best)) if runner else '-'} |")
+    lines += ["", f"Budget {s['budget']:g} s per simulated second, tolerance {s['tolerance']:g} m over the first "
+                  f"{s['window']:g} s, steps {', '.join(dt_label(d) for d in s['dts'])}, runs of {s['duration']:g} s. "
+                  "The rule (README, `x3drbp advise`): the fastest run within the tolerance of the scene's reference; "
+                  "if none, the most accurate; only runs that fit the budget, of backends that refuse nothing "
+                  "the scene uses.", "", "<details><summary>Why, per scene</summary>", "", "```"]
+    for scene in doc["scenes"]:
+        lines += scene_lines(scene, s) + [""]
+    lines += ["```", "", "</details>"]
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,124 @@
+"""x3drbp advise: the rule on synthetic runs (each branch and tie), when two runs part, and
+the command end to end on a folder of scenes with one that does not load."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+from conftest import case_scene
+
+from conformance.analyses import advice as A
+from conformance.analyses.sweep_metrics import Cost, Positions
+from conformance.cli import main as cli_main
+
+TOL = 1e-3
+
+
+def _option(backend: str, dt: float, error: float | None, cost: float | tuple[float, float, float] | None,
+            parts: dict | None = None) -> A.Option:
+    c = None if cost is None else Cost(*cost) if isinstance(cost, tuple) else Cost(cost, cost, cost)
+    return A.Option(backend, dt, "measured", "", error, error, c, parts or {})
+
+
+def _judged(**approximations: int) -> dict[str, A.Judged]:
+    return {b: A.Judged(approximated=[f"use{k}: note" for k in range(n)]) for b, n in approximations.items()}
+
+
+def test_within_the_tolerance_the_fastest_wins_and_coarser_steps_count():
+    opts = [_option("ode", 1 / 60, 5e-3, 0.01), _option("ode", 1 / 240, 8e-4, 0.04),
+            _option("mujoco", 1 / 240, 1e-4, 0.05), _option("mujoco", 1 / 1000, 1e-6, 0.2)]
+    chosen, rule, runners = A.choose(opts, _judged(ode=0, mujoco=0), 1.0, TOL, 0.0)
+    # ode at 1/60 is faster but 5 mm off; within 1 mm, ode at 1/240 is the fastest: more
+    # accuracy is not asked for
+    assert (chosen.backend, chosen.dt, rule) == ("ode", 1 / 240, A.WITHIN)
+    assert [(o.backend, o.dt) for o in runners] == [("mujoco", 1 / 240)]
+    # the reference's own error widens the tolerance: 5 mm counts when the reference may be 4.5 mm off
+    chosen, _, _ = A.choose(opts, _judged(ode=0, mujoco=0), 1.0, TOL, 4.5e-3)
+    assert (chosen.backend, chosen.dt) == ("ode", 1 / 60)
+
+
+def test_the_budget_excludes_and_nothing_affordable_is_said():
+    opts = [_option("ode", 1 / 240, 8e-4, 0.04), _option("mujoco", 1 / 1000, 1e-6, 0.2)]
+    chosen, rule, _ = A.choose(opts, _judged(ode=0, mujoco=0), 0.03, TOL, 0.0)
+    assert chosen is None and rule == A.NONE_AFFORDABLE
+    chosen, _, _ = A.choose(opts, _judged(ode=0, mujoco=0), 0.1, TOL, 0.0)
+    assert chosen.backend == "ode"
+    failed = [_option("ode", 1 / 240, None, None)]
+    assert A.choose(failed, _judged(ode=0), 1.0, TOL, 0.0)[:2] == (None, A.NONE_RAN)
+
+
+def test_none_within_the_tolerance_the_most_accurate_ties_within_the_reference_error():
+    opts = [_option("bullet", 1 / 1000, 2.8e-3, 0.003), _option("dart", 1 / 1000, 2.9e-3, 0.001),
+            _option("mujoco", 1 / 1000, 2e-2, 0.0005)]
+    chosen, rule, runners = A.choose(opts, _judged(bullet=0, dart=0, mujoco=0), 1.0, TOL, 0.0)
+    assert (chosen.backend, rule) == ("bullet", A.MOST_ACCURATE)
+    assert [o.backend for o in runners] == ["dart", "mujoco"]  # by error, as the rule ranks them
+    # within the reference's own error, 2.8 and 2.9 mm are one error: the faster wins
+    chosen, _, _ = A.choose(opts, _judged(bullet=0, dart=0, mujoco=0), 1.0, TOL, 2e-4)
+    assert chosen.backend == "dart"
+
+
+def test_speed_ties_go_to_fewer_approximations_then_agreement_then_the_coarser_step():
+    a = _option("bullet", 1 / 240, 5e-4, (0.010, 0.008, 0.014), {"mujoco": None, "ode": 0.5})
+    b = _option("mujoco", 1 / 240, 5e-4, (0.011, 0.009, 0.013), {"bullet": None, "ode": None})
+    c = _option("ode", 1 / 240, 5e-4, (0.012, 0.010, 0.015), {"bullet": 0.5, "mujoco": None})
+    assert A.choose([a, b, c], _judged(bullet=1, mujoco=0, ode=0), 1.0, TOL, 0.0)[0] is b  # fewest approximations
+    assert A.choose([a, b, c], _judged(bullet=0, mujoco=0, ode=0), 1.0, TOL, 0.0)[0] is b  # agrees with both others
+    slow = _option("mujoco", 1 / 240, 5e-4, (0.020, 0.019, 0.021))  # beyond a's spread: not a tie
+    assert A.choose([a, slow], _judged(bullet=1, mujoco=0), 1.0, TOL, 0.0)[0] is a
+    refused = {"bullet": A.Judged(refused=["X: no"]), "mujoco": A.Judged()}
+    assert A.choose([a, slow], refused, 1.0, TOL, 0.0)[0] is slow  # a backend refusing a use is out
+
+
+def test_parting_is_the_first_frame_past_either_threshold():
+    times = np.arange(5) * 0.1
+    pos = np.zeros((5, 2, 3))
+    ori = np.tile([0.0, 0.0, 1.0, 0.0], (5, 2, 1))
+    a = Positions(times, ("A", "B"), pos, ori)
+    moved = pos.copy()
+    moved[3:, 1, 0] = 2e-3  # body B 2 mm off from the fourth frame
+    assert A.parting(a, Positions(times, ("A", "B"), moved, ori)) == pytest.approx(0.3)
+    turned = ori.copy()
+    turned[2:, 0, 3] = 2e-3  # body A turned 2 mrad from the third frame
+    assert A.parting(a, Positions(times, ("A", "B"), pos, turned)) == pytest.approx(0.2)
+    within = pos + 5e-4
+    assert A.parting(a, Positions(times, ("A", "B"), within, ori)) is None
+
+
+def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
+    folder = tmp_path / "mine"
+    folder.mkdir()
+    shutil.copy(case_scene("free_fall"), folder / "drop.x3d")
+    shutil.copy(case_scene("pendulum_period"), folder / "swing.x3d")
+    (folder / "broken.x3d").write_text("<X3D><Scene><RigidBody mass='-1'/></Scene></X3D>")
+    out = tmp_path / "advice.json"
+    code = cli_main(["advise", str(folder), "--backends", "mujoco,ode", "--dts", "1/60,1/240", "--duration", "1",
+                     "--repeats", "2", "--json", str(out), "-q"])
+    captured = capsys.readouterr()
+    assert code == 1  # broken.x3d does not load; the others are still advised
+    assert "broken.x3d:1:" in captured.err and "mass" in captured.err
+    doc = json.loads(out.read_text())
+    assert [s["scene"].rsplit("/", 1)[1] for s in doc["scenes"]] == ["drop.x3d", "swing.x3d"]
+    for scene in doc["scenes"]:
+        assert scene["reference"]["backend"] in ("mujoco", "ode")
+        best = next(o for o in scene["options"] if o["backend"] == scene["recommended"]["backend"]
+                    and o["dt"] == scene["recommended"]["dt"])
+        ok = [o for o in scene["options"] if o["error"] is not None]
+        assert len(ok) == 4 and best["wall_per_sim_s"] <= doc["settings"]["budget"]
+        if scene["rule"] == A.WITHIN:  # nothing within the tolerance is faster beyond the spreads
+            within = [o for o in ok if o["error"] <= TOL + scene["reference"]["error"]]
+            assert all(o["wall_high"] >= best["wall_low"] for o in within)
+        else:
+            assert best["error"] <= min(o["error"] for o in ok) + scene["reference"]["error"] + 1e-12
+        assert scene["scene"] in captured.out
+    drop = doc["scenes"][0]
+    assert drop["kind"] == "free bodies" and doc["scenes"][1]["kind"] == "joints"
+    # a free fall: both integrate semi-implicit Euler, so they agree for the whole run at each step
+    assert all(t is None for o in drop["options"] for t in o["parts"].values())
+    assert cli_main(["advise", str(folder), "--dts", "0"]) == 2
+    (tmp_path / "empty").mkdir()
+    assert cli_main(["advise", str(tmp_path / "empty")]) == 2  # no scene at all: bad usage
+    assert cli_main(["advise", str(tmp_path / "missing.x3d")]) == 1  # a scene that cannot be read, as check says
