@@ -27,7 +27,6 @@ import datetime
 import json
 import sys
 import time
-from fractions import Fraction
 
 from reports.advice_text import render
 from x3d_core import atomic
@@ -35,6 +34,7 @@ from x3d_core.paths import scene_files
 
 from conformance.cli import options
 from conformance.cli.run import scene_to_run
+from conformance.cli.sweep import plans, steps
 from conformance.runner import children
 from conformance.analyses import advice as A
 from conformance.analyses import sweep as S
@@ -62,11 +62,9 @@ def _verdicts(path: str | None) -> dict[tuple[str, str], str] | None:
 @children.interruptible
 def cmd_advise(args: argparse.Namespace) -> int:
     try:
-        dts = sorted({float(Fraction(v)) for v in options.names(args.dts)} or set(A.DEFAULT_DTS), reverse=True)
-        if any(dt <= 0 for dt in dts):
-            raise ValueError("steps must be positive")
+        dts = steps(args.dts, A.DEFAULT_DTS)
         verdicts = _verdicts(args.verdicts)
-    except (ValueError, ZeroDivisionError) as e:
+    except ValueError as e:
         return _usage(str(e))
     files = scene_files(args.paths)
     if not files:
@@ -82,26 +80,23 @@ def cmd_advise(args: argparse.Namespace) -> int:
         return status
     try:
         S.targets(list(scenes)[:1], dts, args.window, args.duration)  # the steps' common frames
-        plans, skipped = S.backend_plans(options.names(args.backends), args.timeout)
+        planned = plans("advise", args.backends, args.timeout)
     except ValueError as e:
         return _usage(str(e))
-    for name, why in skipped.items():
-        print(f"x3drbp advise: {name} is not run: {why}", file=sys.stderr)
-    if not plans:
-        print("x3drbp advise: no backend is available here", file=sys.stderr)
+    if not planned:
         return EXIT_SCENE
     started = time.perf_counter()
-    judged, why = A.judge(list(scenes), list(plans), verdicts, args.timeout)
+    judged, why = A.judge(list(scenes), list(planned), verdicts, args.timeout)
     if judged is None:
         print(f"x3drbp advise: the scenes could not be judged: {why}", file=sys.stderr)
         return EXIT_SCENE
     progress = not args.quiet and sys.stderr.isatty()
-    advice = A.advise(list(scenes), scenes, plans, judged, dts, args.duration, args.window, args.budget,
+    advice = A.advise(list(scenes), scenes, planned, judged, dts, args.duration, args.window, args.budget,
                       args.tolerance, args.timeout, args.workers, progress, args.repeats)
     doc = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
            "settings": {"dts": dts, "duration": args.duration, "window": args.window, "budget": args.budget,
                         "tolerance": args.tolerance, "repeats": args.repeats, "verdicts": args.verdicts or "pinned"},
-           "backends": {n: p.version for n, p in plans.items()},
+           "backends": {n: p.version for n, p in planned.items()},
            "scenes": [a.to_json() for a in advice], "wall_s": round(time.perf_counter() - started, 1)}
     if args.json:
         atomic.write_json(args.json, doc)

@@ -40,15 +40,29 @@ EXIT_OK, EXIT_USAGE = 0, 2
 ACCURACY = {"both": (False, True), "false": (False,), "true": (True,)}
 
 
-def _dts(values: list[str] | None) -> list[float]:
-    """Steps as fractions (1/240) or decimals, finest last."""
-    dts = [float(Fraction(v)) for v in options.names(values)] or list(S.DEFAULT_DTS)
+def steps(values: list[str] | None, default: tuple[float, ...] = S.DEFAULT_DTS) -> list[float]:
+    """Steps as fractions (1/240) or decimals, finest last; ValueError where one is not positive."""
+    try:
+        dts = [float(Fraction(v)) for v in options.names(values)] or list(default)
+    except ZeroDivisionError:
+        raise ValueError("a step divides by zero") from None
     if any(dt <= 0 for dt in dts):
         raise ValueError("steps must be positive")
     return sorted(set(dts), reverse=True)
 
 
-def to_json(sweep: S.Sweep, chosen: list[S.Target], plans: dict[str, S.BackendPlan], settings: dict,
+def plans(command: str, names: list[str] | None, timeout: float) -> dict[str, S.BackendPlan]:
+    """The named backends (default: every installed one) that can run, each that cannot said
+    in one line on stderr; ValueError naming unknown ones."""
+    found, skipped = S.backend_plans(options.names(names), timeout)
+    for name, why in skipped.items():
+        print(f"x3drbp {command}: {name} is not run: {why}", file=sys.stderr)
+    if not found:
+        print(f"x3drbp {command}: no backend is available here", file=sys.stderr)
+    return found
+
+
+def to_json(sweep: S.Sweep, chosen: list[S.Target], planned: dict[str, S.BackendPlan], settings: dict,
             wall_s: float) -> dict:
     return {
         "generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
@@ -65,7 +79,7 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], plans: dict[str, S.BackendPl
                              "reference's own error (or rounding) are one front point: the fastest stands for them"},
         "settings": {**settings, "reference_refinement": S.REFINEMENT},
         "backends": {n: {"version": p.version, "iterations": p.iterations, "preferAccuracy": p.prefer_accuracy}
-                     for n, p in plans.items()},
+                     for n, p in planned.items()},
         "scenes": [{"name": t.name, "scene": t.scene, "reference": t.reference, "case": t.case,
                     "quantity": t.quantity, "unit": sweep.units.get(t.name, ""), "duration": t.settings.duration,
                     "frame_rate": t.settings.frame_rate, **_reference(sweep.references.get(t.name))}
@@ -91,25 +105,22 @@ def _reference(ref: S.Reference | str | None) -> dict:
 @children.interruptible
 def cmd_sweep(args: argparse.Namespace) -> int:
     try:
-        dts = _dts(args.dts)
+        dts = steps(args.dts)
         iterations = sorted({int(v) for v in options.names(args.iterations)} or set(S.DEFAULT_ITERATIONS))
         chosen = S.targets(options.names(args.scenes) or list(S.DEFAULT_SCENES), dts, args.window)
-        plans, skipped = S.backend_plans(options.names(args.backends), args.timeout)
+        planned = plans("sweep", args.backends, args.timeout)
     except ValueError as e:
         print(f"x3drbp sweep: {e}", file=sys.stderr)
         return EXIT_USAGE
-    for name, why in skipped.items():
-        print(f"x3drbp sweep: {name} is not run: {why}", file=sys.stderr)
-    if not plans:
-        print("x3drbp sweep: no backend is available here", file=sys.stderr)
+    if not planned:
         return EXIT_OK
     started = time.perf_counter()
-    sweep = S.run_sweep(chosen, plans, dts, iterations, ACCURACY[args.accuracy], args.timeout, args.scheduler,
+    sweep = S.run_sweep(chosen, planned, dts, iterations, ACCURACY[args.accuracy], args.timeout, args.scheduler,
                         args.workers, progress=not args.quiet and sys.stderr.isatty(), repeats=args.repeats)
     settings = {"dts": dts, "iterations": iterations, "accuracy": args.accuracy, "window": args.window,
                 "repeats": args.repeats, "scheduler": args.scheduler, "workers": args.workers,
                 "timeout": args.timeout}
-    doc = to_json(sweep, chosen, plans, settings, time.perf_counter() - started)
+    doc = to_json(sweep, chosen, planned, settings, time.perf_counter() - started)
     from reports.plots import sweep_plot  # matplotlib: only here, not in every `x3drbp run` child
     from reports.sweep_tables import NO_RESULTS, markdown, measured
     os.makedirs(args.out, exist_ok=True)
