@@ -58,7 +58,7 @@ from x3d_core.collision import Collisions, ContactPoints, Geometry
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
-from .base import BODIES, JOINTS, SMALLEST_NORMAL, Backend, approximate, below, native, unsupported
+from .base import BODIES, JOINTS, SEMI_IMPLICIT, SMALLEST_NORMAL, Backend, approximate, below, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 _LOOPS = dart.constraint.DynamicJointConstraint  # holds the loop constraints' class-wide parameters
@@ -525,6 +525,7 @@ class DartSimulation:
 
 class DartBackend(Backend):
     name = "dart"
+    integration = SEMI_IMPLICIT
     # measured (dartpy 6.20): a free body of 1e-308 kg (subnormal) stays where it is, 1e-307 falls
     limits = {"RigidBody.mass": below(SMALLEST_NORMAL, f"DART inverts the mass: under {SMALLEST_NORMAL:.4g} kg (a "
                                       "subnormal) the inverse overflows and the body would not move")}

@@ -45,7 +45,7 @@ from x3d_core.engine import BlewUp, Unsupported, engine_abort
 from x3d_core.world import STATIC, Joint, State, World
 
 from . import ode_lib as ode
-from .base import BODIES, JOINTS, SMALLEST_NORMAL, Backend, approximate, below, native, unsupported
+from .base import BODIES, JOINTS, SEMI_IMPLICIT, SMALLEST_NORMAL, Backend, approximate, below, native, unsupported
 
 lib = ode.lib
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
@@ -584,6 +584,7 @@ class OdeSimulation:
 
 class OdeBackend(Backend):
     name = "ode"
+    integration = SEMI_IMPLICIT
     limits = {"RigidBody.mass": below(SMALLEST_NORMAL, _INVERTED), "RigidBody.inertia": below(SMALLEST_NORMAL, _INVERTED)}
     declared = {
         **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBody.finiteRotationAxis", "RigidBodyCollection.errorCorrection",

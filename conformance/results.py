@@ -221,6 +221,7 @@ class BackendInfo:
     name: str
     version: str | None = None
     unavailable: str | None = None  # why it cannot be used here
+    integration: str | None = None  # backends.base.Backend.integration
 
     @property
     def usable(self) -> bool:
@@ -374,6 +375,7 @@ class BackendRun:
     simulated_s: float | None = None
     simulation_wall_s: float | None = None  # the simulation alone, as the child timed it
     child_wall_s: float | None = None  # the whole child process: start, imports, load, run, trace writing
+    integration: str | None = None  # the backend's integration order (backends.base.Backend.integration)
 
     @property
     def realtime_basis(self) -> str | None:
@@ -394,12 +396,13 @@ class BackendRun:
         return {"backend": self.backend, "verdict": self.verdict, "reason": self.reason, "version": self.version,
                 "simulated_s": self.simulated_s, "simulation_wall_s": self.simulation_wall_s,
                 "child_wall_s": self.child_wall_s, "realtime_factor": self.realtime_factor,
-                "realtime_basis": self.realtime_basis}
+                "realtime_basis": self.realtime_basis, "integration": self.integration}
 
     @classmethod
     def from_json(cls, d: dict) -> BackendRun:
+        # integration: absent from comparisons written before backends declared it
         return cls(d["backend"], d["verdict"], d["reason"], d["version"], d["simulated_s"],
-                   d["simulation_wall_s"], d["child_wall_s"])
+                   d["simulation_wall_s"], d["child_wall_s"], d.get("integration"))
 
 
 @dataclass

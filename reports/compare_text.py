@@ -1,6 +1,8 @@
 """`x3drbp compare`'s result as text: markdown tables that read as well in a terminal.
 
 Reads a conformance.results.Comparison (or its JSON, through Comparison.from_json); runs nothing.
+A pair whose backends step free motion in different orders (BackendRun.integration) gets a
+note of what that order alone parts them by.
 """
 
 from __future__ import annotations
@@ -10,6 +12,7 @@ from conformance.results import RAN, BackendRun, Comparison, Crossing, Divergenc
 from .text import escape, num
 
 _SHOWN_BODIES = 3  # bodies named at a first crossing; the rest counted
+_G = 9.8  # m/s^2, X3D's default gravity: the scale of the integration order's note
 
 
 def _rtf(r: BackendRun) -> str:
@@ -40,8 +43,23 @@ def worst_joint(p: PairComparison) -> str:
     return f"{j.node}.{j.field} {num(j.max)} {j.unit} ({num(j.max_time)} s)"
 
 
-def _notes(p: PairComparison) -> list[str]:
+def _integration(p: PairComparison, schemes: dict[str, str | None], dt: float) -> str | None:
+    """Where the two backends step free motion in different orders, what that alone parts by:
+    a reader should not take the position-first engine's lag for a fault."""
+    sa, sb = schemes.get(p.a), schemes.get(p.b)
+    if sa is None or sb is None or sa == sb:
+        return None
+    return (f"{p.a} steps by {sa}, {p.b} by {sb}: from that order alone free motion parts by dt |v - v0| "
+            f"in position (dt times the velocity a body has gained: a fall under {_G:g} m/s^2 parts by "
+            f"g dt^2 = {num(_G * dt * dt)} m more each step, {num(_G * dt)} m after 1 s) and by dt |w - w0| in "
+            "orientation, not a fault of either")
+
+
+def _notes(p: PairComparison, schemes: dict[str, str | None], dt: float) -> list[str]:
     notes = []
+    order = _integration(p, schemes, dt)
+    if order:
+        notes.append(order)
     for what, names in (("bodies", p.only_in_a), ("joint outputs", p.joints_only_in_a)):
         if names:
             notes.append(f"{what} only in {p.a}: {', '.join(names)}")
@@ -77,7 +95,8 @@ def render(c: Comparison) -> str:
         lines.append(f"| {p.a} / {p.b} | {len(p.bodies)} | {p.times.size} | {rms_max(p.position)} | "
                      f"{rms_max(p.orientation)} | {_crossing(p.position.first_over)} | "
                      f"{_crossing(p.orientation.first_over)} | {worst_joint(p)} |")
-    notes = [n for p in c.pairs for n in _notes(p)]
+    schemes = {r.backend: r.integration for r in c.runs}
+    notes = [n for p in c.pairs for n in _notes(p, schemes, c.dt)]
     lines += ["", "RMS and max: over every frame and body (the max's body and time); first: the first frame a "
               "body passes the threshold, the bodies over it then, worst first; worst joint output: the largest "
               "difference against its unit's threshold (m, m/s: position; rad, rad/s, axes: orientation)."]

@@ -15,11 +15,15 @@ both traces hold; what only one holds is listed, not an error.
   axes...), the difference's magnitude (angles wrapped to (-pi, pi]: a hinge at pi and
   one at -pi agree), RMS and max per (joint, field).
 
-Default thresholds, 1 mm and 1 mrad: the engines step the same semi-implicit Euler, so
-free motion agrees to rounding (1e-12 m); what separates runs is how each solves its
-constraints and contacts. 1 mm is where that becomes visible at the scale the
-component's scenes are built (metres: about a pixel at 1000 px/m), and 1 mrad turns the
-end of a 1 m body by that same 1 mm. Scenes at other scales should pass their own.
+Default thresholds, 1 mm and 1 mrad: Bullet, MuJoCo, DART and ODE step semi-implicit Euler
+(backends.base.Backend.integration), so between them free motion agrees to rounding (1 s of
+free fall: 0 m apart, 6e-15 m from the closed form); what separates their runs is how each
+solves its constraints and contacts. pymunk moves positions before it adds the step's loads
+to the velocities, so its free motion trails theirs by dt |v - v0| (g dt^2 n after n steps of
+a fall: 1.7e-4 m a step at 1/240 s, past 1 mm by the second frame at 60 Hz), as `x3drbp
+compare`'s text notes for such a pair. 1 mm is where a difference becomes visible at the
+scale the component's scenes are built (metres: about a pixel at 1000 px/m), and 1 mrad
+turns the end of a 1 m body by that same 1 mm. Scenes at other scales should pass their own.
 A joint output is held to the threshold of its unit: m and m/s to the position one,
 rad, rad/s and unit axes to the orientation one (rates: that much per second).
 """
