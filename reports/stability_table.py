@@ -1,5 +1,6 @@
 """The stability suite's results (stability.json, as conformance.cli.stability writes it)
-as markdown: a verdict per (case, dt, backend), then each case's drift figures."""
+as markdown: a verdict per (case, dt, backend), then each case's drift figures, then why each
+run that did not hold gave way, linking its kept trace (a path relative to stability.md)."""
 
 from __future__ import annotations
 
@@ -76,6 +77,7 @@ def markdown(data: dict) -> str:
     if others:
         lines += ["", "## Why", ""]
         for r in others:
+            trace = f" (trace: [{r['trace']}]({r['trace']}))" if r.get("trace") else ""
             lines.append(f"- {r['case']} on {r['backend']} at dt {label[r['dt']]}: {_label(r['verdict'])}: "
-                         f"{escape(r['reason'])}")
+                         f"{escape(r['reason'])}{trace}")
     return "\n".join(lines) + "\n"

@@ -50,15 +50,16 @@ def run_backend(scene: str, backend: str, settings: Settings, folder: str,
 
 def run_backends(scene: str, backends: Sequence[str], settings: Settings,
                  info: Mapping[str, results.BackendInfo], timeout: float = children.DEFAULT_TIMEOUT,
-                 jobs: int = 1) -> list[tuple[BackendRun, TraceView | None]]:
-    """Every backend's run in the given order, `jobs` at a time; a backend `info` marks
-    unavailable gets that as its error without a run."""
+                 jobs: int = 1, progress: bool = False) -> list[tuple[BackendRun, TraceView | None]]:
+    """Every backend's run in the given order, `jobs` at a time (with `progress`, a bar of
+    runs done on stderr); a backend `info` marks unavailable gets that as its error without a run."""
     with tempfile.TemporaryDirectory(prefix="x3drbp-compare-") as folder:
         def one(name: str) -> tuple[BackendRun, TraceView | None]:
             i = info.get(name)
             if i is not None and not i.usable:
                 return BackendRun(name, results.ERROR, f"backend unavailable: {i.unavailable}"), None
             run, view = run_backend(scene, name, settings, folder, timeout)
-            run.version = i.version if i is not None else None
+            if i is not None:
+                run.version, run.integration = i.version, i.integration
             return run, view
-        return verdicts.run_many([lambda b=b: one(b) for b in backends], jobs)
+        return verdicts.run_many([lambda b=b: one(b) for b in backends], jobs, progress)

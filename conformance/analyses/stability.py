@@ -37,10 +37,12 @@ engines were given: a stability figure measures what an engine made of its own i
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
 import os
 import re
+import shutil
 import tempfile
 import time
 from collections.abc import Sequence
@@ -49,6 +51,7 @@ from typing import ClassVar, Protocol
 
 import numpy as np
 
+from x3d_core import atomic
 from x3d_core import rotation as R
 from x3d_core.load import load
 from x3d_core.trace import read_view
@@ -63,6 +66,8 @@ from x3d_core.trace import TraceView
 SCENES = os.path.join(ROOT, "scenes", "stability")
 DEFAULT_DTS = (1 / 60, 1 / 240)
 DEFAULT_TIMEOUT = children.DEFAULT_TIMEOUT
+
+TRACES = "traces"  # the folder, under the output folder, of the traces the results cite
 
 SURVIVED, STOPPED = "survived", "stopped"
 ENERGY, MOMENTUM, JOINT, DRIFT, TUNNELLED = ("energy grew past bound", "momentum drifted past bound",
@@ -333,10 +338,12 @@ class StabilityResult:
     reason: str = ""
     figures: list[Figure] = field(default_factory=list)
     wall_s: float = 0.0
+    trace: str | None = None  # the run's trace, kept: its path relative to the output folder (run_one)
 
     def to_json(self) -> dict:
         return {"case": self.case, "backend": self.backend, "dt": self.dt, "verdict": self.verdict, "at": self.at,
-                "reason": self.reason, "wall_s": round(self.wall_s, 3), "figures": [f.to_json() for f in self.figures]}
+                "reason": self.reason, "wall_s": round(self.wall_s, 3), "figures": [f.to_json() for f in self.figures],
+                "trace": self.trace}
 
 
 def judge(case: HardCase, view: TraceView, m: Model) -> tuple[str, float | None, str, list[Figure]]:
@@ -360,30 +367,46 @@ def judge(case: HardCase, view: TraceView, m: Model) -> tuple[str, float | None,
 _BLEW_UP_AT = re.compile(r"blew up (?:at|by) t=([-+0-9.eE]+)")
 
 
-def run_one(case: HardCase, backend: str, dt: float, timeout: float = DEFAULT_TIMEOUT) -> StabilityResult:
-    """One (case, backend, dt) in a child process (children.run_child), judged here."""
-    started = time.perf_counter()
+def trace_name(case: str, backend: str, dt: float) -> str:
+    """Where run_one keeps a run's trace, relative to the output folder: traces/CASE-BACKEND-DT.csv
+    (the step as dt_label writes it, '/' as '_')."""
+    return f"{TRACES}/{case}-{backend}-{results.dt_label(dt).replace('/', '_')}.csv"
 
+
+def _keep(trace: str, out: str, name: str, wanted: bool) -> str | None:
+    """The trace copied whole to out/NAME where wanted and the run left one: NAME, else None.
+    A trace an earlier run left under NAME is removed, so that the folder holds only the
+    traces the results cite."""
+    dest = os.path.join(out, name)
+    if wanted and os.path.exists(trace):
+        os.makedirs(os.path.dirname(dest), exist_ok=True)
+        with atomic.replacing(dest) as part:
+            shutil.copyfile(trace, part)
+        return name
+    with contextlib.suppress(FileNotFoundError):
+        os.unlink(dest)
+    return None
+
+
+def _judged(case: HardCase, backend: str, dt: float, path: str, timeout: float) -> StabilityResult:
+    """The child's run with its trace at path, and its verdict."""
     def result(verdict: str, reason: str = "", at: float | None = None,
                figures: list[Figure] | None = None) -> StabilityResult:
-        return StabilityResult(case.name, backend, dt, verdict, at, reason, figures or [],
-                               time.perf_counter() - started)
+        return StabilityResult(case.name, backend, dt, verdict, at, reason, figures or [])
 
-    if not os.path.exists(case.path):
-        return result(results.ERROR, f"no scene file {case.path}")
-    with tempfile.TemporaryDirectory(prefix="x3drbp-stab-") as tmp:
-        path = os.path.join(tmp, "trace.csv")
-        out = children.run_child(case.path, backend, Settings(case.duration, dt), path, timeout)
-        if out.verdict == results.BLEW_UP:
-            hit = _BLEW_UP_AT.search(out.reason)  # the reason less the child's "SCENE: BACKEND: "
-            return result(results.BLEW_UP, out.reason[hit.start():] if hit else out.reason,
-                          float(hit.group(1)) if hit else None)
-        if out.verdict is not None:
-            return result(out.verdict, out.reason)
-        try:
-            view = read_view(path)
-        except (OSError, ValueError) as e:
-            return result(results.ERROR, f"unreadable trace: {e}")
+    out = children.run_child(case.path, backend, Settings(case.duration, dt), path, timeout)
+    if out.verdict == results.BLEW_UP:
+        # the reason less the child's "SCENE: BACKEND: " and where it wrote the frames before (a
+        # temporary file: the result names the trace where it is kept)
+        reason = out.reason.replace(f" (the frames before it written to {path})", "")
+        hit = _BLEW_UP_AT.search(reason)
+        return result(results.BLEW_UP, reason[hit.start():] if hit else reason, float(hit.group(1)) if hit else None)
+    if out.verdict is not None:
+        return result(out.verdict, out.reason)
+    try:
+        view = read_view(path)
+    except (OSError, ValueError) as e:
+        return result(results.ERROR, f"unreadable trace: {e}")
     try:
         verdict, at, reason, figures = judge(case, view, model(case.path))
     except (KeyError, ValueError, IndexError) as e:
@@ -392,9 +415,28 @@ def run_one(case: HardCase, backend: str, dt: float, timeout: float = DEFAULT_TI
     return result(verdict, reason, at, figures)
 
 
+def run_one(case: HardCase, backend: str, dt: float, timeout: float = DEFAULT_TIMEOUT,
+            out: str | None = None) -> StabilityResult:
+    """One (case, backend, dt) in a child process (children.run_child), judged here. With `out`
+    (the output folder), the trace of a run that did not hold is kept there (trace_name) and
+    the result names it: the table's reasons link the frames they speak of."""
+    started = time.perf_counter()
+    if not os.path.exists(case.path):
+        return StabilityResult(case.name, backend, dt, results.ERROR, reason=f"no scene file {case.path}",
+                               wall_s=time.perf_counter() - started)
+    with tempfile.TemporaryDirectory(prefix="x3drbp-stab-") as tmp:
+        path = os.path.join(tmp, "trace.csv")
+        r = _judged(case, backend, dt, path, timeout)
+        if out is not None:
+            r.trace = _keep(path, out, trace_name(case.name, backend, dt), r.verdict not in HELD)
+    r.wall_s = time.perf_counter() - started
+    return r
+
+
 def run_suite(cases: Sequence[HardCase], backends: Sequence[str], dts: Sequence[float],
-              timeout: float = DEFAULT_TIMEOUT, workers: int | None = None) -> list[StabilityResult]:
-    """Every case on every backend at every dt, in parallel; results case-, then dt-, then
-    backend-major."""
-    return verdicts.run_many([lambda c=c, b=b, dt=dt: run_one(c, b, dt, timeout)
-                            for c in cases for dt in dts for b in backends], workers)
+              timeout: float = DEFAULT_TIMEOUT, workers: int | None = None, out: str | None = None,
+              progress: bool = False) -> list[StabilityResult]:
+    """Every case on every backend at every dt, in parallel (`out` and `progress` as run_one
+    and verdicts.run_many take them); results case-, then dt-, then backend-major."""
+    return verdicts.run_many([lambda c=c, b=b, dt=dt: run_one(c, b, dt, timeout, out)
+                              for c in cases for dt in dts for b in backends], workers, progress)

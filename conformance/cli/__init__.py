@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import importlib.metadata
 import os
 import select
 import sys
+import tomllib
 
 from conformance.cli.advise import add_command as add_advise
 from conformance.cli.check import add_command as add_check
@@ -56,9 +58,42 @@ def _say(line: str) -> None:
         pass
 
 
+PYPROJECT = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                         "pyproject.toml")
+
+
+def version() -> str:
+    """x3drbp's version: the installed distribution's, else (a source tree run without
+    installing) pyproject.toml's."""
+    try:
+        return importlib.metadata.version("x3drbp")
+    except importlib.metadata.PackageNotFoundError:
+        pass
+    try:
+        with open(PYPROJECT, "rb") as f:
+            return str(tomllib.load(f)["project"]["version"])
+    except (OSError, KeyError, tomllib.TOMLDecodeError) as e:
+        return f"unknown (not installed, and {PYPROJECT} gives none: {type(e).__name__})"
+
+
+class _Version(argparse.Action):
+    """--version: `x3drbp VERSION` on stdout, exit 0; looked up only when asked (every `x3drbp
+    run` child parses its options)."""
+
+    def __init__(self, option_strings: list[str], dest: str = argparse.SUPPRESS) -> None:
+        super().__init__(option_strings, dest, nargs=0, default=argparse.SUPPRESS,
+                         help="print x3drbp's version and exit")
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: object,
+                 option_string: str | None = None) -> None:
+        print(f"x3drbp {version()}")
+        parser.exit()
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
         prog="x3drbp", description="Conformance and comparison suite for the X3D RigidBodyPhysics component.")
+    parser.add_argument("--version", action=_Version)
     sub = parser.add_subparsers(dest="command", required=True)
     add_check(sub)
     add_advise(sub)

@@ -2,6 +2,7 @@
 
     x3drbp compare SCENE [--backends LIST] [--duration S] [--dt S] [--frame-rate HZ]
                    [--threshold KIND=VALUE] [--json OUT.json] [--rerun OUT.rrd] [--timeout S] [--jobs N]
+                   [-q | -v]
 
 Runs the scene on each backend, each in its own child process with a time limit (a
 crash, timeout, blow-up or refusal is that backend's verdict), then compares every pair
@@ -12,7 +13,10 @@ real-time factor. Prints the tables; --json writes all of it, the per-frame seri
 --rerun a rerun recording of every run side by side with the divergence series
 (reports/rerun_recording.py), and the seconds it took on stderr.
 
-The scene's warnings are printed once on stderr, before any run. Exit status: 0 when at
+The scene's warnings are printed once on stderr, before any run; what each backend
+approximates of it, once per backend after the runs (-v: every run's notes, one per
+approximated use; -q: none). While the runs go, a bar of runs done is drawn on stderr where
+it is a terminal (not with -q). Exit status: 0 when at
 least one pair was compared, whatever the divergences (they are results); 1 when nothing
 could be compared: the scene does not load (each error one line), it has nothing to
 simulate (no enabled RigidBody in an enabled RigidBodyCollection: one line), or fewer than
@@ -67,7 +71,8 @@ def cmd_compare(args: argparse.Namespace) -> int:
     if len(backends) < 2:
         return _usage(f"needs two backends or more to compare, got {', '.join(backends) or 'none'}")
     settings = Settings(args.duration, args.dt, args.frame_rate)
-    runs = run_backends(args.scene, backends, settings, info, args.timeout, args.jobs)
+    with children.notes_shown(options.verbosity(args)):
+        runs = run_backends(args.scene, backends, settings, info, args.timeout, args.jobs, options.progress(args))
     result = Comparison(args.scene, args.duration, args.dt, args.frame_rate, thresholds,
                         [r for r, _ in runs], compare_all(runs, thresholds))
     sys.stdout.write(render(result))
@@ -103,4 +108,5 @@ def add_command(sub) -> None:
                    help=f"time limit per run in seconds (default {children.DEFAULT_TIMEOUT:g})")
     p.add_argument("--jobs", type=options.count, default=1, metavar="N",
                    help="runs in parallel (default 1: runs that share cores skew each other's real-time factor)")
+    options.add_run_verbosity(p)
     p.set_defaults(func=cmd_compare)

@@ -1,7 +1,7 @@
 """`x3drbp conformance`: every conformance case on every backend, as a matrix.
 
     x3drbp conformance [--backends LIST] [--cases NAMES] [--out DIR] [--convergence]
-                       [--timeout S] [--jobs N] [--keep-traces]
+                       [--timeout S] [--jobs N] [--keep-traces] [-q | -v]
 
 Writes DIR/matrix.md and DIR/matrix.json (DIR defaults to out/conformance) and prints the
 markdown. Exit status 0 whatever the verdicts (they are results, not errors); 2 on bad
@@ -9,6 +9,10 @@ usage (an unknown case or backend name); 130 or 143 when interrupted by SIGINT o
 (every run stopped, one line). With --convergence it also runs each closed-form
 case at dt = 1/60, 1/120, 1/240, 1/480 per backend and reports the error per dt and the
 fitted order (the slope of log error against log dt).
+
+While the runs go, a bar of runs done is drawn on stderr where it is a terminal (not with -q).
+What a backend approximates of a case's scene is one note per case and backend on stderr,
+after the runs, however many runs the case takes (-v: every run's notes; -q: none).
 """
 
 from __future__ import annotations
@@ -54,16 +58,19 @@ def cmd_conformance(args: argparse.Namespace) -> int:
               + "; ".join(f"{n}: {i.unavailable}" for n, i in info.items()), file=sys.stderr)
     keep = os.path.join(args.out, "traces") if args.keep_traces else None
     runnable = [b for b in backends if info[b].usable]
-    outcomes = verdicts.run_matrix(cases, runnable, args.timeout, args.jobs, keep=keep)
+    progress = options.progress(args)
+    with children.notes_shown(options.verbosity(args)):  # a case's notes once, convergence runs included
+        outcomes = verdicts.run_matrix(cases, runnable, args.timeout, args.jobs, keep, progress)
+        convergence = None
+        if args.convergence:
+            convergence = verdicts.run_convergence(cases, runnable, C.CONVERGENCE_DTS, args.timeout, args.jobs,
+                                                   progress)
     for b in backends:  # named on the command line but not installed: say so in every cell
         if not info[b].usable:
             outcomes += [results.Result(c.name, b, results.ERROR, f"backend unavailable: {info[b].unavailable}")
                         for c in cases]
     order = {(c.name, b): k for k, (c, b) in enumerate((c, b) for c in cases for b in backends)}
     outcomes.sort(key=lambda r: order[(r.case, r.backend)])
-    convergence = None
-    if args.convergence:
-        convergence = verdicts.run_convergence(cases, runnable, C.CONVERGENCE_DTS, args.timeout, args.jobs)
     text = markdown(outcomes, [(c.name, c.checks) for c in cases], backends, info, convergence)
     options.publish(args.out, "matrix", text, to_json(outcomes, cases, backends, info, convergence))
     return EXIT_OK
@@ -78,4 +85,5 @@ def add_command(sub) -> None:
     p.add_argument("--convergence", action="store_true",
                    help="also run each closed-form case at dt = 1/60, 1/120, 1/240, 1/480 and fit the order")
     p.add_argument("--keep-traces", action="store_true", help="keep every run's trace under DIR/traces")
+    options.add_run_verbosity(p)
     p.set_defaults(func=cmd_conformance)

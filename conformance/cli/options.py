@@ -16,7 +16,7 @@ from x3d_core import atomic
 
 from conformance.analyses.compare import DEFAULT_THRESHOLDS, UNITS
 from conformance.results import BackendInfo
-from conformance.runner import probe
+from conformance.runner import children, probe
 
 
 def names(values: list[str] | None) -> list[str]:
@@ -93,6 +93,31 @@ def add_run_settings(p: argparse.ArgumentParser) -> None:
     p.add_argument("--duration", type=float, default=1.0, help="simulated seconds (default 1)")
     p.add_argument("--dt", type=float, default=1.0 / 240.0, help="physics step in seconds (default 1/240)")
     p.add_argument("--frame-rate", type=float, default=60.0, help="frames per second (default 60)")
+
+
+def add_verbosity(p: argparse.ArgumentParser, quiet: str, verbose: str) -> None:
+    """-q/--quiet and -v/--verbose, one or the other (options.verbosity reads them)."""
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("-q", "--quiet", action="store_true", help=quiet)
+    g.add_argument("-v", "--verbose", action="store_true", help=verbose)
+
+
+def add_run_verbosity(p: argparse.ArgumentParser) -> None:
+    """-q and -v of the commands that run a scene many times (compare, conformance, stability)."""
+    add_verbosity(p, "no progress bar and no notes of what the backends approximate (errors and results "
+                     "still print)",
+                  "every run's notes, one per approximated use (default: each distinct note once, "
+                  "after the runs)")
+
+
+def verbosity(args: argparse.Namespace) -> int:
+    """children.QUIET, DEFAULT or VERBOSE, from -q and -v."""
+    return children.VERBOSE if args.verbose else children.QUIET if args.quiet else children.DEFAULT
+
+
+def progress(args: argparse.Namespace) -> bool:
+    """Whether to draw a bar of runs done on stderr: for a person watching a terminal, never with -q."""
+    return not args.quiet and sys.stderr.isatty()
 
 
 def load_scene(path: str) -> Scene | None:

@@ -125,12 +125,16 @@ def cmd_run(args: argparse.Namespace) -> int:
     if loaded is None:
         return EXIT_ERROR
     scene, ws = loaded
-    refused = []
+    refused, approximated = [], {}
     for use, d in base.judged(backend, scene, ws):  # each named with its value
         if d.support is base.Support.UNSUPPORTED:
             refused.append(f"{use}: {d.note}")
         elif d.support is base.Support.APPROXIMATE:
-            print(f"{args.scene}: note: {args.backend} approximates {use}: {d.note}", file=sys.stderr)
+            approximated.setdefault(d.note, []).append(str(use))
+    if not args.quiet:
+        for note, uses in approximated.items():  # one line per approximation, or per use with -v
+            for named in ([u] for u in uses) if args.verbose else [uses]:
+                print(f"{args.scene}: note: {args.backend} approximates {', '.join(named)}: {note}", file=sys.stderr)
     if refused:
         for line in refused:
             print(f"{args.scene}: unsupported by {args.backend}: {line}", file=sys.stderr)
@@ -156,7 +160,8 @@ def cmd_run(args: argparse.Namespace) -> int:
                 ran = run(ws, clock or backend, settings)
                 simulation_s.append(time.perf_counter() - started)
                 step_s.append(clock.step_s if clock else 0.0)
-                trace = ran if k == 0 else trace
+                if k == 0:
+                    trace = ran
     except Unsupported as e:
         print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
         return EXIT_UNSUPPORTED
@@ -209,6 +214,9 @@ def add_commands(sub) -> None:
     r.add_argument("--repeat", type=options.count, default=1, metavar="N",
                    help="run the simulation N times, for --timing's medians and spread (the trace, recording "
                    "and verdict are the first run's: a run is deterministic; default 1)")
+    options.add_verbosity(r, "print no notes of what the backend approximates (errors, refusals and the "
+                             "scene's warnings still print)",
+                          "a note per approximated use (default: one per approximation, naming its uses)")
     r.set_defaults(func=cmd_run)
     b = sub.add_parser("backends", help="list the registered backends (entry point group x3drbp.backends), their "
                       "engine versions and declared features")

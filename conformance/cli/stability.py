@@ -1,7 +1,7 @@
 """`x3drbp stability`: the hard cases on every backend at every step size.
 
     x3drbp stability [--backends LIST] [--cases NAMES] [--dts 1/60,1/240,1/1000] [--out DIR]
-                     [--timeout S] [--jobs N]
+                     [--timeout S] [--jobs N] [-q | -v]
 
 Writes DIR/stability.json and DIR/stability.md (DIR defaults to out/stability) and prints the
 markdown. Each (case, backend, dt) runs in its own child process under the time limit; its
@@ -10,6 +10,13 @@ bound, momentum drifted past bound, joint drifted past bound, drifted past bound
 blew up), or unsupported, crashed, timed out, error. Exit status 0 whatever the verdicts
 (they are results, not errors); 2 on bad usage; 130 or 143 when interrupted by SIGINT or
 SIGTERM (every run stopped, one line).
+
+The trace of each run that did not hold and left one (it broke a bound, or blew up: the frames
+before) is kept as DIR/traces/CASE-BACKEND-DT.csv (DT as 1_240), which the table's reasons
+link; a trace there from an earlier run of a (case, backend, dt) that now holds or left none is
+removed. While the runs go, a bar of runs done is drawn on stderr where it is a terminal (not
+with -q). What a backend approximates of a case's scene is one note per case and backend on
+stderr after the runs (-v: every run's notes; -q: none).
 """
 
 from __future__ import annotations
@@ -65,7 +72,8 @@ def cmd_stability(args: argparse.Namespace) -> int:
     runnable = [b for b in backends if info[b].usable]
     jobs = max(1, args.jobs or os.cpu_count() or 1)
     started = time.perf_counter()
-    outcomes = S.run_suite(cases, runnable, dts, args.timeout, jobs)
+    with children.notes_shown(options.verbosity(args)):
+        outcomes = S.run_suite(cases, runnable, dts, args.timeout, jobs, args.out, options.progress(args))
     wall_s = time.perf_counter() - started
     for b in backends:  # named on the command line but not installed: say so in every cell
         if not info[b].usable:
@@ -85,5 +93,7 @@ def add_command(sub) -> None:
                    help="physics steps, comma-separated, as 1/240 or 0.004 (default "
                         f"{','.join(results.dt_label(dt) for dt in S.DEFAULT_DTS)})")
     p.add_argument("--out", default=os.path.join("out", "stability"), metavar="DIR",
-                   help="folder for stability.md and stability.json (default out/stability)")
+                   help="folder for stability.md, stability.json and the traces the reasons cite (default "
+                        "out/stability)")
+    options.add_run_verbosity(p)
     p.set_defaults(func=cmd_stability)

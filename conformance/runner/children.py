@@ -10,11 +10,17 @@ of its own: the terminal's Ctrl-C reaches the parent only, and the child's proce
 the child and whatever it starts. A command wrapped in `interruptible` answers SIGINT and
 SIGTERM by stopping them all (`stop`: each group SIGTERM, then SIGKILL), and exits
 128 + the signal with one line.
+
+A run's notes of what its backend approximates (`SCENE: note: BACKEND approximates ...`, on
+its stderr) are said by the command that ran it, once each, not by every child: inside
+`notes_shown` run_child hands them on, and they are printed when the block ends; outside it
+the child is told -q and says none.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import functools
 import multiprocessing
 import os
@@ -23,8 +29,8 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
 
 from conformance.results import BLEW_UP, CRASHED, ERROR, TIMED_OUT, UNSUPPORTED, Settings
 
@@ -34,6 +40,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 GRACE = 2.0  # s a child has to end on SIGTERM (X_ITE's node closes its browser) before SIGKILL
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
 SLICE = 0.2  # s: the longest a wait on a child goes without running the handler of a signal (_communicate)
+QUIET, DEFAULT, VERBOSE = -1, 0, 1  # how much a command says of its runs' notes (options.verbosity)
 
 _live: set[subprocess.Popen] = set()  # children running now (add, discard and copy are atomic under the GIL)
 _signal: int | None = None  # the signal that stopped this process's children: none starts after it
@@ -250,19 +257,63 @@ def interruptible(command: Callable[[argparse.Namespace], int]) -> Callable[[arg
     return run
 
 
+@dataclass
+class Notes:
+    """The notes the runs of one command gave, printed once it has run them: each distinct
+    line once (DEFAULT), every run's every line (VERBOSE: the runs were told -v), or none
+    (QUIET: the runs were told -q)."""
+    verbosity: int
+    lines: list[str] = field(default_factory=list)  # as the runs gave them (list.extend is atomic under the GIL)
+
+    def flag(self) -> tuple[str, ...]:
+        """What a child `x3drbp run` is told, so that it prints what this command will show."""
+        return ("-q",) if self.verbosity <= QUIET else ("-v",) if self.verbosity >= VERBOSE else ()
+
+    def show(self) -> None:
+        """On stderr, as the verbosity says (none with QUIET, should a run have said some)."""
+        if self.verbosity <= QUIET:
+            return
+        for line in self.lines if self.verbosity >= VERBOSE else sorted(set(self.lines)):
+            print(line, file=sys.stderr)
+
+
+_notes: Notes | None = None  # the command's, inside notes_shown
+
+
+@contextlib.contextmanager
+def notes_shown(verbosity: int) -> Iterator[None]:
+    """The notes of the runs started in the block (from any thread), printed on stderr when
+    it ends without an exception (after any progress bar): so that a command running a
+    scene on a backend many times says each of its notes once."""
+    global _notes
+    notes = Notes(verbosity)
+    previous, _notes = _notes, notes
+    try:
+        yield
+    finally:
+        _notes = previous
+    notes.show()
+
+
 def run_child(scene: str, backend: str, settings: Settings, trace: str,
               timeout: float = DEFAULT_TIMEOUT, extra: Sequence[str] = ()) -> Outcome:
     """`x3drbp run` (with the `extra` options) in its own process (and process group),
-    killed after `timeout` seconds."""
+    killed after `timeout` seconds. Its notes go to the command's Notes (notes_shown), never
+    into the verdict's reason."""
+    notes = _notes
     cmd = [sys.executable, "-m", "conformance.cli", "run", scene, "--backend", backend, *settings.args(),
-           "--trace", trace, *extra]
+           "--trace", trace, *(notes.flag() if notes is not None else ("-q",)), *extra]
     try:
         ended = call(cmd, timeout, stdout=False)
     except OSError as e:
         return Outcome(ERROR, f"could not start {sys.executable}: {e}")
     if ended.returncode is None:
         return classify(None, "", timed_out=True, timeout=timeout)
-    out = classify(ended.returncode, ended.stderr, backend=backend)
+    marker = f"{scene}: note: {backend} approximates "
+    said = ended.stderr.splitlines(keepends=True)
+    if notes is not None:
+        notes.lines.extend(line.rstrip("\n") for line in said if line.startswith(marker))
+    out = classify(ended.returncode, "".join(line for line in said if not line.startswith(marker)), backend=backend)
     if out.verdict is None and not os.path.exists(trace):
         return Outcome(ERROR, "the run succeeded but wrote no trace")
     return out

@@ -23,17 +23,18 @@ thread pool spares a second interpreter per pair and any pickling.
 from __future__ import annotations
 
 import os
+import sys
 import tempfile
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from typing import TypeVar
 
 from x3d_core.trace import TraceView, read_view
 
 from conformance.cases.case import Case
 from conformance.results import ERROR, Convergence, Result, Settings, judge
-from conformance.runner.children import DEFAULT_TIMEOUT, run_child
+from conformance.runner.children import DEFAULT_TIMEOUT, SLICE, run_child
 
 T = TypeVar("T")  # what run_many's jobs return
 
@@ -84,27 +85,36 @@ def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
     return result
 
 
-def run_many(jobs: Sequence[Callable[[], T]], workers: int | None = None) -> list[T]:
-    """Run independent jobs in parallel (results in the jobs' order)."""
+def run_many(jobs: Sequence[Callable[[], T]], workers: int | None = None, progress: bool = False) -> list[T]:
+    """Run independent jobs in parallel (results in the jobs' order); with `progress`, a bar
+    of jobs done on stderr (the commands ask for it where stderr is a terminal)."""
+    from tqdm import tqdm
     workers = max(1, min(workers or os.cpu_count() or 1, len(jobs) or 1))
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        return list(pool.map(lambda job: job(), jobs))
+        futures = [pool.submit(job) for job in jobs]
+        with tqdm(total=len(jobs), unit="run", file=sys.stderr, disable=not progress) as bar:
+            pending = set(futures)
+            while pending:  # in slices, as children._communicate waits: a signal is handled within one
+                done, pending = wait(pending, timeout=SLICE, return_when=FIRST_COMPLETED)
+                bar.update(len(done))
+        return [f.result() for f in futures]
 
 
 def run_matrix(cases: Sequence[Case], backends: Sequence[str], timeout: float = DEFAULT_TIMEOUT,
-               workers: int | None = None, keep: str | None = None) -> list[Result]:
+               workers: int | None = None, keep: str | None = None, progress: bool = False) -> list[Result]:
     """Every case on every backend; results case-major."""
     jobs = [(lambda c=c, b=b: run_pair(c, b, timeout, keep=keep)) for c in cases for b in backends]
-    return run_many(jobs, workers)
+    return run_many(jobs, workers, progress)
 
 
 def run_convergence(cases: Sequence[Case], backends: Sequence[str], dts: Sequence[float],
-                    timeout: float = DEFAULT_TIMEOUT, workers: int | None = None) -> list[Convergence]:
+                    timeout: float = DEFAULT_TIMEOUT, workers: int | None = None,
+                    progress: bool = False) -> list[Convergence]:
     """Each closed-form case (one with a `convergence` quantity) at every dt, per backend."""
     chosen = [c for c in cases if c.convergence]
     keys = [(c, b, dt) for c in chosen for b in backends for dt in dts]
     results = run_many([(lambda c=c, b=b, dt=dt: run_pair(c, b, timeout, settings=c.at_dt(dt)))
-                        for c, b, dt in keys], workers)
+                        for c, b, dt in keys], workers, progress)
     out = []
     for i in range(0, len(keys), len(dts)):
         c, b, _ = keys[i]
