@@ -104,8 +104,9 @@ def render(doc: dict) -> str:
     return "\n".join(out) + "\n"
 
 
-def markdown(doc: dict) -> str:
-    """advice.json as the report's section body: a table of the answers, then each scene's reasons."""
+def markdown(doc: dict, details: bool = True) -> str:
+    """advice.json as markdown: a table of the answers and the rule's settings, then (details)
+    each scene's reasons, folded."""
     s = doc["settings"]
     lines = ["| scene | kind | recommended | step | error (m) | wall s per simulated s | runner-up |",
              "|---|---|---|---|---:|---:|---|"]
@@ -122,8 +123,11 @@ def markdown(doc: dict) -> str:
                   f"{s['window']:g} s, steps {', '.join(dt_label(d) for d in s['dts'])}, runs of {s['duration']:g} s. "
                   "The rule (README, `x3drbp advise`): the fastest run within the tolerance of the scene's reference; "
                   "if none, the most accurate; only runs that fit the budget, of backends that refuse nothing "
-                  "the scene uses.", "", "<details><summary>Why, per scene</summary>", "", "```"]
-    for scene in doc["scenes"]:
-        lines += scene_lines(scene, s) + [""]
-    lines += ["```", "", "</details>"]
+                  "the scene uses."]
+    if details:
+        lines += ["", "<details><summary>Why, per scene: error, speed, agreement, approximations, the cases, "
+                      "the runners-up</summary>", "", "```"]
+        for scene in doc["scenes"]:
+            lines += scene_lines(scene, s) + [""]
+        lines += ["```", "", "</details>"]
     return "\n".join(lines) + "\n"

@@ -1,10 +1,13 @@
 """The report's page: DIR/report.md and DIR/index.html from what `x3drbp report` wrote in DIR.
 
-Reads results only. Each section is the markdown its own command rendered (headings moved
-one level down), in the order a reader asks: do the engines conform, where do they part,
-what does speed cost in error, what survives the hard cases, and what each engine
-declares against what was measured. The HTML is that markdown through Python-Markdown,
-plots shown inline, in one self-contained page beside its PNGs.
+Reads results only. The page leads with the answers (reports/summary.py: what conforms,
+which backend and step for each kind of scene, the findings), then each section is the
+markdown its own command rendered (headings moved one level down), the long tables
+folded, each plot beside what it draws: do the engines conform, which backend for which
+scene, where do they part, what does speed cost in error, what survives the hard cases,
+and what each engine declares against what was measured. The HTML is that markdown
+through Python-Markdown, in one page beside its PNGs; every link in it points at a file
+under DIR.
 """
 
 from __future__ import annotations
@@ -14,15 +17,20 @@ import html
 import json
 import os
 import re
+import urllib.parse
 
 import markdown as md
 
 from conformance.results import CONVENTIONS, PASS, UNSUPPORTED, Comparison
 from x3d_core import atomic
 
+from .advice_text import markdown as render_advice
 from .compare_text import render as render_comparison
+from .summary import answers
 from .text import escape
 from .x_ite_text import render as render_x_ite
+
+DIVERGENCE = ".divergence.png"  # beside each compare/SCENE.json, its divergence plot
 
 _STYLE = """
 body { font: 15px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 82em; padding: 0 1em; color: #222; }
@@ -33,6 +41,9 @@ tr:nth-child(even) td { background: #fafafa; }
 code { background: #f3f3f3; padding: 0 3px; }
 img { max-width: 100%; border: 1px solid #ddd; }
 h1 { border-bottom: 2px solid #444; } h2 { border-bottom: 1px solid #aaa; margin-top: 2em; }
+details { margin: 0.4em 0 1em; } summary { cursor: pointer; color: #245; }
+.side { display: flex; flex-wrap: wrap; gap: 1.2em; align-items: flex-start; }
+.side > div { flex: 1 1 34em; min-width: 0; overflow-x: auto; } .side > p { flex: 1 1 30em; margin: 0; }
 """
 _MARK = {"native": "native", "approximate": "approx.", "unsupported": "unsupported"}
 
@@ -75,8 +86,7 @@ def _cell(cell: dict) -> str:
 
 def _features(data: dict) -> str:
     backends = list(data["declared"])
-    lines = ["## Declared against measured", "",
-             "Per feature that a conformance case exercises: what each backend declares (`x3drbp backends "
+    lines = ["Per feature that a conformance case exercises: what each backend declares (`x3drbp backends "
              "--features` gives the reasons) and the verdicts there of the cases exercising it: pass, conforming "
              "in other conventions (only convention measures fail: named), not (fail, blew up, crashed, timed "
              "out, error: named) and refused (the scene needs something "
@@ -90,53 +100,100 @@ def _features(data: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _comparisons(out: str) -> str:
-    parts = ["## Where the backends part", "",
-             "Each bundled example scene on every backend, every pair compared (`x3drbp compare`): "
-             "position and orientation divergence, when it first passes the threshold and which bodies, "
-             "the worst joint output difference, and each run's real-time factor."]
+def _folded(summary: str, body: str) -> str:
+    """Markdown folded under a summary line (open it to read)."""
+    return f'<details markdown="1"><summary>{html.escape(summary)}</summary>\n\n{body.strip()}\n\n</details>\n'
+
+
+def _beside(body: str, image: str, alt: str) -> str:
+    """Markdown with its plot beside it (below it on a narrow screen)."""
+    return f'<div class="side" markdown="1">\n<div markdown="1">\n\n{body.strip()}\n\n</div>\n\n![{alt}]({image})\n\n</div>\n'
+
+
+def comparisons(out: str) -> list[tuple[str, Comparison]]:
+    """Every compare/SCENE.json in DIR, by file name: (its path without .json, the comparison)."""
+    found = []
     for path in sorted(glob.glob(os.path.join(out, "compare", "*.json"))):
         with open(path, encoding="utf-8") as f:
-            comparison = Comparison.from_json(json.load(f))
-        parts += ["", f"### {os.path.basename(comparison.scene)}", "", _section(render_comparison(comparison))]
-        rrd = os.path.basename(os.path.splitext(path)[0] + ".rrd")
+            found.append((os.path.splitext(path)[0], Comparison.from_json(json.load(f))))
+    return found
+
+
+def _comparisons(out: str, found: list[tuple[str, Comparison]]) -> str:
+    parts = ["## Where the backends part", "",
+             "Each example scene (and each of yours) on every backend, every pair compared (`x3drbp compare`): "
+             "position and orientation divergence over time (the plot), when it first passes the threshold and "
+             "which bodies, the worst joint output difference, and each run's real-time factor (the tables)."]
+    for stem, comparison in found:
+        name = os.path.basename(stem)
+        text = _folded(f"{os.path.basename(comparison.scene)}: the tables", _section(render_comparison(comparison)))
+        rrd = name + ".rrd"
         parted = any(d.first_over is not None for p in comparison.pairs for d in (p.position, p.orientation))
         if parted and os.path.exists(os.path.join(out, "compare", rrd)):
-            parts.append(f"Where they part, as a rerun recording: [{rrd}](compare/{rrd}) (open it with `rerun {rrd}`).")
+            text += f"\nWhere they part, as a rerun recording: [{rrd}](compare/{rrd}) (open it with `rerun {rrd}`).\n"
+        plot = f"compare/{name}{DIVERGENCE}"
+        body = _beside(text, plot, f"{name}: divergence over time") if os.path.exists(os.path.join(out, plot)) else text
+        parts += ["", f"### {os.path.basename(comparison.scene)}", "", body]
     return "\n".join(parts) + "\n"
 
 
-def _header(meta: dict) -> str:
+def _sweep(out: str) -> str:
+    """The sweep's markdown, each scene's fronts beside its plot, the notes before them folded."""
+    sweep = _read(os.path.join(out, "sweep", "sweep.md"))
+    if not sweep:
+        return "## Speed against error\n\nNot run (`x3drbp report --quick` leaves it out).\n"
+    head, *scenes = re.split(r"^(?=### )", _section(sweep, "sweep"), flags=re.M)
+    parts = ["## Speed against error", "", _folded("What is measured, and how", head)]
+    for chunk in scenes:
+        title, _, body = chunk.partition("\n")
+        name = title[4:].strip()
+        plot = f"sweep/sweep_{name}.png"
+        parts += [title, "", _beside(body, plot, f"{name}: error against speed")
+                  if os.path.exists(os.path.join(out, plot)) else body]
+    return "\n".join(parts) + "\n"
+
+
+def _logs(meta: dict, out: str) -> str:
+    steps = [k for k in meta["timings_s"] if k != "total" and os.path.exists(os.path.join(out, "logs", f"{k}.log"))]
+    return "Each step's log: " + ", ".join(f"[{k}](logs/{k}.log)" for k in steps) + "." if steps else ""
+
+
+def _header(meta: dict, out: str) -> str:
     t = meta["timings_s"]
     steps = ", ".join(f"{k} {v:g} s" for k, v in t.items() if k != "total")
-    failed = f" Steps that could not run: {', '.join(meta['failed'])} (see logs/)." if meta["failed"] else ""
+    failed = f" Steps that could not run: {', '.join(meta['failed'])} (see their logs)." if meta["failed"] else ""
+    yours = (f" Your scenes: {', '.join(f'`{s}`' for s in meta['scenes'])}." if meta.get("scenes") else "")
     return "\n".join([
         "# x3drbp report", "",
-        f"Generated {meta['generated']} on {meta['cpus']} CPUs in {t['total']:g} s ({steps}).{failed}", "",
+        f"Generated {meta['generated']} on {meta['cpus']} CPUs in {t['total']:g} s ({steps}).{failed}{yours}", "",
         "Backends: " + "; ".join(f"{b} {v}" for b, v in meta["backends"].items()), "",
-        "Sections: [conformance](#conformance), [comparisons](#where-the-backends-part), "
+        "Sections: [answers](#answers), [conformance](#conformance), "
+        "[which backend for which scene](#which-backend-for-which-scene), [comparisons](#where-the-backends-part), "
         "[speed against error](#speed-against-error), [stability](#stability), "
         "[declared against measured](#declared-against-measured)"
         + (", [X_ITE](#x_ite)" if "x_ite" in t else "") + ". Every number comes from the JSON files "
-        "beside this page."]) + "\n"
+        "beside this page. " + _logs(meta, out)]) + "\n"
 
 
 def report_markdown(out: str) -> str:
     with open(os.path.join(out, "report.json"), encoding="utf-8") as f:
         meta = json.load(f)
-    parts = [_header(meta)]
+    found = comparisons(out)
+    parts = [_header(meta, out), answers(out, [c for _, c in found])]
     matrix = _read(os.path.join(out, "conformance", "matrix.md"))
-    parts.append("## Conformance\n\n" + (_section(matrix, "conformance") if matrix else "Not run.\n"))
-    parts.append(_comparisons(out))
-    sweep = _read(os.path.join(out, "sweep", "sweep.md"))
-    body = _section(sweep, "sweep") if sweep else "Not run (`x3drbp report --quick` leaves it out).\n"
-    plots = sorted(glob.glob(os.path.join(out, "sweep", "sweep_*.png")))
-    shown = "\n".join(f"![{os.path.basename(p)}](sweep/{os.path.basename(p)})" for p in plots)
-    parts.append("## Speed against error\n\n" + body + ("\n" + shown + "\n" if shown else ""))
+    parts.append("## Conformance\n\n" + (_folded("The matrix: every case on every backend, and why each verdict",
+                                                   _section(matrix, "conformance")) if matrix else "Not run.\n"))
+    advice = _read(os.path.join(out, "advice", "advice.json"))
+    parts.append("## Which backend for which scene\n\n" + (render_advice(json.loads(advice)) if advice else "Not run.\n"))
+    parts.append(_comparisons(out, found))
+    parts.append(_sweep(out))
     stability = _read(os.path.join(out, "stability", "stability.md"))
-    parts.append("## Stability\n\n" + (_section(stability, "stability") if stability else "Not run.\n"))
+    parts.append("## Stability\n\n" + (_folded("The hard cases on every backend, at each step, and why",
+                                                _section(stability, "stability")) if stability else "Not run.\n"))
     table = _read(os.path.join(out, "features.json"))
-    parts.append(_features(json.loads(table)) if table else "## Declared against measured\n\nNot run.\n")
+    parts.append("## Declared against measured\n\n" + (_folded("Every feature a case exercises, per backend",
+                                                                _features(json.loads(table)))
+                                                        if table else "Not run.\n"))
     x_ite = _read(os.path.join(out, "x_ite", "x_ite.json"))
     if x_ite:  # `x3drbp report --x-ite` only
         matrix_json = _read(os.path.join(out, "conformance", "matrix.json"))
@@ -145,11 +202,29 @@ def report_markdown(out: str) -> str:
     return "\n".join(parts)
 
 
+_LINK = re.compile(r"""(?:href|src)=["']([^"'#]+)(?:#[^"']*)?["']""")
+
+
+def dead_links(out: str, page: str) -> list[str]:
+    """The page's links (href, src) that point at no file under out: none may."""
+    targets = dict.fromkeys(html.unescape(m.group(1)) for m in _LINK.finditer(page))
+    return [t for t in targets if not re.match(r"[a-z][a-z0-9+.-]*:", t)
+            and not os.path.exists(os.path.join(out, urllib.parse.unquote(t)))]
+
+
+def write_plots(out: str) -> None:
+    """Each comparison's divergence plot beside its JSON (matplotlib: only where a page is written)."""
+    from .divergence_plot import divergence_plot
+    for stem, comparison in comparisons(out):
+        divergence_plot(comparison, stem + DIVERGENCE)
+
+
 def write_report(out: str) -> str:
-    """Writes DIR/report.md and DIR/index.html; returns the page's path."""
+    """Writes DIR/report.md and DIR/index.html (and the comparisons' plots); returns the page's path."""
+    write_plots(out)
     text = report_markdown(out)
     atomic.write_text(os.path.join(out, "report.md"), text)
-    body = md.markdown(text, extensions=["tables", "toc"])
+    body = md.markdown(text, extensions=["tables", "toc", "md_in_html"])
     page = os.path.join(out, "index.html")
     atomic.write_text(page, "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
                             f"<title>{html.escape('x3drbp report')}</title><style>{_STYLE}</style></head>\n"

@@ -5,15 +5,17 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 
 import pytest
 
 from backends import base
-from conftest import ROOT, SCENES
+from conftest import ROOT, SCENES, case_scene
 from conformance.cli import report as R
-from reports.report_page import report_markdown
+from conformance.results import dt_label
+from reports.report_page import dead_links, report_markdown
 
 INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
 needs_two = pytest.mark.skipif(len(INSTALLED) < 2, reason="a report compares two installed backends or more")
@@ -56,8 +58,15 @@ def _fake_results(out) -> None:
     (out / "conformance").mkdir(parents=True)
     (out / "conformance" / "matrix.md").write_text("# x3drbp conformance\n\n| case | a |\n|---|---|\n| free_fall | "
                                                    "pass |\n\n## Measures\n\nsee [traces](traces/x.csv)\n")
+    (out / "conformance" / "matrix.json").write_text(json.dumps({"results": [
+        {"case": c, "backend": b, "verdict": v} for c, b, v in (("free_fall", "a", "pass"), ("incline", "a", "fail"),
+                                                                 ("free_fall", "b", "pass"), ("incline", "b", "pass"))]}))
     (out / "stability").mkdir()
     (out / "stability" / "stability.md").write_text("# x3drbp stability\n\n| case | dt | a |\n|---|---|---|\n")
+    (out / "stability" / "stability.json").write_text(json.dumps({"results": [
+        {"case": c, "backend": b, "dt": dt, "verdict": v} for c, b, dt, v in (
+            ("wall", "a", 0.1, "tunnelled"), ("wall", "b", 0.1, "tunnelled"), ("wall", "b", 0.01, "tunnelled"),
+            ("chain", "a", 0.1, "survived"), ("chain", "b", 0.1, "blew up"), ("chain", "c", 0.1, "unsupported"))]}))
     (out / "compare").mkdir()
     feature = {"feature": "RigidBody.mass", "backends": {
         "a": {"support": "native", "note": "", "cases": [{"case": "c1", "verdict": "fail"}]},
@@ -78,6 +87,13 @@ def test_the_page_gathers_each_section_from_the_files_alone(tmp_path):
     assert "Not run (`x3drbp report --quick` leaves it out)" in text  # no sweep
     assert "| RigidBody.mass | **native: 0 pass, 1 not (c1)** | approx.: 0 pass, 1 refused |" in text
     assert "| a | 3 | 1 | 0 |" in text
+    answers = text[text.index("## Answers"):text.index("## Conformance")]
+    assert "- **a**: 1 of 2 cases pass; 1 fail" in answers and "- **b**: 2 of 2 cases pass" in answers
+    # a hard case that ended alike everywhere is a finding; one that did not is not
+    assert "wall: tunnelled on every backend that ran it, at every step" in answers and "chain:" not in answers
+    assert "runs that held: a 1 of 2, b 0 of 3" in answers
+    assert "a declares RigidBody.mass native; not passing: c1" in answers
+    assert '<details markdown="1"><summary>The matrix' in text  # the long tables folded
 
 
 @needs_two
@@ -86,24 +102,57 @@ def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys
     pair = ",".join(INSTALLED[:2])
     out = str(tmp_path / "report")
 
-    def small(out_dir, backends, quick, x_ite):
+    yours = tmp_path / "mine"
+    yours.mkdir()
+    shutil.copy(case_scene("free_fall"), yours / "drop.x3d")
+
+    def small(out_dir, backends, quick, x_ite, scenes):
         chosen = ["--backends", ",".join(backends)]
+        pendulum = os.path.join(SCENES, "examples", "pendulum.x3d")
+        assert scenes == [str(yours / "drop.x3d")]  # --scenes, found in the folder
         return [("conformance", [["conformance", *chosen, "--cases", "free_fall", "--out",
                                    os.path.join(out_dir, "conformance")]]),
-                ("compare", [["compare", os.path.join(SCENES, "examples", "pendulum.x3d"), *chosen, "--duration",
-                              "0.5", "--json", os.path.join(out_dir, "compare", "pendulum.json")]]),
+                ("compare", [["compare", path, *chosen, "--duration", "0.5", "--json",
+                              os.path.join(out_dir, "compare", f"{stem}.json")]
+                             for path, stem in zip([pendulum, *scenes], R.stems([pendulum, *scenes]))]),
+                ("advise", [["advise", pendulum, *scenes, *chosen, "--dts", "1/60,1/240", "--duration", "0.5",
+                             "--repeats", "1", "-q", "--verdicts", os.path.join(out_dir, "conformance", "matrix.json"),
+                             "--json", os.path.join(out_dir, "advice", "advice.json")]]),
                 ("stability", [["stability", *chosen, "--cases", "four_bar_linkage", "--dts", "1/60", "--out",
                                 os.path.join(out_dir, "stability")]])]
     monkeypatch.setattr(R, "_steps", small)
     from conformance.cli import main
-    assert main(["report", "--out", out, "--backends", pair]) == 0
+    assert main(["report", "--out", out, "--backends", pair, "--scenes", str(yours)]) == 0
+    assert "links to" not in capsys.readouterr().err  # the command found no dead link
     page = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     assert page.startswith("<!DOCTYPE html>") and page.count("<table>") >= 5
+    assert dead_links(out, page) == [] and "compare/pendulum.divergence.png" in page
     text = open(os.path.join(out, "report.md"), encoding="utf-8").read()
-    assert "| free_fall |" in text and "### pendulum.x3d" in text and "four_bar_linkage" in text
+    assert "| free_fall |" in text and "### pendulum.x3d" in text and "### drop.x3d" in text
+    assert "four_bar_linkage" in text and "[stability](logs/stability.log)" in text
+    # the first section answers: what conforms, and a backend and step for each scene, yours included
+    answers = text[text.index("## Answers"):text.index("## Conformance")]
+    assert f"**{INSTALLED[0]}**: " in answers and "of 1 cases pass" in answers
+    advice = json.load(open(os.path.join(out, "advice", "advice.json"), encoding="utf-8"))
+    for scene in advice["scenes"]:
+        best = scene["recommended"]
+        assert best is not None and f"| {best['backend']} | {dt_label(best['dt'])} |" in answers
+    assert "drop.x3d" in answers and "free bodies" in answers
     meta = json.load(open(os.path.join(out, "report.json"), encoding="utf-8"))
-    assert set(meta["timings_s"]) == {"conformance", "compare", "stability", "total"} and not meta["failed"]
+    assert set(meta["timings_s"]) == {"conformance", "compare", "advise", "stability", "total"}
+    assert not meta["failed"] and meta["scenes"] == [os.path.relpath(yours / "drop.x3d")]
     assert "$ x3drbp conformance" in open(os.path.join(out, "logs", "conformance.log"), encoding="utf-8").read()
+
+
+def test_scenes_that_share_a_stem_get_their_own_results():
+    assert R.stems(["a/x.x3d", "b/x.x3dv", "c/y.x3d", "d/x.x3d"]) == ["x", "x-2", "y", "x-3"]
+
+
+def test_a_link_to_a_missing_file_is_found(tmp_path):
+    (tmp_path / "here.png").write_bytes(b"")
+    page = ("<a href='here.png'>x</a> <img src=\"gone.png\"> <a href='#answers'>a</a> "
+            "<a href='https://example.org/'>e</a> <a href='here.png#frag'>f</a>")
+    assert dead_links(str(tmp_path), page) == ["gone.png"]
 
 
 def test_bad_usage_is_exit_2_without_a_traceback(tmp_path):

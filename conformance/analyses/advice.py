@@ -27,7 +27,7 @@ would cost or lose against the recommendation.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -37,7 +37,6 @@ from x3d_core.analysis import run_features
 from x3d_core.model import Scene
 
 from conformance import cases as C
-from conformance import expectations
 from conformance.results import PASS
 from conformance.runner import children, probe
 from conformance.analyses import sweep as S
@@ -84,16 +83,14 @@ print("x3drbp-answer " + json.dumps(out))
 """
 
 
-def judge(paths: Sequence[str], backends: Sequence[str], verdicts: dict[tuple[str, str], str] | None,
+def judge(paths: Sequence[str], backends: Sequence[str], verdict: Callable[[str, str], str],
           timeout: float) -> tuple[dict[str, dict[str, Judged]] | None, str]:
     """Per scene and backend, what the backend makes of it, asked in a child (the judgement
-    needs each engine's module); verdicts: (case, backend) -> verdict measured, else the pins
-    (conformance/expectations, which the tests hold equal to what is measured)."""
+    needs each engine's module); verdict(case, backend): a case's verdict, measured or pinned."""
     answer, why = probe.ask(_JUDGED, [",".join(backends), *paths], timeout, "the judgement's child")
     if answer is None:
         return None, why
     exercised = C.exercising()
-    pinned = {b: expectations.load(b) for b in backends} if verdicts is None else {}
     out: dict[str, dict[str, Judged]] = {}
     for path, per_backend in answer.items():
         out[path] = {}
@@ -106,12 +103,11 @@ def judge(paths: Sequence[str], backends: Sequence[str], verdicts: dict[tuple[st
                        approximated=[f"{', '.join(us)}: {note}" for note, us in approximated.items()])
             cases = dict.fromkeys(c for _, feature, _, _ in uses for c in exercised.get(feature, ()))
             for case in cases:
-                verdict = (verdicts.get((case, b), "not run") if verdicts is not None
-                           else pinned[b][case].verdict if case in pinned[b] else PASS)
-                if verdict == PASS:
+                said = verdict(case, b)
+                if said == PASS:
                     j.passing += 1
                 else:
-                    j.failing[case] = verdict
+                    j.failing[case] = said
             out[path][b] = j
     return out, ""
 

@@ -38,7 +38,7 @@ import os
 import sys
 from collections.abc import Sequence
 from concurrent.futures import FIRST_COMPLETED, wait
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 from conformance import cases as C
 from conformance import results
@@ -103,9 +103,11 @@ def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_
         label = name if case is not None else os.path.splitext(os.path.basename(path))[0]
         out.append(Target(label, _relative(path), fine, None,
                           f"max |position - reference position| over the first {window:g} s", window))
-    names_seen = [t.name for t in out]
-    if len(set(names_seen)) != len(names_seen):
-        raise ValueError(f"two targets share a name: {', '.join(names_seen)}")
+    seen: dict[str, int] = {}
+    for k, t in enumerate(out):  # two scene files of one stem: numbered, as their plots are named after them
+        seen[t.name] = seen.get(t.name, 0) + 1
+        if seen[t.name] > 1:
+            out[k] = replace(t, name=f"{t.name}-{seen[t.name]}")
     return out
 
 

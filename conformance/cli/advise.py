@@ -27,12 +27,15 @@ import datetime
 import json
 import sys
 import time
+from collections.abc import Callable
 
 from reports.advice_text import render
 from x3d_core import atomic
 from x3d_core.paths import scene_files
 
+from conformance import expectations
 from conformance.cli import options
+from conformance.results import PASS
 from conformance.cli.run import scene_to_run
 from conformance.cli.sweep import plans, steps
 from conformance.runner import children
@@ -47,8 +50,8 @@ def _usage(message: str) -> int:
     return EXIT_USAGE
 
 
-def _verdicts(path: str | None) -> dict[tuple[str, str], str] | None:
-    """(case, backend) -> verdict from a conformance matrix.json; None: the pins. ValueError
+def _matrix(path: str | None) -> dict[tuple[str, str], str] | None:
+    """(case, backend) -> verdict from a conformance matrix.json (None without one); ValueError
     naming the file where it is not one."""
     if path is None:
         return None
@@ -59,11 +62,20 @@ def _verdicts(path: str | None) -> dict[tuple[str, str], str] | None:
         raise ValueError(f"--verdicts {path}: not a conformance matrix.json ({type(e).__name__}: {e})") from None
 
 
+def _verdict(matrix: dict[tuple[str, str], str] | None, backends: list[str]) -> Callable[[str, str], str]:
+    """A case's verdict on a backend: the matrix's, else the pinned one (conformance/expectations,
+    which the tests hold equal to what a run measures)."""
+    if matrix is not None:
+        return lambda case, backend: matrix.get((case, backend), "not run")
+    pinned = {b: expectations.load(b) for b in backends}
+    return lambda case, backend: pinned[backend][case].verdict if case in pinned[backend] else PASS
+
+
 @children.interruptible
 def cmd_advise(args: argparse.Namespace) -> int:
     try:
         dts = steps(args.dts, A.DEFAULT_DTS)
-        verdicts = _verdicts(args.verdicts)
+        matrix = _matrix(args.verdicts)
     except ValueError as e:
         return _usage(str(e))
     files = scene_files(args.paths)
@@ -86,7 +98,12 @@ def cmd_advise(args: argparse.Namespace) -> int:
     if not planned:
         return EXIT_SCENE
     started = time.perf_counter()
-    judged, why = A.judge(list(scenes), list(planned), verdicts, args.timeout)
+    try:
+        verdict = _verdict(matrix, list(planned))
+    except ValueError as e:  # a pin file that does not parse: its path and entry
+        print(f"x3drbp advise: {e}", file=sys.stderr)
+        return EXIT_SCENE
+    judged, why = A.judge(list(scenes), list(planned), verdict, args.timeout)
     if judged is None:
         print(f"x3drbp advise: the scenes could not be judged: {why}", file=sys.stderr)
         return EXIT_SCENE

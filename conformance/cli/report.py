@@ -1,14 +1,20 @@
 """`x3drbp report`: the main job. Every measurement x3drbp makes, on every installed backend,
 as one static HTML page with its plots, and the same in markdown.
 
-    x3drbp report [--out DIR] [--backends LIST] [--quick] [--x-ite]
+    x3drbp report [--out DIR] [--backends LIST] [--scenes DIR_OR_FILE] [--quick] [--x-ite]
 
-Each step is the command of its name, run into a folder of DIR:
+Each step is the command of its name, run into a folder of DIR (--scenes: your scenes,
+files or folders, go into compare, advise and sweep beside the bundled examples):
 
     conformance  every case on every backend                 DIR/conformance/matrix.json, matrix.md
-    compare      each bundled example scene on every backend DIR/compare/SCENE.json
-    sweep        speed against error (its default scope)     DIR/sweep/sweep.json, sweep.md, sweep_*.png
-    stability    the hard cases at 1/60 and 1/240 s          DIR/stability/stability.json, stability.md
+    compare      each example scene (and yours) on every     DIR/compare/SCENE.json, SCENE.rrd,
+                 backend                                     SCENE.divergence.png
+    advise       which backend and step for each example     DIR/advice/advice.json
+                 scene (and yours), with the verdicts just measured
+    sweep        speed against error (its default scope,     DIR/sweep/sweep.json, sweep.md, sweep_*.png
+                 and your scenes)
+    stability    the hard cases at 1/60 and 1/240 s          DIR/stability/stability.json, stability.md,
+                                                             traces/
     features     each backend's declared table against the verdicts of the cases that
                  exercise each feature                       DIR/features.json
     x_ite        with --x-ite only: the X_ITE browser on every case, judged (needs
@@ -30,30 +36,49 @@ import json
 import os
 import sys
 import time
+from collections import Counter
 from collections.abc import Callable
 
 from backends import base
 from x3d_core import atomic
+from x3d_core.paths import scene_files
 
 from conformance.cli import options
 from conformance import cases as C
 from conformance.runner import children, probe
+from conformance.analyses import sweep as S
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 EXAMPLES = os.path.join(C.ROOT, "scenes", "examples")
 COMPARE_SECONDS = 5.0
 
 
-def _steps(out: str, backends: list[str], quick: bool, x_ite: bool) -> list[tuple[str, list[list[str]]]]:
+def stems(paths: list[str]) -> list[str]:
+    """A file name for each scene's results: its own stem, numbered where two share one."""
+    seen: Counter = Counter()
+    out = []
+    for path in paths:
+        stem = os.path.splitext(os.path.basename(path))[0]
+        seen[stem] += 1
+        out.append(stem if seen[stem] == 1 else f"{stem}-{seen[stem]}")
+    return out
+
+
+def _steps(out: str, backends: list[str], quick: bool, x_ite: bool, yours: list[str]
+           ) -> list[tuple[str, list[list[str]]]]:
     """(step, the x3drbp command lines it runs)."""
     chosen = ["--backends", ",".join(backends)]
     examples = sorted(os.path.join(EXAMPLES, f) for f in os.listdir(EXAMPLES))
+    scenes = examples + yours
+    compare = os.path.join(out, "compare")
+    sweep_scenes = ["--scenes", ",".join([*S.DEFAULT_SCENES, *yours])] if yours else []
     steps = [("conformance", [["conformance", *chosen, "--out", os.path.join(out, "conformance")]]),
              ("compare", [["compare", path, *chosen, "--duration", f"{COMPARE_SECONDS:g}",
-                           "--json", stem + ".json", "--rerun", stem + ".rrd"]
-                          for path in examples
-                          for stem in [os.path.join(out, "compare", os.path.splitext(os.path.basename(path))[0])]]),
-             ("sweep", [["sweep", *chosen, "--quiet", "--out", os.path.join(out, "sweep")]]),
+                           "--json", os.path.join(compare, stem + ".json"), "--rerun", os.path.join(compare, stem + ".rrd")]
+                          for path, stem in zip(scenes, stems(scenes))]),
+             ("advise", [["advise", *scenes, *chosen, "-q", "--verdicts", os.path.join(out, "conformance", "matrix.json"),
+                          "--json", os.path.join(out, "advice", "advice.json")]]),
+             ("sweep", [["sweep", *chosen, *sweep_scenes, "--quiet", "--out", os.path.join(out, "sweep")]]),
              ("stability", [["stability", *chosen, "--out", os.path.join(out, "stability")]]),
              ("x_ite", [["x-ite", "cases", "--against", ",".join(backends), "--out", os.path.join(out, "x_ite")]])]
     return [s for s in steps if not (quick and s[0] == "sweep") and (x_ite or s[0] != "x_ite")]
@@ -92,7 +117,7 @@ def features(matrix: dict, backends: list[str]) -> dict:
 
 @children.interruptible
 def cmd_report(args: argparse.Namespace) -> int:
-    from reports.report_page import write_report  # reports read results; imported when there are some
+    from reports.report_page import dead_links, write_report  # reports read results; imported when there are some
     info = probe.backend_table()
     try:
         named = probe.named_backends(options.names(args.backends), info)
@@ -108,17 +133,22 @@ def cmd_report(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     out = args.out
     logs = os.path.join(out, "logs")
-    for sub in ("logs", "compare"):
+    yours = scene_files(args.scenes) if args.scenes else []
+    if args.scenes and not yours:
+        print("x3drbp report: --scenes: no X3D files (.x3d, .x3dv, .x3dj) under the given paths", file=sys.stderr)
+        return EXIT_USAGE
+    yours = [os.path.abspath(p) for p in yours]
+    for sub in ("logs", "compare", "advice"):
         os.makedirs(os.path.join(out, sub), exist_ok=True)
     timings, failed = {}, []
     started = time.perf_counter()
-    for step, commands in _steps(out, backends, args.quick, args.x_ite):
+    for step, commands in _steps(out, backends, args.quick, args.x_ite, yours):
         t0 = time.perf_counter()
         log = os.path.join(logs, f"{step}.log")
         open(log, "w").close()
         print(f"report: {step} ...", end="", file=sys.stderr, flush=True)
         codes = [_run(args.main, argv, log) for argv in commands]
-        if step == "compare":  # a scene that compares nothing is a result; a usage error is not
+        if step in ("compare", "advise"):  # a scene that compares nothing or does not load is a result
             bad = [c for c in codes if c == EXIT_USAGE]
         else:
             bad = [c for c in codes if c != 0]
@@ -134,9 +164,12 @@ def cmd_report(args: argparse.Namespace) -> int:
     timings["total"] = round(time.perf_counter() - started, 1)
     meta = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "backends": {b: info[b].version for b in backends}, "cpus": os.cpu_count(), "timings_s": timings,
-            "failed": failed, "quick": args.quick}
+            "failed": failed, "quick": args.quick, "scenes": [os.path.relpath(p) for p in yours]}
     atomic.write_json(os.path.join(out, "report.json"), meta)
     page = write_report(out)
+    with open(page, encoding="utf-8") as f:
+        for link in dead_links(out, f.read()):  # a step that left out a file its text cites
+            print(f"x3drbp report: {page} links to {link}, which is not there", file=sys.stderr)
     print(f"report: wrote {page} and report.md in {timings['total']:g} s", file=sys.stderr)
     return EXIT_FAILED if failed else EXIT_OK
 
@@ -149,6 +182,9 @@ def add_command(sub) -> None:
                    help="folder for index.html, report.md and every step's results (default out/report)")
     p.add_argument("--backends", action="append", metavar="LIST",
                    help="backends, comma-separated (default: every installed one)")
+    p.add_argument("--scenes", action="append", metavar="DIR_OR_FILE",
+                   help="your scenes (files, or folders searched for .x3d/.x3dv/.x3dj), compared, advised and swept "
+                        "beside the bundled examples (repeatable)")
     p.add_argument("--quick", action="store_true", help="leave out the sweep, the longest step")
     p.add_argument("--x-ite", action="store_true",
                    help="add the X_ITE browser's column: every case recorded in X_ITE and judged (`make x-ite`)")

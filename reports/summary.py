@@ -1,0 +1,135 @@
+"""The report's first screen: the answers, generated from the results in DIR alone.
+
+What conforms (the conformance matrix per backend), which backend and step for each kind of
+scene (advice.json), and the findings, each stated from what the runs measured: where the
+example scenes' runs part, what the hard cases did on every backend, which point of each
+sweep is the most accurate and which the fastest, and what a backend declares native yet
+fails.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections import Counter
+
+from conformance.results import PASS, Comparison
+
+from .advice_text import markdown as advice_markdown
+from .text import escape, num
+
+SURVIVED = "survived"
+
+
+def _load(path: str) -> dict | None:
+    if not os.path.exists(path):
+        return None
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def conformance_lines(matrix: dict) -> list[str]:
+    """Per backend: how many cases pass, and how the others end."""
+    by_backend: dict[str, Counter] = {}
+    for r in matrix["results"]:
+        by_backend.setdefault(r["backend"], Counter())[r["verdict"]] += 1
+    lines = []
+    for backend, counts in by_backend.items():
+        total = sum(counts.values())
+        rest = ", ".join(f"{n} {v}" for v, n in counts.most_common() if v != PASS)
+        lines.append(f"- **{backend}**: {counts[PASS]} of {total} cases pass" + (f"; {rest}" if rest else ""))
+    return lines
+
+
+def compare_findings(comparisons: list[Comparison]) -> list[str]:
+    """Per example scene: the pairs that stay within the thresholds, and the first to part."""
+    out = []
+    for c in comparisons:
+        name = os.path.basename(c.scene)
+        parted = [(min(t for t in (p.position.first_over, p.orientation.first_over) if t is not None).time, p)
+                  for p in c.pairs if p.position.first_over is not None or p.orientation.first_over is not None]
+        together = [f"{p.a}/{p.b}" for p in c.pairs if p not in [q for _, q in parted]]
+        if not c.pairs:
+            out.append(f"{name}: fewer than two backends ran it")
+            continue
+        said = f"{name}: " + (f"{', '.join(together)} stay within {num(c.thresholds['position'])} m and "
+                              f"{num(c.thresholds['orientation'])} rad for all {c.duration:g} s" if together
+                              else "every pair parts")
+        if parted:
+            when, first = min(parted, key=lambda x: x[0])
+            said += f"; first to part: {first.a}/{first.b} at {when:.3g} s"
+        out.append(said)
+    return out
+
+
+def stability_findings(doc: dict) -> list[str]:
+    """Hard cases every backend that ran ended the same way at every step (what no engine
+    handles, or all do), and each backend's count of runs that held."""
+    by_case: dict[str, set[str]] = {}
+    held: Counter = Counter()
+    ran: Counter = Counter()
+    for r in doc["results"]:
+        if r["verdict"] == "unsupported":
+            continue
+        by_case.setdefault(r["case"], set()).add(r["verdict"])
+        ran[r["backend"]] += 1
+        held[r["backend"]] += r["verdict"] == SURVIVED
+    out = [f"{case}: {verdicts.pop()} on every backend that ran it, at every step"
+           for case, verdicts in by_case.items() if len(verdicts) == 1]
+    out.append("runs that held: " + ", ".join(f"{b} {held[b]} of {ran[b]}" for b in ran))
+    return out
+
+
+def sweep_findings(doc: dict) -> list[str]:
+    """Per swept scene: the most accurate and the fastest point of its front over every backend."""
+    out = []
+    for scene in doc["scenes"]:
+        front = [p for p in doc["points"] if p["scene"] == scene["name"] and p["pareto_scene"]
+                 and p.get("tie_scene") is None]
+        if not front:
+            continue
+        unit = f" {scene['unit']}" if scene["unit"] else ""
+        best = min(front, key=lambda p: p["error"])
+        fast = min(front, key=lambda p: p["wall_per_sim_s"])
+        out.append(f"{scene['name']}: most accurate {best['label']} (error {num(best['error'])}{unit}, "
+                   f"{num(best['wall_per_sim_s'])} s per simulated s); fastest {fast['label']} "
+                   f"({num(fast['wall_per_sim_s'])} s per simulated s, error {num(fast['error'])}{unit})")
+    return out
+
+
+def declared_findings(doc: dict) -> list[str]:
+    """Features a backend declares native whose exercising cases do not all pass."""
+    out = []
+    for row in doc["features"]:
+        for backend, cell in row["backends"].items():
+            failing = [c["case"] for c in cell["cases"] if c["verdict"] not in (PASS, "conventions", "unsupported")]
+            if cell["support"] == "native" and failing:
+                out.append(f"{backend} declares {row['feature']} native; not passing: {', '.join(failing)}")
+    return out
+
+
+def answers(out: str, comparisons: list[Comparison]) -> str:
+    """The page's first section, from the files in out."""
+    parts = ["## Answers", ""]
+    matrix = _load(os.path.join(out, "conformance", "matrix.json"))
+    parts += ["**What conforms** (every case on every backend; [details](#conformance)):", ""]
+    parts += conformance_lines(matrix) if matrix else ["Not run."]
+    advice = _load(os.path.join(out, "advice", "advice.json"))
+    parts += ["", "**Which backend, at which step, for each kind of scene** (`x3drbp advise`; "
+                  "[how it is chosen](#which-backend-for-which-scene)):", ""]
+    parts.append(advice_markdown(advice, details=False) if advice else "Not run.")
+    findings = [("Where the example scenes' runs part", compare_findings(comparisons), "where-the-backends-part")]
+    stability = _load(os.path.join(out, "stability", "stability.json"))
+    findings.append(("The hard cases", stability_findings(stability) if stability else [], "stability"))
+    sweep = _load(os.path.join(out, "sweep", "sweep.json"))
+    findings.append(("Speed against error", sweep_findings(sweep) if sweep else [], "speed-against-error"))
+    features = _load(os.path.join(out, "features.json"))
+    findings.append(("Declared native, measured failing", declared_findings(features) if features else [],
+                     "declared-against-measured"))
+    parts += ["", "**Findings**, each from the results below:", ""]
+    for title, lines, anchor in findings:
+        if lines:
+            parts.append(f"- {title} ([details](#{anchor})):")
+            parts += [f"    - {escape(line)}" for line in lines]
+    return "\n".join(parts) + "\n"
+
