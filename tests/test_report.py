@@ -144,6 +144,29 @@ def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys
     assert "$ x3drbp conformance" in open(os.path.join(out, "logs", "conformance.log"), encoding="utf-8").read()
 
 
+def test_a_step_s_bar_goes_to_the_terminal_and_its_text_to_the_log(tmp_path):
+    """Under x3drbp report a step's stderr is its log; its progress bar goes to the report's terminal."""
+    import argparse
+    import io
+    from concurrent.futures import ThreadPoolExecutor
+    from conformance.cli import options
+    from conformance.runner import children
+    log, terminal = tmp_path / "step.log", io.StringIO()
+
+    def step(argv):
+        print("a result line")
+        assert options.progress(argparse.Namespace(quiet=False))  # a log is no terminal; the bars go elsewhere
+        with ThreadPoolExecutor(2) as pool:
+            children.wait_all([pool.submit(lambda: None) for _ in range(3)], True)
+        return 0
+
+    assert R._run(step, ["conformance"], str(log), terminal) == 0
+    bar = terminal.getvalue()
+    assert "/3 [" in bar and bar.endswith("\r") and "a result line" not in bar  # drawn, then cleared
+    assert "/3 [" not in log.read_text() and "a result line" in log.read_text()
+    assert children.BARS is None  # the next step, or the report's own lines, write where they did
+
+
 def test_scenes_that_share_a_stem_get_their_own_results():
     assert R.stems(["a/x.x3d", "b/x.x3dv", "c/y.x3d", "d/x.x3d"]) == ["x", "x-2", "y", "x-3"]
 

@@ -35,9 +35,7 @@ from __future__ import annotations
 
 import math
 import os
-import sys
 from collections.abc import Sequence
-from concurrent.futures import FIRST_COMPLETED, wait
 from dataclasses import asdict, dataclass, replace
 
 from conformance import cases as C
@@ -324,15 +322,10 @@ def _fill(p: Point, job: Job, res: JobResult, reference: Reference | str | None,
 def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, progress: bool) -> list[JobResult]:
     """Run the jobs on the executor, longest first (a long job last would leave workers idle);
     results in the jobs' order. The bar goes to stderr, and only when asked."""
-    from tqdm import tqdm
     order = sorted(range(len(jobs)), key=lambda k: -jobs[k].settings.duration / jobs[k].settings.dt)
     with executor(scheduler, workers) as ex:
         futures = {k: ex.submit(guarded, run_job, jobs[k]) for k in order}
-        with tqdm(total=len(jobs), unit="run", file=sys.stderr, disable=not progress) as bar:
-            pending = set(futures.values())
-            while pending:  # in slices, as children._communicate waits: a signal is handled within one
-                done, pending = wait(pending, timeout=children.SLICE, return_when=FIRST_COMPLETED)
-                bar.update(len(done))
+        children.wait_all(list(futures.values()), progress)
         return [futures[k].result() for k in range(len(jobs))]
 
 

@@ -107,7 +107,7 @@ def cmd_advise(args: argparse.Namespace) -> int:
     if judged is None:
         print(f"x3drbp advise: the scenes could not be judged: {why}", file=sys.stderr)
         return EXIT_SCENE
-    progress = not args.quiet and sys.stderr.isatty()
+    progress = options.progress(args)
     advice = A.advise(list(scenes), scenes, planned, judged, dts, args.duration, args.window, args.budget,
                       args.tolerance, args.timeout, args.workers, progress, args.repeats)
     doc = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),

@@ -117,7 +117,7 @@ def verbosity(args: argparse.Namespace) -> int:
 
 def progress(args: argparse.Namespace) -> bool:
     """Whether to draw a bar of runs done on stderr: for a person watching a terminal, never with -q."""
-    return not args.quiet and sys.stderr.isatty()
+    return children.progress_shown(args.quiet)
 
 
 def load_scene(path: str) -> Scene | None:

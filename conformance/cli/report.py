@@ -38,6 +38,7 @@ import sys
 import time
 from collections import Counter
 from collections.abc import Callable
+from typing import TextIO
 
 from backends import base
 from x3d_core import atomic
@@ -76,25 +77,29 @@ def _steps(out: str, backends: list[str], quick: bool, x_ite: bool, yours: list[
              ("compare", [["compare", path, *chosen, "--duration", f"{COMPARE_SECONDS:g}",
                            "--json", os.path.join(compare, stem + ".json"), "--rerun", os.path.join(compare, stem + ".rrd")]
                           for path, stem in zip(scenes, stems(scenes))]),
-             ("advise", [["advise", *scenes, *chosen, "-q", "--verdicts", os.path.join(out, "conformance", "matrix.json"),
+             ("advise", [["advise", *scenes, *chosen, "--verdicts", os.path.join(out, "conformance", "matrix.json"),
                           "--json", os.path.join(out, "advice", "advice.json")]]),
-             ("sweep", [["sweep", *chosen, *sweep_scenes, "--quiet", "--out", os.path.join(out, "sweep")]]),
+             ("sweep", [["sweep", *chosen, *sweep_scenes, "--out", os.path.join(out, "sweep")]]),
              ("stability", [["stability", *chosen, "--out", os.path.join(out, "stability")]]),
              ("x_ite", [["x-ite", "cases", "--against", ",".join(backends), "--out", os.path.join(out, "x_ite")]])]
     return [s for s in steps if not (quick and s[0] == "sweep") and (x_ite or s[0] != "x_ite")]
 
 
-def _run(main: Callable[[list[str]], int], argv: list[str], log: str) -> int:
+def _run(main: Callable[[list[str]], int], argv: list[str], log: str, bars: TextIO | None = None) -> int:
     """One x3drbp command in this process (`main`, the command line's own), its output into the
-    log line by line. The logs are the one output x3drbp writes in place, not through
-    x3d_core/atomic.py: they are read while a step runs, and keep what a killed step said."""
+    log line by line, its progress bars (if any) on `bars`. The logs are the one output x3drbp
+    writes in place, not through x3d_core/atomic.py: they are read while a step runs, and keep
+    what a killed step said."""
     with (open(log, "a", encoding="utf-8", buffering=1) as f, contextlib.redirect_stdout(f),
           contextlib.redirect_stderr(f)):
         print(f"$ x3drbp {' '.join(argv)}", flush=True)
+        children.BARS = bars
         try:
             return main(argv)
         except SystemExit as e:  # argparse's own exit on usage
             return int(e.code or 0)
+        finally:
+            children.BARS = None
 
 
 def features(matrix: dict, backends: list[str]) -> dict:
@@ -146,14 +151,16 @@ def cmd_report(args: argparse.Namespace) -> int:
         t0 = time.perf_counter()
         log = os.path.join(logs, f"{step}.log")
         open(log, "w").close()
-        print(f"report: {step} ...", end="", file=sys.stderr, flush=True)
-        codes = [_run(args.main, argv, log) for argv in commands]
+        bars = sys.stderr if options.progress(args) else None  # a step's bar, cleared when it ends
+        print(f"report: {step} ...", end="\n" if bars else "", file=sys.stderr, flush=True)
+        codes = [_run(args.main, argv, log, bars) for argv in commands]
         if step in ("compare", "advise"):  # a scene that compares nothing or does not load is a result
             bad = [c for c in codes if c == EXIT_USAGE]
         else:
             bad = [c for c in codes if c != 0]
         timings[step] = round(time.perf_counter() - t0, 1)
-        print(f" {timings[step]:g} s" + (f" (FAILED: see {log})" if bad else ""), file=sys.stderr, flush=True)
+        said = f"{timings[step]:g} s" + (f" (FAILED: see {log})" if bad else "")
+        print(f"report: {step} {said}" if bars else f" {said}", file=sys.stderr, flush=True)
         if bad:
             failed.append(step)
     matrix_path = os.path.join(out, "conformance", "matrix.json")
@@ -186,6 +193,7 @@ def add_command(sub) -> None:
                    help="your scenes (files, or folders searched for .x3d/.x3dv/.x3dj), compared, advised and swept "
                         "beside the bundled examples (repeatable)")
     p.add_argument("--quick", action="store_true", help="leave out the sweep, the longest step")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bars (each step's line still prints)")
     p.add_argument("--x-ite", action="store_true",
                    help="add the X_ITE browser's column: every case recorded in X_ITE and judged (`make x-ite`)")
     p.set_defaults(func=cmd_report)

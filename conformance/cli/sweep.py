@@ -116,7 +116,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         return EXIT_OK
     started = time.perf_counter()
     sweep = S.run_sweep(chosen, planned, dts, iterations, ACCURACY[args.accuracy], args.timeout, args.scheduler,
-                        args.workers, progress=not args.quiet and sys.stderr.isatty(), repeats=args.repeats)
+                        args.workers, progress=options.progress(args), repeats=args.repeats)
     settings = {"dts": dts, "iterations": iterations, "accuracy": args.accuracy, "window": args.window,
                 "repeats": args.repeats, "scheduler": args.scheduler, "workers": args.workers,
                 "timeout": args.timeout}

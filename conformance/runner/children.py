@@ -29,8 +29,10 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Collection, Iterator, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass, field
+from typing import TextIO
 
 from conformance.results import BLEW_UP, CRASHED, ERROR, TIMED_OUT, UNSUPPORTED, Settings
 
@@ -278,6 +280,26 @@ class Notes:
 
 
 _notes: Notes | None = None  # the command's, inside notes_shown
+# where progress bars go while a command's stderr is not the terminal: x3drbp report sends
+# each step's output to its log and the step's bar to the terminal it runs in
+BARS: TextIO | None = None
+
+
+def progress_shown(quiet: bool) -> bool:
+    """Whether a command draws a bar of runs done: for a person watching a terminal, never when quiet."""
+    return not quiet and (BARS is not None or sys.stderr.isatty())
+
+
+def wait_all(futures: Collection[Future], progress: bool = False) -> None:
+    """Wait for every future in SLICE-long waits (a signal is handled within one), with a bar
+    of those done where `progress` (on BARS, else stderr; under x3drbp report it clears itself)."""
+    from tqdm import tqdm
+    with tqdm(total=len(futures), unit="run", file=BARS or sys.stderr, disable=not progress,
+              leave=BARS is None) as bar:
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, timeout=SLICE, return_when=FIRST_COMPLETED)
+            bar.update(len(done))
 
 
 @contextlib.contextmanager

@@ -23,18 +23,18 @@ thread pool spares a second interpreter per pair and any pickling.
 from __future__ import annotations
 
 import os
-import sys
 import tempfile
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+from concurrent.futures import ThreadPoolExecutor
 from typing import TypeVar
 
 from x3d_core.trace import TraceView, read_view
 
 from conformance.cases.case import Case
 from conformance.results import ERROR, Convergence, Result, Settings, judge
-from conformance.runner.children import DEFAULT_TIMEOUT, SLICE, run_child
+from conformance.runner import children
+from conformance.runner.children import DEFAULT_TIMEOUT, run_child
 
 T = TypeVar("T")  # what run_many's jobs return
 
@@ -88,15 +88,10 @@ def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
 def run_many(jobs: Sequence[Callable[[], T]], workers: int | None = None, progress: bool = False) -> list[T]:
     """Run independent jobs in parallel (results in the jobs' order); with `progress`, a bar
     of jobs done on stderr (the commands ask for it where stderr is a terminal)."""
-    from tqdm import tqdm
     workers = max(1, min(workers or os.cpu_count() or 1, len(jobs) or 1))
     with ThreadPoolExecutor(max_workers=workers) as pool:
         futures = [pool.submit(job) for job in jobs]
-        with tqdm(total=len(jobs), unit="run", file=sys.stderr, disable=not progress) as bar:
-            pending = set(futures)
-            while pending:  # in slices, as children._communicate waits: a signal is handled within one
-                done, pending = wait(pending, timeout=SLICE, return_when=FIRST_COMPLETED)
-                bar.update(len(done))
+        children.wait_all(futures, progress)
         return [f.result() for f in futures]
 
 
