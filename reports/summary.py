@@ -58,6 +58,10 @@ def compare_findings(comparisons: list[Comparison]) -> list[str]:
         if parted:
             when, first = min(parted, key=lambda x: x[0])
             said += f"; first to part: {first.a}/{first.b} at {when:.3g} s"
+            schemes = {r.backend: r.integration for r in c.runs}
+            if None not in (schemes.get(first.a), schemes.get(first.b)) and schemes[first.a] != schemes[first.b]:
+                said += (f" ({first.a} steps by {schemes[first.a]}, {first.b} by {schemes[first.b]}: "
+                         "free motion alone parts them)")
         out.append(said)
     return out
 

@@ -9,6 +9,7 @@ import shutil
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from backends import base
@@ -190,3 +191,25 @@ def test_a_feature_cell_counts_other_conventions_as_conforming():
     assert _cell(cell) == "native: 1 pass, 1 conforming in other conventions (b)"  # not bold: no case fails
     cell["cases"].append({"case": "c", "verdict": "fail"})
     assert _cell(cell).startswith("**native: 1 pass, 1 conforming in other conventions (b), 1 not (c)")
+
+
+def test_compare_findings_name_the_first_pair_to_part_and_an_integration_order_that_explains_it():
+    from conformance.results import BackendRun, Comparison, Crossing, Divergence, PairComparison
+    from reports.summary import compare_findings
+
+    def pair(a: str, b: str, parts_at: float | None) -> PairComparison:
+        crossing = None if parts_at is None else Crossing(parts_at, ["Ball"], [2e-3])
+        return PairComparison(a, b, np.zeros(3), ["Ball"], [], [], Divergence("position", "m", 1e-3, first_over=crossing),
+                              Divergence("orientation", "rad", 1e-3), [], [], [])
+
+    runs = [BackendRun("mujoco", "ran", integration="semi-implicit Euler"),
+            BackendRun("bullet", "ran", integration="semi-implicit Euler"),
+            BackendRun("pymunk", "ran", integration="explicit Euler in position")]
+    c = Comparison("scenes/ball.x3d", 5.0, 1 / 240, 60.0, {"position": 1e-3, "orientation": 1e-3}, runs,
+                   [pair("mujoco", "bullet", None), pair("mujoco", "pymunk", 0.0333), pair("bullet", "pymunk", 0.05)])
+    (line,) = compare_findings([c])
+    assert line.startswith("ball.x3d: mujoco/bullet stay within 0.001 m and 0.001 rad for all 5 s")
+    assert "first to part: mujoco/pymunk at 0.0333 s (mujoco steps by semi-implicit Euler, pymunk by explicit " \
+           "Euler in position: free motion alone parts them)" in line
+    c.pairs = c.pairs[:1]
+    assert compare_findings([c]) == ["ball.x3d: mujoco/bullet stay within 0.001 m and 0.001 rad for all 5 s"]
