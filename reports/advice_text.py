@@ -70,9 +70,11 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
             f"{settings['budget']:g}" if fastest else ""))
     else:
         j = scene["judged"][best["backend"]]
+        own = (" (the reference is this backend's own finer run, which favours it: weigh its agreement with "
+               "the others)" if scene["reference"]["backend"] == best["backend"] else "")
         lines += [head + f"{_run(best)} ({scene['rule']})",
                   f"  error {num(best['error'])} m from the reference over the first {settings['window']:g} s "
-                  f"({_reference(scene)}); self-consistency {num(best['self_error'])} m",
+                  f"({_reference(scene)}){own}; self-consistency {num(best['self_error'])} m",
                   f"  speed {_speed(best)}; budget {settings['budget']:g} s per simulated s",
                   f"  agreement at this step: {_agreement(best, settings['duration'])}",
                   "  approximates: " + ("; ".join(j["approximated"]) or "nothing the scene uses"),
@@ -125,7 +127,7 @@ def markdown(doc: dict, details: bool = True) -> str:
                   "if none, the most accurate; only runs that fit the budget, of backends that refuse nothing "
                   "the scene uses."]
     if details:
-        lines += ["", "<details><summary>Why, per scene: error, speed, agreement, approximations, the cases, "
+        lines += ["", "<details markdown=\"1\"><summary>Why, per scene: error, speed, agreement, approximations, the cases, "
                       "the runners-up</summary>", "", "```"]
         for scene in doc["scenes"]:
             lines += scene_lines(scene, s) + [""]

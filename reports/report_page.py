@@ -224,7 +224,7 @@ def write_report(out: str) -> str:
     write_plots(out)
     text = report_markdown(out)
     atomic.write_text(os.path.join(out, "report.md"), text)
-    body = md.markdown(text, extensions=["tables", "toc", "md_in_html"])
+    body = md.markdown(text, extensions=["tables", "toc", "md_in_html", "fenced_code"])
     page = os.path.join(out, "index.html")
     atomic.write_text(page, "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
                             f"<title>{html.escape('x3drbp report')}</title><style>{_STYLE}</style></head>\n"

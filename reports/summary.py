@@ -46,9 +46,10 @@ def compare_findings(comparisons: list[Comparison]) -> list[str]:
     out = []
     for c in comparisons:
         name = os.path.basename(c.scene)
-        parted = [(min(t for t in (p.position.first_over, p.orientation.first_over) if t is not None).time, p)
+        parted = [(min(x.time for x in (p.position.first_over, p.orientation.first_over) if x is not None), p)
                   for p in c.pairs if p.position.first_over is not None or p.orientation.first_over is not None]
-        together = [f"{p.a}/{p.b}" for p in c.pairs if p not in [q for _, q in parted]]
+        apart = {id(p) for _, p in parted}
+        together = [f"{p.a}/{p.b}" for p in c.pairs if id(p) not in apart]
         if not c.pairs:
             out.append(f"{name}: fewer than two backends ran it")
             continue

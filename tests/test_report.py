@@ -128,6 +128,7 @@ def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys
     page = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     assert page.startswith("<!DOCTYPE html>") and page.count("<table>") >= 5
     assert dead_links(out, page) == [] and "compare/pendulum.divergence.png" in page
+    assert "```" not in page and "<pre><code>" in page  # the advice's reasons, folded, as code
     text = open(os.path.join(out, "report.md"), encoding="utf-8").read()
     assert "| free_fall |" in text and "### pendulum.x3d" in text and "### drop.x3d" in text
     assert "four_bar_linkage" in text and "[stability](logs/stability.log)" in text
@@ -197,19 +198,22 @@ def test_compare_findings_name_the_first_pair_to_part_and_an_integration_order_t
     from conformance.results import BackendRun, Comparison, Crossing, Divergence, PairComparison
     from reports.summary import compare_findings
 
-    def pair(a: str, b: str, parts_at: float | None) -> PairComparison:
-        crossing = None if parts_at is None else Crossing(parts_at, ["Ball"], [2e-3])
-        return PairComparison(a, b, np.zeros(3), ["Ball"], [], [], Divergence("position", "m", 1e-3, first_over=crossing),
-                              Divergence("orientation", "rad", 1e-3), [], [], [])
+    def pair(a: str, b: str, parts_at: float | None, turns_at: float | None = None) -> PairComparison:
+        def crossing(t):
+            return None if t is None else Crossing(t, ["Ball"], [2e-3])
+        return PairComparison(a, b, np.zeros(3), ["Ball"], [], [],
+                              Divergence("position", "m", 1e-3, first_over=crossing(parts_at)),
+                              Divergence("orientation", "rad", 1e-3, first_over=crossing(turns_at)), [], [], [])
 
     runs = [BackendRun("mujoco", "ran", integration="semi-implicit Euler"),
             BackendRun("bullet", "ran", integration="semi-implicit Euler"),
             BackendRun("pymunk", "ran", integration="explicit Euler in position")]
     c = Comparison("scenes/ball.x3d", 5.0, 1 / 240, 60.0, {"position": 1e-3, "orientation": 1e-3}, runs,
-                   [pair("mujoco", "bullet", None), pair("mujoco", "pymunk", 0.0333), pair("bullet", "pymunk", 0.05)])
+                   [pair("mujoco", "bullet", None), pair("mujoco", "pymunk", 0.0333, 0.5), pair("bullet", "pymunk", 0.05, 0.02)])
     (line,) = compare_findings([c])
     assert line.startswith("ball.x3d: mujoco/bullet stay within 0.001 m and 0.001 rad for all 5 s")
-    assert "first to part: mujoco/pymunk at 0.0333 s (mujoco steps by semi-implicit Euler, pymunk by explicit " \
+    # bullet/pymunk turn apart first (0.02 s), before mujoco/pymunk move apart (0.0333 s)
+    assert "first to part: bullet/pymunk at 0.02 s (bullet steps by semi-implicit Euler, pymunk by explicit " \
            "Euler in position: free motion alone parts them)" in line
     c.pairs = c.pairs[:1]
     assert compare_findings([c]) == ["ball.x3d: mujoco/bullet stay within 0.001 m and 0.001 rad for all 5 s"]

@@ -17,8 +17,9 @@ the same step. The recommendation is a rule, stated here and in README, not a sc
 4. No affordable run within the tolerance: the most accurate affordable run (errors within
    the reference's own error or rounding tie; the fastest of those).
 5. Nothing affordable: no recommendation; the fastest run is named with its cost.
-Speeds whose repeats' spreads overlap the fastest's are ties; ties go to the backend that
-approximates fewer of the uses the scene makes, then to the run that stays within 1 mm /
+Speeds whose repeats' spreads overlap the fastest's are ties; ties go to the backend with
+fewer approximations of what the scene uses (one per declared note, however many uses it
+covers), then to the run that stays within 1 mm /
 1 mrad of more other backends for the whole run, then to the coarser step, then to the
 backend's name. Each other backend's best run by the same rule is a runner-up, with what it
 would cost or lose against the recommendation.
