@@ -72,6 +72,10 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
         j = scene["judged"][best["backend"]]
         own = (" (the reference is this backend's own finer run, which favours it: weigh its agreement with "
                "the others)" if scene["reference"]["backend"] == best["backend"] else "")
+        ref_error = scene["reference"]["error"]
+        if ref_error > settings["tolerance"]:
+            own += (f"; the reference's own error ({num(ref_error)} m) exceeds the tolerance: errors under it "
+                    "cannot be told apart")
         lines += [head + f"{_run(best)} ({scene['rule']})",
                   f"  error {num(best['error'])} m from the reference over the first {settings['window']:g} s "
                   f"({_reference(scene)}){own}; self-consistency {num(best['self_error'])} m",

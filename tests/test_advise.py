@@ -122,3 +122,21 @@ def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
     (tmp_path / "empty").mkdir()
     assert cli_main(["advise", str(tmp_path / "empty")]) == 2  # no scene at all: bad usage
     assert cli_main(["advise", str(tmp_path / "missing.x3d")]) == 1  # a scene that cannot be read, as check says
+
+
+def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_the_tolerance():
+    from reports.advice_text import scene_lines
+    option = {"backend": "mujoco", "dt": 1 / 240, "verdict": "measured", "reason": "", "error": 2e-3,
+              "self_error": 2e-3, "parts": {"ode": None}, "wall_per_sim_s": 0.01, "wall_low": 0.009, "wall_high": 0.011}
+    scene = {"scene": "s.x3d", "kind": "contacts", "rule": A.WITHIN, "options": [option],
+             "reference": {"backend": "mujoco", "dt": 1 / 8000, "error": 3.5e-3},
+             "judged": {"mujoco": {"refused": [], "approximated": [], "failing": {}, "passing": 2}},
+             "recommended": {"backend": "mujoco", "dt": 1 / 240}, "runners_up": []}
+    settings = {"budget": 1.0, "tolerance": 1e-3, "window": 1.0, "duration": 5.0}
+    text = "\n".join(scene_lines(scene, settings))
+    assert "the reference is this backend's own finer run, which favours it" in text
+    assert "the reference's own error (0.0035 m) exceeds the tolerance" in text
+    scene["reference"] = {"backend": "ode", "dt": 1 / 8000, "error": 1e-9}
+    text = "\n".join(scene_lines(scene, settings))
+    assert "favours" not in text and "exceeds" not in text
+    assert "within 1 mm / 1 mrad of ode for all 5 s" in text and "100x real time" in text
