@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from x3d_core import fields as F
+from x3d_core.integration import POSITION_FIRST, RK4, SEMI_IMPLICIT, in_substeps  # noqa: F401  (the backends' names)
 from x3d_core.analysis import Use, run_uses
 from x3d_core.engine import Simulation
 from x3d_core.model import Scene
@@ -151,13 +152,6 @@ def above(limit: float, why: str) -> Callable[[Any], str | None]:
     return check
 
 
-# How an engine advances a body over one step (Backend.integration). The order decides where
-# free motion under a load lands: a position-first engine's positions trail a semi-implicit
-# one's by h (v - v0), the step times the velocity gained since the start (g h t in free fall),
-# and its orientations by h (w - w0); `x3drbp compare` says so for such a pair.
-SEMI_IMPLICIT = "semi-implicit Euler"  # v += h a, then x += h v with the new v
-POSITION_FIRST = "explicit Euler in position"  # x += h v with the old v, then v += h a
-
 NOT_YET = "not implemented by this backend yet"
 ROUTED = Declared(Support.UNSUPPORTED, "x3drbp runs no ROUTEs or Scripts: this input would keep the file's value")
 
@@ -170,9 +164,11 @@ class Backend(ABC):
     # judge() refuses such a use by value; limits that need the whole world or the step (a
     # CFM divided by dt) are refused by build() raising x3d_core.engine.Unsupported.
     limits: dict[str, Callable[[Any], str | None]] = {}
-    # SEMI_IMPLICIT or POSITION_FIRST, or another scheme in words; None: not declared. Not a
-    # feature of the spec (which names no integrator), but it parts free motion between engines.
+    # SEMI_IMPLICIT, POSITION_FIRST or RK4, or another scheme in words; None: not declared. Not
+    # a feature of the spec (which names no integrator), but it parts free motion between engines.
     integration: str | None = None
+    # the scheme where a collection's preferAccuracy is TRUE, where the engine then changes it
+    accurate_integration: str | None = None
 
     @abstractmethod
     def version(self) -> str:

@@ -49,7 +49,7 @@ from x3d_core.collision import ContactPoints, friction_directions
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
-from .base import BODIES, JOINTS, SEMI_IMPLICIT, Backend, approximate, native, unsupported
+from .base import BODIES, JOINTS, SEMI_IMPLICIT, Backend, in_substeps, approximate, native, unsupported
 
 _FULL_TURN = np.pi - 1e-9  # an angle range this wide is no limit at all
 # pybullet clamps joint speeds to 100 rad/s unless told otherwise; the clamp set instead holds every
@@ -705,6 +705,7 @@ _FRICTION = ("pybullet multiplies two bodies' lateral friction: every shape gets
 class BulletBackend(Backend):
     name = "bullet"
     integration = SEMI_IMPLICIT
+    accurate_integration = in_substeps(SEMI_IMPLICIT, _SUBSTEPS_ACCURATE)  # preferAccuracy: substeps
     declared = {
         **native(*BODIES, *JOINTS, "RigidBodyCollection.iterations", "DoubleAxisHingeJoint",
                  "DoubleAxisHingeJoint.anchorPoint", "DoubleAxisHingeJoint.axis1", "DoubleAxisHingeJoint.axis2",

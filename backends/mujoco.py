@@ -44,7 +44,7 @@ from x3d_core.collision import Collisions, ContactPoints, Geometry, friction_dir
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, World, State
 
-from .base import BODIES, JOINTS, SEMI_IMPLICIT, Backend, Declared, Support, approximate, native, unsupported
+from .base import BODIES, JOINTS, RK4, SEMI_IMPLICIT, Backend, Declared, Support, approximate, native, unsupported
 
 def _warning(text: str) -> None:
     """MuJoCo's warnings, out of MUJOCO_LOG.TXT: each is counted in d.warning, and step() turns
@@ -611,6 +611,7 @@ def _hull_points(g: Geometry) -> np.ndarray | None:
 class MujocoBackend(Backend):
     name = "mujoco"
     integration = SEMI_IMPLICIT
+    accurate_integration = RK4  # preferAccuracy selects mjINT_RK4
     declared = {
         **native(*BODIES, *JOINTS, "RigidBody.useGlobalGravity", "RigidBodyCollection.iterations",
                  "DoubleAxisHingeJoint", "DoubleAxisHingeJoint.anchorPoint", "DoubleAxisHingeJoint.axis1",

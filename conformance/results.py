@@ -222,6 +222,11 @@ class BackendInfo:
     version: str | None = None
     unavailable: str | None = None  # why it cannot be used here
     integration: str | None = None  # backends.base.Backend.integration
+    accurate_integration: str | None = None  # ... and where preferAccuracy is TRUE, if it differs
+
+    def integration_for(self, prefer_accuracy: bool) -> str | None:
+        """The scheme a run of a scene steps by: the accurate one where a collection prefers accuracy."""
+        return self.accurate_integration if prefer_accuracy and self.accurate_integration else self.integration
 
     @property
     def usable(self) -> bool:

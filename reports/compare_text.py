@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from conformance.results import RAN, BackendRun, Comparison, Crossing, Divergence, PairComparison
 
+from x3d_core.integration import lead
+
 from .text import escape, num
 
 _SHOWN_BODIES = 3  # bodies named at a first crossing; the rest counted
@@ -44,15 +46,20 @@ def worst_joint(p: PairComparison) -> str:
 
 
 def _integration(p: PairComparison, schemes: dict[str, str | None], dt: float) -> str | None:
-    """Where the two backends step free motion in different orders, what that alone parts by:
-    a reader should not take the position-first engine's lag for a fault."""
+    """Where the two backends step free motion by different schemes, what that alone parts
+    them by (x3d_core/integration.py): a reader should not take one's lag for a fault."""
     sa, sb = schemes.get(p.a), schemes.get(p.b)
     if sa is None or sb is None or sa == sb:
         return None
-    return (f"{p.a} steps by {sa}, {p.b} by {sb}: from that order alone free motion parts by dt |v - v0| "
-            f"in position (dt times the velocity a body has gained: a fall under {_G:g} m/s^2 parts by "
-            f"g dt^2 = {num(_G * dt * dt)} m more each step, {num(_G * dt)} m after 1 s) and by dt |w - w0| in "
-            "orientation, not a fault of either")
+    said = f"{p.a} steps by {sa}, {p.b} by {sb}: from that alone free motion parts from the first step"
+    la, lb = lead(sa), lead(sb)
+    if la is None or lb is None:
+        return said + ", not a fault of either"
+    k = abs(la - lb)
+    factor = "" if k == 1 else f"{k:g} "
+    return (f"{said}, by {factor}dt |v - v0| in position (dt times the velocity a body has gained: a fall "
+            f"under {_G:g} m/s^2 parts by {factor}g dt^2 = {num(k * _G * dt * dt)} m more each step, "
+            f"{num(k * _G * dt)} m after 1 s) and by {factor}dt |w - w0| in orientation, not a fault of either")
 
 
 def _notes(p: PairComparison, schemes: dict[str, str | None], dt: float) -> list[str]:

@@ -82,13 +82,13 @@ def test_pymunk_turns_dt_w_behind_under_a_constant_torque():
 
 def test_the_text_names_the_integration_order_for_a_pymunk_pair_only(comparison):
     text = render(comparison)
-    order = ("steps by explicit Euler in position, {} by semi-implicit Euler: from that order alone free "
-             "motion parts by dt |v - v0|")
+    order = ("steps by explicit Euler in position, {} by semi-implicit Euler: from that alone free "
+             "motion parts from the first step, by dt |v - v0|")
     for other in ("mujoco", "bullet"):
         assert f"- pymunk / {other}: pymunk " + order.format(other) in text
     assert "g dt^2 = 0.00017 m more each step, 0.0408 m after 1 s" in text  # 9.8 / 240^2, 9.8 / 240
     assert "- mujoco / bullet" not in text
-    assert text.count("from that order alone") == 2
+    assert text.count("from that alone") == 2
 
 
 def test_no_note_where_a_backend_declares_no_integration(comparison):
@@ -96,7 +96,7 @@ def test_no_note_where_a_backend_declares_no_integration(comparison):
             for r in comparison.runs]
     c = Comparison(comparison.scene, comparison.duration, comparison.dt, comparison.frame_rate,
                    comparison.thresholds, runs, comparison.pairs)
-    assert "from that order alone" not in render(c)
+    assert "from that alone" not in render(c)
 
 
 def test_integration_round_trips_through_json_and_older_json_reads_as_undeclared(comparison):
@@ -120,3 +120,28 @@ def test_x3drbp_compare_takes_each_backends_integration_from_the_probe(tmp_path,
     runs = json.loads(out.read_text())["runs"]
     assert [r["integration"] for r in runs] == [base.POSITION_FIRST, base.SEMI_IMPLICIT]
     assert "- pymunk / mujoco: pymunk steps by explicit Euler in position" in capsys.readouterr().out
+
+
+def test_preferring_accuracy_changes_the_schemes_and_the_note_follows(tmp_path, capsys):
+    """preferAccuracy TRUE: MuJoCo integrates by RK4, exact on a fall, and Bullet by semi-implicit
+    Euler in 4 substeps, (h / 4) |v - v0| / 2 ahead of it: the runs say so and so does the note."""
+    from conformance.analyses.sweep_job import with_collection_fields
+    for name in ("mujoco", "bullet"):
+        _backend(name)
+    scene, out = tmp_path / "fall.x3d", tmp_path / "c.json"
+    with_collection_fields(case_scene("free_fall"), str(scene), None, True)
+    assert cli_main(["compare", str(scene), "--backends", "mujoco,bullet", "--duration", "0.5", "--frame-rate",
+                     "240", "--json", str(out)]) == 0
+    data = json.loads(out.read_text())
+    assert [r["integration"] for r in data["runs"]] == [base.RK4, "semi-implicit Euler in 4 substeps"]
+    assert ("mujoco steps by fourth-order Runge-Kutta, bullet by semi-implicit Euler in 4 substeps: from that alone "
+            "free motion parts from the first step, by 0.125 dt |v - v0|") in capsys.readouterr().out
+    pair = Comparison.from_json(data).pairs[0]
+    np.testing.assert_allclose(pair.position.frame_max, 0.125 * H * G * pair.times, rtol=0, atol=1e-12)
+
+
+def test_a_scheme_s_lead_counts_its_substeps():
+    from x3d_core.integration import in_substeps, lead
+    assert lead(base.SEMI_IMPLICIT) == 0.5 and lead(base.POSITION_FIRST) == -0.5 and lead(base.RK4) == 0.0
+    assert lead(in_substeps(base.SEMI_IMPLICIT, 4)) == 0.125 and lead(in_substeps(base.RK4, 2)) == 0.0
+    assert lead("velocity Verlet") is None and lead("velocity Verlet in 4 substeps") is None

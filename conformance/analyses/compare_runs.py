@@ -50,9 +50,11 @@ def run_backend(scene: str, backend: str, settings: Settings, folder: str,
 
 def run_backends(scene: str, backends: Sequence[str], settings: Settings,
                  info: Mapping[str, results.BackendInfo], timeout: float = children.DEFAULT_TIMEOUT,
-                 jobs: int = 1, progress: bool = False) -> list[tuple[BackendRun, TraceView | None]]:
+                 jobs: int = 1, progress: bool = False, prefer_accuracy: bool = False
+                 ) -> list[tuple[BackendRun, TraceView | None]]:
     """Every backend's run in the given order, `jobs` at a time (with `progress`, a bar of
-    runs done on stderr); a backend `info` marks unavailable gets that as its error without a run."""
+    runs done on stderr); a backend `info` marks unavailable gets that as its error without a
+    run. prefer_accuracy: a collection of the scene prefers accuracy (the scheme a run steps by)."""
     with tempfile.TemporaryDirectory(prefix="x3drbp-compare-") as folder:
         def one(name: str) -> tuple[BackendRun, TraceView | None]:
             i = info.get(name)
@@ -60,6 +62,6 @@ def run_backends(scene: str, backends: Sequence[str], settings: Settings,
                 return BackendRun(name, results.ERROR, f"backend unavailable: {i.unavailable}"), None
             run, view = run_backend(scene, name, settings, folder, timeout)
             if i is not None:
-                run.version, run.integration = i.version, i.integration
+                run.version, run.integration = i.version, i.integration_for(prefer_accuracy)
             return run, view
         return verdicts.run_many([lambda b=b: one(b) for b in backends], jobs, progress)

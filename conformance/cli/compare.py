@@ -72,7 +72,9 @@ def cmd_compare(args: argparse.Namespace) -> int:
         return _usage(f"needs two backends or more to compare, got {', '.join(backends) or 'none'}")
     settings = Settings(args.duration, args.dt, args.frame_rate)
     with children.notes_shown(options.verbosity(args)):
-        runs = run_backends(args.scene, backends, settings, info, args.timeout, args.jobs, options.progress(args))
+        prefer = any(c.get("preferAccuracy") for c in scene.of_type("RigidBodyCollection"))
+        runs = run_backends(args.scene, backends, settings, info, args.timeout, args.jobs, options.progress(args),
+                            prefer)
     result = Comparison(args.scene, args.duration, args.dt, args.frame_rate, thresholds,
                         [r for r, _ in runs], compare_all(runs, thresholds))
     sys.stdout.write(render(result))

@@ -41,7 +41,8 @@ for name, b in found.items():
         out[name] = {"unavailable": b}
     else:
         try:
-            out[name] = {"version": str(b.version()), "integration": getattr(b, "integration", None)}
+            out[name] = {"version": str(b.version()), "integration": getattr(b, "integration", None),
+                         "accurate_integration": getattr(b, "accurate_integration", None)}
         except Exception as e:  # a backend whose engine imports but cannot say its version
             out[name] = {"unavailable": f"version() failed: {type(e).__name__}: {e}"}
 print("\\nx3drbp-answer " + json.dumps(out))
@@ -114,5 +115,6 @@ def backend_table(timeout: float = DEFAULT_TIMEOUT) -> dict[str, BackendInfo]:
             why_not = d.get("unavailable")
             if why_not and why_not.startswith("unavailable: "):  # base.available()'s own wording
                 why_not = why_not[len("unavailable: "):]
-            out[name] = BackendInfo(name, d.get("version"), why_not, d.get("integration"))
+            out[name] = BackendInfo(name, d.get("version"), why_not, d.get("integration"),
+                                    d.get("accurate_integration"))
     return out
