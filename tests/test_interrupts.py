@@ -41,7 +41,8 @@ esac
 # runs that take minutes: 10^6 steps and more of a real engine
 LONG = {"stability": ["--cases", "thin_wall_impact", "--dts", "1e-6"],
         "sweep": ["--scenes", "projectile", "--dts", "1e-7", "--iterations", "10,50", "--accuracy", "false", "-q"],
-        "compare": [case_scene("free_fall"), "--dt", "1e-6", "--duration", "20"]}
+        "compare": [case_scene("free_fall"), "--dt", "1e-6", "--duration", "20"],
+        "advise": [case_scene("free_fall"), "--dts", "1e-6", "--duration", "20", "-q"]}
 
 
 # -- processes, from /proc --------------------------------------------------------------------
@@ -226,6 +227,20 @@ def test_sweep_interrupted_stops_its_pool_workers_and_their_runs(tmp_path, signa
     assert took < children.GRACE + 3
     _assert_none_left(procs)
     assert not (tmp_path / "out").exists()
+
+
+@ONE_INTERRUPT
+def test_advise_interrupted_stops_its_pool_workers_and_their_runs(tmp_path, signals, whole_group, status):
+    """advise runs the sweep's pool: the same stop, and no advice.json of runs that were stopped."""
+    pytest.importorskip(BACKEND)
+    parent = _start("advise", *LONG["advise"], "--backends", BACKEND, "--workers", "2", "--timeout", "300",
+                    "--json", str(tmp_path / "advice.json"))
+    procs = _wait_for_runs(parent, count=2)
+    code, err, took = _interrupt(parent, signals, whole_group)
+    assert _exited(code, status, signals) and _one_line(err) == "x3drbp advise: interrupted"
+    assert took < children.GRACE + 3
+    _assert_none_left(procs)
+    assert not (tmp_path / "advice.json").exists()
 
 
 # -- a sweep without results, a probe without an answer ---------------------------------------
