@@ -13,7 +13,7 @@ from rerun.chunk import RrdReader
 
 from conformance.cli import main as cli_main
 from conftest import SCENES
-from reports.report_page import _comparisons
+from reports.report_page import _comparisons, comparisons
 from reports.rerun_recording import TIMELINE
 from reports.rerun_shapes import cone_mesh, grid_triangles
 
@@ -64,7 +64,7 @@ def test_compare_recording_holds_each_backend_its_bodies_and_compares_divergence
     assert all(level == "WARN" for level in np.ravel(_column(events, "TextLog:level")))
     assert _column(entities[f"{where}/position_first_over"], "Scalars:scalars") == [[first["bodies"][0]["value"]]]
     assert RrdReader(str(rrd)).blueprints()  # the layout travels with the recording
-    assert "[cradle.rrd](compare/cradle.rrd)" in _comparisons(str(tmp_path))  # the report links it
+    assert "[cradle.rrd](compare/cradle.rrd)" in _comparisons(str(tmp_path), comparisons(str(tmp_path)))  # the report links it
 
 
 def test_run_recording_has_one_backend_and_no_divergence(tmp_path):
