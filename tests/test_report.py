@@ -217,3 +217,18 @@ def test_compare_findings_name_the_first_pair_to_part_and_an_integration_order_t
            "Euler in position: free motion alone parts them)" in line
     c.pairs = c.pairs[:1]
     assert compare_findings([c]) == ["ball.x3d: mujoco/bullet stay within 0.001 m and 0.001 rad for all 5 s"]
+
+
+def test_your_scenes_go_into_compare_advise_and_sweep_beside_the_examples(tmp_path):
+    mine = str(tmp_path / "pendulum.x3d")
+    steps = dict(R._steps(str(tmp_path / "out"), ["mujoco", "ode"], False, False, [mine]))
+    compared = [argv[1] for argv in steps["compare"]]
+    assert compared[-1] == os.path.relpath(mine) and len(compared) == len(os.listdir(R.EXAMPLES)) + 1
+    # two pendulum scenes: their results do not overwrite each other
+    assert [argv[argv.index("--json") + 1].rsplit(os.sep, 1)[1] for argv in steps["compare"]][-2:] == \
+        ["pendulum.json", "pendulum-2.json"]
+    (advise,) = steps["advise"]
+    assert advise[1:1 + len(compared)] == compared and "--verdicts" in advise
+    (sweep,) = steps["sweep"]
+    assert sweep[sweep.index("--scenes") + 1].split(",") == [*R.S.DEFAULT_SCENES, mine]
+    assert "sweep" not in dict(R._steps(str(tmp_path / "out"), ["mujoco"], True, False, []))  # --quick

@@ -70,7 +70,7 @@ def _steps(out: str, backends: list[str], quick: bool, x_ite: bool, yours: list[
     """(step, the x3drbp command lines it runs)."""
     chosen = ["--backends", ",".join(backends)]
     examples = sorted(os.path.join(EXAMPLES, f) for f in os.listdir(EXAMPLES))
-    scenes = examples + yours
+    scenes = [os.path.relpath(p) for p in examples + yours]  # as the page names them
     compare = os.path.join(out, "compare")
     sweep_scenes = ["--scenes", ",".join([*S.DEFAULT_SCENES, *yours])] if yours else []
     steps = [("conformance", [["conformance", *chosen, "--out", os.path.join(out, "conformance")]]),
