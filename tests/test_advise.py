@@ -94,6 +94,10 @@ def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
     shutil.copy(case_scene("free_fall"), folder / "drop.x3d")
     shutil.copy(case_scene("pendulum_period"), folder / "swing.x3d")
     (folder / "broken.x3d").write_text("<X3D><Scene><RigidBody mass='-1'/></Scene></X3D>")
+    (folder / "routed.x3d").write_text(  # an input x3drbp does not run: every backend refuses it
+        "<X3D><Scene><RigidBodyCollection><RigidBody DEF='B' containerField='bodies'/></RigidBodyCollection>"
+        "<PositionInterpolator DEF='P' key='0 1' keyValue='0 0 0 1 0 0'/>"
+        "<ROUTE fromNode='P' fromField='value_changed' toNode='B' toField='set_position'/></Scene></X3D>")
     out = tmp_path / "advice.json"
     code = cli_main(["advise", str(folder), "--backends", "mujoco,ode", "--dts", "1/60,1/240", "--duration", "1",
                      "--repeats", "2", "--json", str(out), "-q"])
@@ -101,7 +105,11 @@ def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
     assert code == 1  # broken.x3d does not load; the others are still advised
     assert "broken.x3d:1:" in captured.err and "mass" in captured.err
     doc = json.loads(out.read_text())
-    assert [s["scene"].rsplit("/", 1)[1] for s in doc["scenes"]] == ["drop.x3d", "swing.x3d"]
+    assert [s["scene"].rsplit("/", 1)[1] for s in doc["scenes"]] == ["drop.x3d", "routed.x3d", "swing.x3d"]
+    routed = doc["scenes"].pop(1)
+    assert routed["recommended"] is None and routed["rule"] == A.NONE_CAN and not routed["options"]
+    assert all("set_position.routed" in j["refused"][0] for j in routed["judged"].values())
+    assert "routed.x3d (free bodies): no recommendation: every backend refuses a use the scene makes" in captured.out
     for scene in doc["scenes"]:
         assert scene["reference"]["backend"] in ("mujoco", "ode")
         best = next(o for o in scene["options"] if o["backend"] == scene["recommended"]["backend"]

@@ -16,7 +16,9 @@ the same step. The recommendation is a rule, stated here and in README, not a sc
    not asked for, so a coarser step that is accurate enough wins.
 4. No affordable run within the tolerance: the most accurate affordable run (errors within
    the reference's own error or rounding tie; the fastest of those).
-5. Nothing affordable: no recommendation; the fastest run is named with its cost.
+5. Nothing affordable: no recommendation; the fastest run is named with its cost. No
+   recommendation either where no run ended well, or where every backend refuses a use
+   the scene makes (a routed input, say: each refusal is listed).
 Speeds whose repeats' spreads overlap the fastest's are ties; ties go to the backend with
 fewer approximations of what the scene uses (one per declared note, however many uses it
 covers), then to the run that stays within 1 mm /
@@ -49,9 +51,9 @@ DEFAULT_DURATION = 5.0  # s: how long the runs are watched for parting
 DEFAULT_BUDGET = 1.0  # wall s in the engine's steps per simulated s: real time
 DEFAULT_TOLERANCE = 1e-3  # m from the reference over the window: the 1 mm compare holds runs to
 JOINTS = ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint", "UniversalJoint", "MotorJoint")
-WITHIN, MOST_ACCURATE, NONE_AFFORDABLE, NONE_RAN = (
+WITHIN, MOST_ACCURATE, NONE_AFFORDABLE, NONE_RAN, NONE_CAN = (
     "within the tolerance: the fastest", "none within the tolerance: the most accurate",
-    "nothing fits the budget", "no run ended well")
+    "nothing fits the budget", "no run ended well", "every backend refuses a use the scene makes")
 
 
 def kind(scene: Scene) -> str:
@@ -237,5 +239,7 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
         reference = swept.references[target.name] if swept is not None else "no backend can run the scene"
         ref_error = reference.error if isinstance(reference, S.Reference) else 0.0
         chosen, rule, runners_up = choose(options, judged[path], budget, tolerance, ref_error)
+        if not able:
+            rule = NONE_CAN
         out.append(Advice(path, kind(scenes[path]), reference, judged[path], options, chosen, rule, runners_up))
     return out
