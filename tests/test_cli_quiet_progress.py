@@ -163,8 +163,13 @@ def stability(tmp_path_factory) -> tuple[str, str]:
     return out, err
 
 
+def _shown(path: str) -> str:
+    """A scene's path as a command's notes name it: from where the command runs (the tests: the root)."""
+    return os.path.relpath(path)
+
+
 def _impact_notes() -> list[str]:
-    return [f"{IMPACT.path}: note: {BACKEND} approximates {', '.join(uses)}: {note}"
+    return [f"{_shown(IMPACT.path)}: note: {BACKEND} approximates {', '.join(uses)}: {note}"
             for note, uses in _approximated(BACKEND, IMPACT.path).items()]
 
 
@@ -176,7 +181,7 @@ def test_stability_says_a_scenes_notes_once_for_its_runs_at_every_step(stability
 def test_stability_v_says_every_runs_notes_and_q_none_and_no_bar(tmp_path, monkeypatch):
     argv = ["stability", "--cases", IMPACT.name, "--backends", BACKEND, "--dts", "1/60,1/240"]
     code, err = _run([*argv, "--out", str(tmp_path / "v"), "-v"], monkeypatch)
-    one_per_use = [f"{IMPACT.path}: note: {BACKEND} approximates {use}: {note}"
+    one_per_use = [f"{_shown(IMPACT.path)}: note: {BACKEND} approximates {use}: {note}"
                    for note, uses in _approximated(BACKEND, IMPACT.path).items() for use in uses]
     assert code == 0 and sorted(_note_lines(err)) == sorted(one_per_use * 2)  # two runs, each its notes
     code, err = _run([*argv, "--out", str(tmp_path / "q"), "-q"], monkeypatch)
@@ -257,7 +262,7 @@ def test_compare_draws_its_bar_on_a_terminal_and_says_each_backends_notes_once(m
     argv = ["compare", BALL, "--backends", ",".join(pair), "--duration", "0.1"]
     code, err = _run(argv, monkeypatch)
     assert code == 0 and re.search(r"2/2 \[", err)
-    assert sorted(_note_lines(err)) == sorted(f"{BALL}: note: {b} approximates {', '.join(uses)}: {note}"
+    assert sorted(_note_lines(err)) == sorted(f"{_shown(BALL)}: note: {b} approximates {', '.join(uses)}: {note}"
                                               for b in pair for note, uses in _approximated(b, BALL).items())
     code, err = _run([*argv, "-q"], monkeypatch)
     assert code == 0 and "2/2" not in err and _note_lines(err) == []

@@ -333,8 +333,10 @@ def run_child(scene: str, backend: str, settings: Settings, trace: str,
         return classify(None, "", timed_out=True, timeout=timeout)
     marker = f"{scene}: note: {backend} approximates "
     said = ended.stderr.splitlines(keepends=True)
-    if notes is not None:
-        notes.lines.extend(line.rstrip("\n") for line in said if line.startswith(marker))
+    if notes is not None:  # named as from where this command runs (a child runs in ROOT, given the full path)
+        shown = os.path.relpath(scene) if os.path.isabs(scene) else scene
+        shown = scene if shown.startswith("..") else shown
+        notes.lines.extend(shown + line[len(scene):].rstrip("\n") for line in said if line.startswith(marker))
     out = classify(ended.returncode, "".join(line for line in said if not line.startswith(marker)), backend=backend)
     if out.verdict is None and not os.path.exists(trace):
         return Outcome(ERROR, "the run succeeded but wrote no trace")
