@@ -26,7 +26,9 @@ def test_features_set_declarations_against_the_cases_verdicts():
     backend = INSTALLED[0]
     matrix = {"results": [{"case": "free_fall", "backend": backend, "verdict": "fail"},
                           {"case": "projectile", "backend": backend, "verdict": "pass"}]}
-    table = R.features(matrix, [backend])
+    tables, why = R.declarations([backend])
+    assert tables is not None, why
+    table = R.features(matrix, tables)
     gravity = next(r for r in table["features"] if r["feature"] == "RigidBodyCollection.gravity")
     cell = gravity["backends"][backend]
     assert cell["support"] == base.load(backend).support("RigidBodyCollection.gravity").support.value

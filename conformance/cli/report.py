@@ -40,7 +40,6 @@ from collections import Counter
 from collections.abc import Callable
 from typing import TextIO
 
-from backends import base
 from x3d_core import atomic
 from x3d_core.paths import scene_files
 
@@ -102,22 +101,40 @@ def _run(main: Callable[[list[str]], int], argv: list[str], log: str, bars: Text
             children.BARS = None
 
 
-def features(matrix: dict, backends: list[str]) -> dict:
-    """Per backend and feature exercised by a case: what the backend declares, and the verdicts
-    of the cases that exercise it (a feature declared native whose case fails is a finding)."""
+_TABLES = """
+import json, sys
+from backends import base
+out = {}
+for name in sys.argv[1].split(","):
+    b = base.load(name)
+    out[name] = {"support": {f: [b.support(f).support.value, b.support(f).note] for f in sys.argv[2:]},
+                 "declared": {s.value: sum(1 for d in b.table().values() if d.support is s) for s in base.Support}}
+print("x3drbp-answer " + json.dumps(out))
+"""
+
+
+def declarations(backends: list[str], timeout: float = children.DEFAULT_TIMEOUT) -> tuple[dict | None, str]:
+    """Each backend's declaration of every feature a case exercises, and its table's counts,
+    asked in a child (the tables live in the engines' modules: importing one can crash, and
+    pybullet prints its build time on import); (the answer, or None and why not)."""
+    return probe.ask(_TABLES, [",".join(backends), *sorted(C.exercising())], timeout, "the declarations' child")
+
+
+def features(matrix: dict, tables: dict) -> dict:
+    """Per backend and feature exercised by a case: what the backend declares (tables:
+    declarations()), and the verdicts of the cases that exercise it (a feature declared
+    native whose case fails is a finding)."""
     verdicts = {(r["case"], r["backend"]): r["verdict"] for r in matrix["results"]}
     exercised = C.exercising()
     rows = []
     for feature in sorted(exercised):
         cells = {}
-        for b in backends:
-            d = base.load(b).support(feature)
-            cells[b] = {"support": d.support.value, "note": d.note,
+        for b, table in tables.items():
+            support, note = table["support"][feature]
+            cells[b] = {"support": support, "note": note,
                         "cases": [{"case": c, "verdict": verdicts.get((c, b), "not run")} for c in exercised[feature]]}
         rows.append({"feature": feature, "backends": cells})
-    declared = {b: {s.value: sum(1 for d in base.load(b).table().values() if d.support is s) for s in base.Support}
-                for b in backends}
-    return {"features": rows, "declared": declared}
+    return {"features": rows, "declared": {b: table["declared"] for b, table in tables.items()}}
 
 
 @children.interruptible
@@ -165,9 +182,13 @@ def cmd_report(args: argparse.Namespace) -> int:
             failed.append(step)
     matrix_path = os.path.join(out, "conformance", "matrix.json")
     if os.path.exists(matrix_path):
-        with open(matrix_path, encoding="utf-8") as f:
-            table = features(json.load(f), backends)
-        atomic.write_json(os.path.join(out, "features.json"), table)
+        tables, why = declarations(backends)
+        if tables is None:
+            print(f"x3drbp report: features: the backends' declarations could not be read: {why}", file=sys.stderr)
+            failed.append("features")
+        else:
+            with open(matrix_path, encoding="utf-8") as f:
+                atomic.write_json(os.path.join(out, "features.json"), features(json.load(f), tables))
     timings["total"] = round(time.perf_counter() - started, 1)
     meta = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "backends": {b: info[b].version for b in backends}, "cpus": os.cpu_count(), "timings_s": timings,
