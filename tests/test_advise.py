@@ -86,6 +86,8 @@ def test_parting_is_the_first_frame_past_either_threshold():
     assert A.parting(a, Positions(times, ("A", "B"), pos, turned)) == pytest.approx(0.2)
     within = pos + 5e-4
     assert A.parting(a, Positions(times, ("A", "B"), within, ori)) is None
+    with pytest.raises(ValueError, match="share no body"):
+        A.parting(a, Positions(times, ("A", "C"), pos, ori))
 
 
 def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):

@@ -235,7 +235,10 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
                 for other in able:
                     theirs = swept.positions.get((target.name, other, o.dt))
                     if other != o.backend and mine is not None and theirs is not None:
-                        o.parts[other] = parting(mine, theirs)
+                        try:
+                            o.parts[other] = parting(mine, theirs)
+                        except ValueError:  # no body or frame in common: nothing to say of when they part
+                            continue
         reference = swept.references[target.name] if swept is not None else "no backend can run the scene"
         ref_error = reference.error if isinstance(reference, S.Reference) else 0.0
         chosen, rule, runners_up = choose(options, judged[path], budget, tolerance, ref_error)
