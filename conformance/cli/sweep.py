@@ -15,8 +15,8 @@ stderr say "no results"); 2 on bad usage; 130 or 143 when interrupted by SIGINT 
 (every run stopped).
 
 The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, every
-installed backend: 288 runs) takes 83 s on 2 cores, 3 minutes while other work loads them;
-a long sweep names more:
+installed backend: 288 points, each timed 3 times in its child, and 20 fine-step runs) takes
+205 s on 2 cores (163 s with --repeats 1); a long sweep names more:
     x3drbp sweep --dts 1/60,1/120,1/240,1/500,1/1000,1/2000,1/4000,1/8000 \\
                  --iterations 5,10,20,50,100 --scenes pendulum_period,projectile,torque_free,...
 """
