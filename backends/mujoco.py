@@ -34,10 +34,14 @@ normal frame[0:3] from geom1 to geom2, depth -dist.
 
 from __future__ import annotations
 
+import os
 import sys
 
-import mujoco
-import numpy as np
+# No renderer: unless the user chose a GL backend, mujoco's import skips its GL context and
+# glfw (about 90 ms of every run's start; this backend never draws)
+os.environ.setdefault("MUJOCO_GL", "disable")
+import mujoco  # noqa: E402  (after MUJOCO_GL)
+import numpy as np  # noqa: E402
 
 from x3d_core import rotation as R
 from x3d_core.collision import Collisions, ContactPoints, Geometry, friction_directions

@@ -197,7 +197,8 @@ def cmd_backends(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def add_commands(sub) -> None:
+def add_command(sub) -> None:
+    """`x3drbp run` and `x3drbp backends`."""
     r = sub.add_parser("run", help="run a scene on one backend and write its event trace")
     r.add_argument("scene")
     r.add_argument("--backend", required=True, help=f"one of {', '.join(base.engines())} (the "

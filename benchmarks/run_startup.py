@@ -1,0 +1,61 @@
+"""Benchmark: what one `x3drbp run` process costs before it simulates anything.
+
+Every other command (conformance, compare, stability, sweep, advise) starts `x3drbp run`
+children by the hundred, so their start-up is most of the main job's time. Timed, as whole
+processes from start to exit, taking turns so that load shifts all alike: the interpreter
+alone (`python -c pass`), numpy and lxml (what any run needs), and `x3drbp run` of the
+bundled pendulum for one 1/240 s step on each installed backend (imports, the backend's
+judgement, the engine build, one step, the trace written). Printed: the median and spread
+of each over --repeat runs, and what x3drbp adds over numpy and lxml.
+
+    python benchmarks/run_startup.py [--repeat 7] [--backends mujoco,bullet,dart,ode,pymunk]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SCENE = os.path.join(ROOT, "scenes", "examples", "pendulum.x3d")
+
+
+def _wall(cmd: list[str]) -> float:
+    started = time.perf_counter()
+    subprocess.run(cmd, cwd=ROOT, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return time.perf_counter() - started
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--repeat", type=int, default=7)
+    ap.add_argument("--backends", default="mujoco,bullet,dart,ode,pymunk")
+    args = ap.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        trace = os.path.join(tmp, "t.csv")
+        commands = {"python -c pass": [sys.executable, "-c", "pass"],
+                    "import numpy, lxml": [sys.executable, "-c", "import numpy, lxml.etree"]}
+        for b in args.backends.split(","):
+            commands[f"x3drbp run ({b})"] = [sys.executable, "-m", "conformance.cli", "run", SCENE, "--backend", b,
+                                             "--duration", repr(1 / 240), "--trace", trace, "-q"]
+        times: dict[str, list[float]] = {name: [] for name in commands}
+        for _ in range(args.repeat):  # taking turns
+            for name, cmd in commands.items():
+                times[name].append(_wall(cmd))
+    floor = statistics.median(times["import numpy, lxml"])
+    print(f"{args.repeat} runs each, taking turns; {os.cpu_count()} CPUs, load average "
+          f"{', '.join(f'{x:.2f}' for x in os.getloadavg())}\n")
+    print("| process | median s | spread s | over numpy and lxml s |\n|---|---:|---|---:|")
+    for name, ts in times.items():
+        m = statistics.median(ts)
+        print(f"| {name} | {m:.3f} | {min(ts):.3f}-{max(ts):.3f} | {m - floor:+.3f} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
