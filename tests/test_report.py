@@ -186,6 +186,12 @@ def test_bad_usage_is_exit_2_without_a_traceback(tmp_path):
     r = subprocess.run([sys.executable, "-m", "conformance.cli", "report", "--backends", "nope", "--out",
                         str(tmp_path)], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert r.returncode == 2 and "unknown backend(s) nope" in r.stderr and "Traceback" not in r.stderr
+    (tmp_path / "empty").mkdir()
+    for scenes, said in ((tmp_path / "missing.x3d", "no such file or folder"), (tmp_path / "empty", "no X3D files")):
+        r = subprocess.run([sys.executable, "-m", "conformance.cli", "report", "--scenes", str(scenes), "--out",
+                            str(tmp_path / "out")], cwd=ROOT, capture_output=True, text=True, timeout=120)
+        assert r.returncode == 2 and said in r.stderr and "Traceback" not in r.stderr
+        assert not (tmp_path / "out" / "logs").exists()  # refused before any step
 
 
 def test_a_feature_cell_counts_other_conventions_as_conforming():

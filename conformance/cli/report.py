@@ -155,6 +155,10 @@ def cmd_report(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     out = args.out
     logs = os.path.join(out, "logs")
+    missing = [p for p in args.scenes or () if not os.path.exists(p)]
+    if missing:  # before any step: a step would fail on it minutes later
+        print(f"x3drbp report: --scenes: no such file or folder: {', '.join(missing)}", file=sys.stderr)
+        return EXIT_USAGE
     yours = scene_files(args.scenes) if args.scenes else []
     if args.scenes and not yours:
         print("x3drbp report: --scenes: no X3D files (.x3d, .x3dv, .x3dj) under the given paths", file=sys.stderr)
