@@ -215,32 +215,29 @@ def test_a_real_run_is_stopped(tmp_path, command, signals, whole_group, status):
     _assert_none_left(procs)
 
 
-@INTERRUPTS
-def test_sweep_interrupted_stops_its_pool_workers_and_their_runs(tmp_path, signals, whole_group, status):
-    """The runs are the pool workers' children: the command stops the workers, each its run."""
-    pytest.importorskip(BACKEND)
-    parent = _start("sweep", *LONG["sweep"], "--backends", BACKEND, "--workers", "2", "--timeout", "300",
-                    "--out", str(tmp_path / "out"))
-    procs = _wait_for_runs(parent, count=2)
-    code, err, took = _interrupt(parent, signals, whole_group)
-    assert _exited(code, status, signals) and _one_line(err) == "x3drbp sweep: interrupted"
-    assert took < children.GRACE + 3
-    _assert_none_left(procs)
-    assert not (tmp_path / "out").exists()
+# the commands whose runs are a process pool's children: sweep on every interrupt, advise
+# (the sweep's pool again) on one each of Ctrl-C and SIGTERM; each with the output it must not write
+_POOLED = [pytest.param(command, *sent, id=f"{command}-{name}")
+           for command, count in (("sweep", len(_SENT)), ("advise", 2))
+           for sent, name in zip(_SENT[:count], _IDS[:count])]
+_POOLED_OUTPUT = {"sweep": ("--out", "out"), "advise": ("--json", "advice.json")}
 
 
-@ONE_INTERRUPT
-def test_advise_interrupted_stops_its_pool_workers_and_their_runs(tmp_path, signals, whole_group, status):
-    """advise runs the sweep's pool: the same stop, and no advice.json of runs that were stopped."""
+@pytest.mark.parametrize("command,signals,whole_group,status", _POOLED)
+def test_a_pooled_command_interrupted_stops_its_pool_workers_and_their_runs(tmp_path, command, signals,
+                                                                             whole_group, status):
+    """The runs are the pool workers' children: the command stops the workers, each its run, and
+    writes none of its output."""
     pytest.importorskip(BACKEND)
-    parent = _start("advise", *LONG["advise"], "--backends", BACKEND, "--workers", "2", "--timeout", "300",
-                    "--json", str(tmp_path / "advice.json"))
+    option, name = _POOLED_OUTPUT[command]
+    parent = _start(command, *LONG[command], "--backends", BACKEND, "--workers", "2", "--timeout", "300",
+                    option, str(tmp_path / name))
     procs = _wait_for_runs(parent, count=2)
     code, err, took = _interrupt(parent, signals, whole_group)
-    assert _exited(code, status, signals) and _one_line(err) == "x3drbp advise: interrupted"
+    assert _exited(code, status, signals) and _one_line(err) == f"x3drbp {command}: interrupted"
     assert took < children.GRACE + 3
     _assert_none_left(procs)
-    assert not (tmp_path / "advice.json").exists()
+    assert not (tmp_path / name).exists()
 
 
 # -- a sweep without results, a probe without an answer ---------------------------------------

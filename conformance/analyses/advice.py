@@ -35,7 +35,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from x3d_core import rotation as R
 from x3d_core.analysis import run_features
 from x3d_core.model import Scene
 
@@ -43,8 +42,8 @@ from conformance import cases as C
 from conformance.results import PASS
 from conformance.runner import children, probe
 from conformance.analyses import sweep as S
-from conformance.analyses.compare import DEFAULT_THRESHOLDS
-from conformance.analyses.sweep_metrics import Cost, Positions, same_error
+from conformance.analyses.compare import DEFAULT_THRESHOLDS, pose_gaps
+from conformance.analyses.sweep_metrics import Cost, Positions, same_error, shared_frames
 
 DEFAULT_DTS = (1 / 60, 1 / 240, 1 / 1000)
 DEFAULT_DURATION = 5.0  # s: how long the runs are watched for parting
@@ -136,14 +135,11 @@ def parting(a: Positions, b: Positions, thresholds: dict[str, float] = DEFAULT_T
     """The first frame time at which some body of two runs is further apart than the
     position threshold (m) or turned from itself by more than the orientation one (rad);
     None when they stay within both over every frame they share."""
-    times, i, j = np.intersect1d(np.round(a.times, 9), np.round(b.times, 9), return_indices=True)
-    if a.bodies != b.bodies or not times.size:
-        raise ValueError("the runs share no body or no frame")
-    apart = np.linalg.norm(a.values[i] - b.values[j], axis=-1) > thresholds["position"]
-    if a.orientations is not None and b.orientations is not None:
-        turned = R.angle_between(R.from_axis_angle(a.orientations[i]), R.from_axis_angle(b.orientations[j]))
-        apart |= turned > thresholds["orientation"]
-    over = np.flatnonzero(apart.any(axis=1))
+    times, i, j = shared_frames(a, b)
+    if not times.size:
+        raise ValueError("the runs share no frame")
+    dp, do = pose_gaps(a.values[i], a.orientations[i], b.values[j], b.orientations[j])
+    over = np.flatnonzero(((dp > thresholds["position"]) | (do > thresholds["orientation"])).any(axis=1))
     return float(times[over[0]]) if over.size else None
 
 

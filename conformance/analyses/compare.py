@@ -116,6 +116,12 @@ def _joint_keys(trace: TraceView) -> list[str]:
     return [f"{n}.{f}" for n, f in trace.keys() if f in JOINT_OUTPUTS]
 
 
+def pose_gaps(pa: np.ndarray, oa: np.ndarray, pb: np.ndarray, ob: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per frame and body, how far apart two runs' bodies are (m) and the angle between their
+    orientations (rad), from positions (..., 3) and axis-angle orientations (..., 4)."""
+    return np.linalg.norm(pa - pb, axis=-1), R.angle_between(R.from_axis_angle(oa), R.from_axis_angle(ob))
+
+
 def compare_pair(a: str, ta: TraceView, b: str, tb: TraceView,
                  thresholds: Mapping[str, float] = DEFAULT_THRESHOLDS) -> PairComparison:
     """Backend a's trace against backend b's."""
@@ -123,9 +129,8 @@ def compare_pair(a: str, ta: TraceView, b: str, tb: TraceView,
     names = [n for n in in_a if n in in_b]
     times = _common_times([t.series(n, f)[0] for t in (ta, tb) for n in names for f in (POSITION, ORIENTATION)])
     if names and times.size:
-        dp = np.linalg.norm(_stack(ta, names, POSITION, times) - _stack(tb, names, POSITION, times), axis=-1)
-        do = R.angle_between(R.from_axis_angle(_stack(ta, names, ORIENTATION, times)),
-                                    R.from_axis_angle(_stack(tb, names, ORIENTATION, times)))
+        dp, do = pose_gaps(_stack(ta, names, POSITION, times), _stack(ta, names, ORIENTATION, times),
+                           _stack(tb, names, POSITION, times), _stack(tb, names, ORIENTATION, times))
     else:
         dp = do = np.empty((times.size, 0))
     ja, jb = _joint_keys(ta), _joint_keys(tb)

@@ -303,8 +303,8 @@ def _fill(p: Point, job: Job, res: JobResult, reference: Reference | str | None,
           fine: tuple[Job, JobResult, JobResult] | None) -> None:
     p.verdict, p.reason = res.verdict, res.reason
     if res.step_s:
-        p.wall_per_sim_s, p.wall_low, p.wall_high = (
-            getattr(Cost.of(res.step_s), k) / job.settings.duration for k in ("median", "low", "high"))
+        cost = Cost.of([s / job.settings.duration for s in res.step_s])
+        p.wall_per_sim_s, p.wall_low, p.wall_high = cost.median, cost.low, cost.high
         p.simulation_per_sim_s = res.simulation_s / job.settings.duration
     if res.positions is None:
         p.error = res.error

@@ -48,14 +48,18 @@ def comparison_interval(dts: Sequence[float]) -> float:
     return float(common * max(1, math.ceil(MIN_INTERVAL / common - 1e-9)))
 
 
+def shared_frames(a: Positions, b: Positions) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The frame times two runs both recorded, and where each holds them: (times, in a, in b);
+    ValueError where the runs hold different bodies."""
+    if a.bodies != b.bodies:
+        raise ValueError(f"the runs have different bodies, so they share no body to compare: {a.bodies} and {b.bodies}")
+    return np.intersect1d(np.round(a.times, _TIME_DIGITS), np.round(b.times, _TIME_DIGITS), return_indices=True)
+
+
 def window_error(run: Positions, reference: Positions, window: float) -> float:
     """The largest distance of any body from its place in the reference, over the frames both
     runs recorded up to `window` seconds (m)."""
-    if run.bodies != reference.bodies:
-        raise ValueError(f"the runs have different bodies: {run.bodies} and {reference.bodies}")
-    mine = np.round(run.times, _TIME_DIGITS)
-    theirs = np.round(reference.times, _TIME_DIGITS)
-    common, i, j = np.intersect1d(mine, theirs, return_indices=True)
+    common, i, j = shared_frames(run, reference)
     keep = common <= window + 10.0 ** -_TIME_DIGITS
     if not keep.any():
         raise ValueError("the runs share no frame within the window")
