@@ -175,10 +175,11 @@ def _header(meta: dict, out: str) -> str:
         "beside this page. " + _logs(meta, out)]) + "\n"
 
 
-def report_markdown(out: str) -> str:
+def report_markdown(out: str, found: list[tuple[str, Comparison]] | None = None) -> str:
+    """The page's markdown; found: the comparisons in out where the caller has read them already."""
     with open(os.path.join(out, "report.json"), encoding="utf-8") as f:
         meta = json.load(f)
-    found = comparisons(out)
+    found = comparisons(out) if found is None else found
     parts = [_header(meta, out), answers(out, [c for _, c in found])]
     matrix = _read(os.path.join(out, "conformance", "matrix.md"))
     parts.append("## Conformance\n\n" + (_folded("The matrix: every case on every backend, and why each verdict",
@@ -212,17 +213,15 @@ def dead_links(out: str, page: str) -> list[str]:
             and not os.path.exists(os.path.join(out, urllib.parse.unquote(t)))]
 
 
-def write_plots(out: str) -> None:
-    """Each comparison's divergence plot beside its JSON (matplotlib: only where a page is written)."""
-    from .divergence_plot import divergence_plot
-    for stem, comparison in comparisons(out):
-        divergence_plot(comparison, stem + DIVERGENCE)
-
-
 def write_report(out: str) -> str:
-    """Writes DIR/report.md and DIR/index.html (and the comparisons' plots); returns the page's path."""
-    write_plots(out)
-    text = report_markdown(out)
+    """Writes DIR/report.md and DIR/index.html, and each comparison's divergence plot beside its
+    JSON (matplotlib: only where a page is written); returns the page's path. The comparisons,
+    per-frame series and all, are read once for both."""
+    from .divergence_plot import divergence_plot
+    found = comparisons(out)
+    for stem, comparison in found:
+        divergence_plot(comparison, stem + DIVERGENCE)
+    text = report_markdown(out, found)
     atomic.write_text(os.path.join(out, "report.md"), text)
     body = md.markdown(text, extensions=["tables", "toc", "md_in_html", "fenced_code"])
     page = os.path.join(out, "index.html")
