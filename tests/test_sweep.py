@@ -106,6 +106,9 @@ def test_targets_pick_the_reference():
                                          "conformance/cases/double_pendulum_energy/double_pendulum_energy.x3d")
     with pytest.raises(ValueError, match="neither a case"):
         S.targets(["no_such_thing"], dts)
+    # two scene files of one stem: their plots (sweep_NAME.png) must not overwrite each other
+    twins = S.targets([case_scene("free_fall"), case_scene("free_fall")], dts)
+    assert [t.name for t in twins] == ["free_fall", "free_fall-2"]
     with pytest.raises(ValueError, match="several runs"):
         S.targets(["frame_rate"], dts)
 

@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections import Counter
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, replace
 
@@ -104,11 +105,18 @@ def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_
         label = name if case is not None else os.path.splitext(os.path.basename(path))[0]
         out.append(Target(label, _relative(path), fine, None,
                           f"max |position - reference position| over the first {window:g} s", window))
-    seen: dict[str, int] = {}
-    for k, t in enumerate(out):  # two scene files of one stem: numbered, as their plots are named after them
-        seen[t.name] = seen.get(t.name, 0) + 1
-        if seen[t.name] > 1:
-            out[k] = replace(t, name=f"{t.name}-{seen[t.name]}")
+    # two scene files of one stem: numbered, as their plots are named after them
+    return [replace(t, name=name) for t, name in zip(out, numbered([t.name for t in out]))]
+
+
+def numbered(names: Sequence[str]) -> list[str]:
+    """Each name as given, numbered from its second use on (NAME, NAME-2, NAME-3): results
+    named after scenes that share a file name do not overwrite each other."""
+    seen: Counter = Counter()
+    out = []
+    for name in names:
+        seen[name] += 1
+        out.append(name if seen[name] == 1 else f"{name}-{seen[name]}")
     return out
 
 

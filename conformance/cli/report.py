@@ -36,7 +36,6 @@ import json
 import os
 import sys
 import time
-from collections import Counter
 from collections.abc import Callable
 from typing import TextIO
 
@@ -55,13 +54,7 @@ COMPARE_SECONDS = 5.0
 
 def stems(paths: list[str]) -> list[str]:
     """A file name for each scene's results: its own stem, numbered where two share one."""
-    seen: Counter = Counter()
-    out = []
-    for path in paths:
-        stem = os.path.splitext(os.path.basename(path))[0]
-        seen[stem] += 1
-        out.append(stem if seen[stem] == 1 else f"{stem}-{seen[stem]}")
-    return out
+    return S.numbered([os.path.splitext(os.path.basename(p))[0] for p in paths])
 
 
 def _steps(out: str, backends: list[str], quick: bool, x_ite: bool, yours: list[str]
