@@ -95,24 +95,13 @@ MOMENTS = [0.0104, 0.0104, 0.0017]  # principal moments, body axes: the INERTIA 
 
 def native_mujoco(scene: str, duration: float) -> np.ndarray:
     import mujoco
-    spec = mujoco.MjSpec()
-    spec.compiler.degree = False
-    spec.option.timestep = DT
-    spec.option.gravity = [0, -9.81, 0]
-    spec.option.iterations = 10
-    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
+    from native_mujoco_chain import chain_spec, options  # beside this script
     inertia = MOMENTS + [0, 0, 0]
     velocities = []
-    # ipos must be given with an explicit inertia: MjSpec leaves it undefined (NaN), and
-    # mujoco 4.0 then compiles the centre of mass to the body's own pos (measured)
     if scene == "chain":
-        parent = spec.worldbody
-        for k in range(LINKS):
-            body = parent.add_body(pos=DIRECTION * (0.35 if k else 0.175), ipos=[0, 0, 0])
-            body.explicitinertial, body.mass, body.fullinertia = True, MASS, inertia
-            body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=-0.175 * DIRECTION, axis=[0, 0, 1])
-            parent = body
+        spec = chain_spec(LINKS)
     else:
+        spec = options()
         for position, v, w in box_draws():
             velocities.append(np.concatenate([v, w]))
             body = spec.worldbody.add_body(pos=position, ipos=[0, 0, 0])

@@ -27,6 +27,7 @@ from conformance.cli import main as cli_main
 from conformance.runner import children, probe
 
 from fake_child import fake_python
+from procs import table
 
 pytestmark = pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="finds processes through /proc")
 BACKEND = "mujoco"  # a dependency, installed wherever the project is
@@ -47,30 +48,15 @@ LONG = {"stability": ["--cases", "thin_wall_impact", "--dts", "1e-6"],
 
 # -- processes, from /proc --------------------------------------------------------------------
 
-def _table() -> dict[int, tuple[str, int, int]]:
-    """Every process: pid -> (state, parent pid, process group)."""
-    out = {}
-    for name in os.listdir("/proc"):
-        if name.isdigit():
-            try:
-                with open(f"/proc/{name}/stat", encoding="utf-8", errors="replace") as f:
-                    stat = f.read()
-            except OSError:
-                continue
-            state, ppid, pgrp = stat[stat.rindex(")") + 2:].split()[:3]
-            out[int(name)] = (state, int(ppid), int(pgrp))
-    return out
-
-
 def _descendants(pid: int) -> dict[int, int]:
     """pid's living descendants -> their process group."""
-    table = _table()
+    procs = table()
     found, todo = {}, [pid]
     while todo:
         parent = todo.pop()
-        for p, (state, ppid, pgrp) in table.items():
-            if ppid == parent and p not in found and state != "Z":
-                found[p] = pgrp
+        for p, proc in procs.items():
+            if proc.ppid == parent and p not in found and proc.state != "Z":
+                found[p] = proc.pgrp
                 todo.append(p)
     return found
 
@@ -84,7 +70,7 @@ def _argv(pid: int) -> list[str]:
 
 
 def _is_run(pid: int) -> bool:
-    argv = _argv(pid)
+    argv = " ".join(_argv(pid)).split()  # a fork server's run has its command line as one title
     return any(a == "conformance.cli" and b == "run" for a, b in zip(argv, argv[1:]))
 
 
@@ -124,7 +110,7 @@ def _alive(pgid: int) -> list[int]:
         os.killpg(pgid, 0)
     except ProcessLookupError:
         return []
-    return [p for p, (state, _, pgrp) in _table().items() if pgrp == pgid and state != "Z"]
+    return [p for p, proc in table().items() if proc.pgrp == pgid and proc.state != "Z"]
 
 
 def _assert_none_left(procs: dict[int, int], within: float = 3.0) -> None:

@@ -15,8 +15,6 @@ from __future__ import annotations
 
 import csv
 import io
-from dataclasses import dataclass
-from collections.abc import Sequence
 from typing import Any, Callable, Iterator, NamedTuple
 
 import numpy as np
@@ -24,19 +22,11 @@ import numpy as np
 from . import atomic
 from . import fields as F
 from .inputs import open_regular
+from .trace_npz import read_npz
+from .trace_view import TRACE_LIMIT, Row, TraceView, ViewBuilder
 
 HEADER = ("time", "node", "field", "value")
-# the largest trace read: ~1.5e7 rows at full precision, what a validation holds in about a GiB
-TRACE_LIMIT = 1 << 30  # bytes
 CHUNK_BYTES = 2 << 20  # read and parsed at a time
-
-
-@dataclass(frozen=True)
-class Row:
-    time: float
-    node: str
-    field: str
-    value: str
 
 
 class _Block(NamedTuple):
@@ -68,10 +58,15 @@ class _Table(NamedTuple):
     count: int
     columns: list[Column]
 
-    def events(self) -> Iterator[tuple[float, str, str, str]]:
+    def events(self, numbers: bool = False) -> Iterator[tuple[float, str, str, Any]]:
+        """The rows, values as written; with `numbers`, an SF number or vector column's values
+        as lists of floats, the numbers its text reads as (Trace.view formats none)."""
         texts = []
         for c in self.columns:
-            if c.constant:
+            if numbers and c.ftype is not None and c.ftype.numeric and not c.ftype.multi:
+                rows = np.asarray(c.values, dtype=np.float64).reshape(1 if c.constant else self.count, -1).tolist()
+                texts.append(rows * self.count if c.constant else rows)
+            elif c.constant:
                 one = c.values if c.ftype is None else F.format_xml(c.ftype, np.asarray(c.values).tolist())
                 texts.append([one] * self.count)
             else:
@@ -116,15 +111,70 @@ class Trace:
     def events(self) -> Iterator[tuple[float, str, str, str]]:
         """(time, node, field, value text) in order: the rows, made only now."""
         for b in self.blocks:
-            if isinstance(b, _Table):
-                yield from b.events()
-            elif b.ftype is None:
-                yield b.time, b.nodes[0], b.field, b.values[0]
-            else:
-                values = b.convert(b.values) if b.convert is not None else b.values
-                ftype, time, field = b.ftype, b.time, b.field
-                for node, value in zip(b.nodes, values.tolist()):
-                    yield time, node, field, F.format_xml(ftype, value)
+            yield from _events(b)
+
+    def view(self) -> TraceView:
+        """What read_view reads from this trace's CSV, number for number and in the same key
+        order, made from the arrays: an SF number or vector field is never formatted, its
+        blocks stacked per (field, nodes) and split per node. Tables and the other fields
+        go row by row through the CSV reader's own rule (ViewBuilder.add_row)."""
+        groups: dict[tuple[str, tuple[str, ...]], tuple[list[int], list[float], list[np.ndarray]]] = {}
+        pieces: dict[tuple[str, str], list[tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}  # first-row order
+        loose: dict[tuple[str, str], tuple[list[int], list[float], list[list[float]]]] = {}
+        texts: dict[tuple[str, str], tuple[list[float], list[str]]] = {}
+        times, count = [], 0
+        for seq, b in enumerate(self.blocks):
+            if isinstance(b, _Block) and b.ftype is not None and b.ftype.numeric and not b.ftype.multi:
+                if not b.nodes:
+                    continue
+                key = (b.field, tuple(b.nodes))
+                g = groups.get(key)
+                if g is None:
+                    g = groups[key] = ([], [], [])
+                    for node in b.nodes:
+                        pieces.setdefault((node, b.field), [])
+                g[0].append(seq)
+                g[1].append(b.time)
+                g[2].append(b.convert(b.values) if b.convert is not None else b.values)
+                times.append(b.time)
+                count += len(b.nodes)
+                continue
+            times.append(b.time)
+            for t, node, fld, value in b.events(numbers=True) if isinstance(b, _Table) else _events(b):
+                count += 1
+                try:
+                    numbers = value if isinstance(value, list) else [float(x) for x in value.split()]
+                except ValueError:  # as ViewBuilder.add_row: SFBool, SFNode names, MFString
+                    held = texts.setdefault((node, fld), ([], []))
+                    held[0].append(t)
+                    held[1].append(value)
+                    continue
+                pieces.setdefault((node, fld), [])
+                held = loose.setdefault((node, fld), ([], [], []))
+                held[0].append(seq)
+                held[1].append(t)
+                held[2].append(numbers)
+        for (fld, nodes), (seqs, ts, values) in groups.items():
+            stacked = np.stack(values)
+            stacked = stacked.reshape(len(ts), len(nodes), -1)  # SFFloat's (k,) rows as (k, 1)
+            s, t = np.array(seqs), np.array(ts)
+            for j, node in enumerate(nodes):
+                pieces[(node, fld)].append((s, t, stacked[:, j, :]))
+        for key, (seqs, ts, rows) in loose.items():
+            pieces[key].append((np.array(seqs), np.array(ts), np.array(rows, dtype=np.float64)))
+        series = {}
+        for key, held in pieces.items():
+            widths = {v.shape[1:] for _, _, v in held}
+            if len(widths) > 1:
+                raise ValueError(f"{key[0]}.{key[1]}: rows of {len(widths)} different widths")
+            if len(held) == 1:
+                series[key] = (held[0][1], np.ascontiguousarray(held[0][2]))
+                continue
+            order = np.argsort(np.concatenate([s for s, _, _ in held]), kind="stable")
+            series[key] = (np.concatenate([t for _, t, _ in held])[order],
+                           np.concatenate([v for _, _, v in held])[order])
+        return TraceView.of(series, {k: (np.array(t), s) for k, (t, s) in texts.items()},
+                            np.unique(np.array(times, dtype=np.float64)), count)
 
     @property
     def rows(self) -> list[Row]:
@@ -145,6 +195,19 @@ class Trace:
 
     def write(self, path: str) -> None:
         atomic.write_text(path, self.text())
+
+
+def _events(b: _Block | _Table) -> Iterator[tuple[float, str, str, str]]:
+    """One block's rows, values as written."""
+    if isinstance(b, _Table):
+        yield from b.events()
+    elif b.ftype is None:
+        yield b.time, b.nodes[0], b.field, b.values[0]
+    else:
+        values = b.convert(b.values) if b.convert is not None else b.values
+        ftype, time, field = b.ftype, b.time, b.field
+        for node, value in zip(b.nodes, values.tolist()):
+            yield time, node, field, F.format_xml(ftype, value)
 
 
 def _quoted(text: str) -> str:
@@ -218,165 +281,14 @@ def read_trace(path: str) -> list[Row]:
 
 
 def read_view(path: str) -> TraceView:
-    """A trace file straight into a TraceView, a chunk at a time: no object per row, so a
-    trace of millions of rows costs its arrays (read_trace's rows cost ~200 bytes each)."""
+    """A trace file straight into a TraceView: a CSV a chunk at a time (no object per row, so a
+    trace of millions of rows costs its arrays; read_trace's rows cost ~200 bytes each), a
+    .npz (x3d_core.trace_npz) as its arrays."""
+    if path.endswith(".npz"):
+        return read_npz(path)
     b = ViewBuilder()
     for records in _record_chunks(path):
         for t, n, fld, v in records:
             b.add_row(float(t), n, fld, v)
         b.flush()
     return b.view()
-
-
-class ViewBuilder:
-    """A TraceView made a piece at a time: whole arrays of one output (add_series), or rows
-    one by one (add_row: TraceView's rule, numbers where every token reads as one, else text).
-    Each output's arrays grow in place (by a quarter, a copy each time), so a trace of 10^7
-    rows peaks near the size of its arrays, not twice it as joining pieces at the end would."""
-
-    GROWTH = 1.25
-
-    def __init__(self) -> None:
-        self._series: dict[tuple[str, str], list] = {}  # key: [times, values, rows used]
-        self._rows: dict[tuple[str, str], tuple[list[float], list[list[float]]]] = {}
-        self._texts: dict[tuple[str, str], tuple[list[float], list[str]]] = {}
-        self._times: list[np.ndarray] = []
-        self._loose: list[float] = []
-        self.count = 0
-
-    def _append(self, key: tuple[str, str], times: np.ndarray, values: np.ndarray) -> None:
-        held = self._series.get(key)
-        k = len(times)
-        if held is None:
-            held = self._series[key] = [np.empty(max(k, 16)), np.empty((max(k, 16), *values.shape[1:])), 0]
-        t, v, n = held
-        if v.shape[1:] != values.shape[1:]:
-            raise ValueError(f"{key[0]}.{key[1]}: rows of {values.shape[1:]} numbers after rows of {v.shape[1:]}")
-        if n + k > len(t):
-            size = max(n + k, int(len(t) * self.GROWTH) + 16)
-            grown_t, grown_v = np.empty(size), np.empty((size, *v.shape[1:]))
-            grown_t[:n], grown_v[:n] = t[:n], v[:n]
-            held[0], held[1] = t, v = grown_t, grown_v
-        t[n:n + k], v[n:n + k] = times, values
-        held[2] = n + k
-
-    def add_series(self, key: tuple[str, str], times: np.ndarray, values: np.ndarray, counted: bool = False) -> None:
-        """values[i] at times[i]; counted: the times already given to add_times."""
-        self.flush_key(key)
-        self._append(key, times, values)
-        if not counted:
-            self.add_times(times)
-        self.count += len(times)
-
-    def add_times(self, times: np.ndarray) -> None:
-        """Times rows have (a chunk's, once for all its outputs)."""
-        self._times.append(np.unique(times))
-
-    def add_row(self, time: float, node: str, fld: str, value: str) -> None:
-        key = (node, fld)
-        self.count += 1
-        self._loose.append(time)
-        try:
-            values = [float(x) for x in value.split()]
-        except ValueError:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
-            t, s = self._texts.setdefault(key, ([], []))
-            t.append(time)
-            s.append(value)
-            return
-        t, v = self._rows.setdefault(key, ([], []))
-        t.append(time)
-        v.append(values)
-
-    def flush_key(self, key: tuple[str, str]) -> None:
-        rows = self._rows.pop(key, None)
-        if rows is not None:
-            self._append(key, np.array(rows[0]), np.array(rows[1], dtype=np.float64))
-
-    def flush(self) -> None:
-        """Rows added one by one made arrays (at the end of each chunk: bounded memory)."""
-        for key in list(self._rows):
-            self.flush_key(key)
-        if self._loose:
-            self._times.append(np.unique(np.array(self._loose)))
-            self._loose = []
-
-    def view(self) -> TraceView:
-        self.flush()
-        series = {k: (t[:n], v[:n]) for k, (t, v, n) in self._series.items()}  # views: no copy
-        texts = {k: (np.array(t), s) for k, (t, s) in self._texts.items()}
-        times = np.unique(np.concatenate(self._times)) if self._times else np.empty(0)
-        return TraceView.of(series, texts, times, self.count)
-
-
-class TraceView:
-    """A trace's rows grouped by (node, field): times, and values as float arrays."""
-
-    def __init__(self, rows: Sequence[Row] | TraceView = ()):
-        if isinstance(rows, TraceView):  # the same arrays, shared
-            self._series, self._text, self._times, self._count = rows._series, rows._text, rows._times, rows._count
-            return
-        b = ViewBuilder()
-        for r in rows:
-            b.add_row(r.time, r.node, r.field, r.value)
-        v = b.view()
-        self._series, self._text, self._times, self._count = v._series, v._text, v._times, v._count
-
-    @classmethod
-    def of(cls, series: dict[tuple[str, str], tuple[np.ndarray, np.ndarray]],
-           texts: dict[tuple[str, str], tuple[np.ndarray, list[str]]], times: np.ndarray, count: int) -> TraceView:
-        """A view of arrays already grouped; times: every row's time, sorted, each once."""
-        v = cls.__new__(cls)
-        v._series, v._text, v._times, v._count = series, texts, times, count
-        return v
-
-    def __len__(self) -> int:
-        """The number of rows."""
-        return self._count
-
-    def times(self) -> np.ndarray:
-        """Every time a row has (text rows too), sorted, each once."""
-        return self._times
-
-    def end(self) -> float:
-        """The last time of any row (nan without rows)."""
-        return float(self._times[-1]) if self._times.size else float("nan")
-
-    def text_keys(self) -> list[tuple[str, str]]:
-        return list(self._text)
-
-    def retimed(self, fn: Callable[[np.ndarray], np.ndarray]) -> TraceView:
-        """The same rows, each time t moved to fn(t) (fn maps an array of times)."""
-        series = {k: (fn(t), v) for k, (t, v) in self._series.items()}
-        texts = {k: (fn(t), s) for k, (t, s) in self._text.items()}
-        return TraceView.of(series, texts, np.unique(fn(self._times)), self._count)
-
-    def text(self, node: str, fld: str) -> tuple[np.ndarray, list[str]]:
-        """(times (n,), values as written) of an output that is not numbers: SFBool, SFNode, MFString."""
-        try:
-            return self._text[(node, fld)]
-        except KeyError:
-            raise KeyError(f"the trace has no {node}.{fld} text rows") from None
-
-    def keys(self) -> list[tuple[str, str]]:
-        return list(self._series)
-
-    def series(self, node: str, fld: str) -> tuple[np.ndarray, np.ndarray]:
-        """(times (n,), values (n, width)) of one output."""
-        try:
-            return self._series[(node, fld)]
-        except KeyError:
-            raise KeyError(f"the trace has no {node}.{fld} rows") from None
-
-    def at(self, time: float) -> dict[tuple[str, str], np.ndarray]:
-        """Every output's value at one frame time (exact match)."""
-        out = {}
-        for k, (t, v) in self._series.items():
-            hit = np.flatnonzero(t == time)
-            if hit.size:
-                out[k] = v[hit[0]]
-        return out
-
-    def bodies(self) -> list[str]:
-        """The nodes that have both a position and an orientation: the bodies, in trace order."""
-        keys = set(self._series)
-        return [n for n, f in self._series if f == "position" and (n, "orientation") in keys]

@@ -34,7 +34,7 @@ def _simulation_wall(path: str) -> float | None:
 def run_backend(scene: str, backend: str, settings: Settings, folder: str,
                 timeout: float = children.DEFAULT_TIMEOUT) -> tuple[BackendRun, TraceView | None]:
     """Run the scene on one backend; the trace parsed, or None with the verdict that stopped it."""
-    trace, timing = (os.path.join(folder, f"{backend}{suffix}") for suffix in (".csv", ".timing.json"))
+    trace, timing = (os.path.join(folder, f"{backend}{suffix}") for suffix in (".npz", ".timing.json"))
     started = time.perf_counter()
     out = children.run_child(os.path.abspath(scene), backend, settings, trace, timeout, extra=("--timing", timing))
     child_s = time.perf_counter() - started

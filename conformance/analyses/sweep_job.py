@@ -93,7 +93,7 @@ def run_job(job: Job) -> JobResult:
             except (OSError, LoadError) as e:
                 return JobResult(results.ERROR, f"the scene could not be rewritten: {e}")
             scene = copy
-        trace, timing = os.path.join(tmp, "trace.csv"), os.path.join(tmp, "timing.json")
+        trace, timing = os.path.join(tmp, "trace.npz"), os.path.join(tmp, "timing.json")
         out = children.run_child(scene, job.backend, job.settings, trace, job.timeout,
                                  extra=("--timing", timing, "--repeat", str(job.repeats)))
         if out.verdict is not None:

@@ -18,7 +18,8 @@ from x3d_core.engine import Engine, Simulation, Stopped, TimedOut, Unsupported, 
 from x3d_core.evaluator import RunSettings, run
 from x3d_core.model import Scene
 from x3d_core.outcome import EMPTY, NOTHING_TO_SIMULATE, outcome_warnings, simulates
-from x3d_core.trace import Trace, TraceView
+from x3d_core.trace import Trace
+from x3d_core.trace_npz import write_npz
 from x3d_core.world import World, worlds
 
 from conformance.cli import options
@@ -52,8 +53,10 @@ class _TimedSteps:
 
 
 def _write_trace(trace: Trace, path: str | None) -> None:
-    """The trace to path (atomically), else to standard output."""
-    if path:
+    """The trace to path (atomically; NumPy's .npz where path ends so), else to standard output."""
+    if path and path.endswith(".npz"):
+        write_npz(trace.view(), path)
+    elif path:
         trace.write(path)
     else:
         sys.stdout.write(trace.text())
@@ -174,7 +177,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     _write_trace(trace, args.trace)
     if args.rerun:
         from reports.rerun_recording import write_recording  # rerun is imported when a recording is asked for
-        write_recording(args.rerun, scene, [(args.backend, TraceView(trace.rows))])
+        write_recording(args.rerun, scene, [(args.backend, trace.view())])
     if args.timing:
         atomic.write_json(args.timing, {"simulation_wall_s": statistics.median(simulation_s),
                                         "step_wall_s": statistics.median(step_s),
@@ -206,7 +209,8 @@ def add_command(sub) -> None:
     options.add_run_settings(r)
     r.add_argument("--timeout", type=float, metavar="S", help="stop the simulation after S seconds of wall "
                    "time (engine build and steps), keeping the frames before; exit 1 (default: no limit)")
-    r.add_argument("--trace", help="write the trace CSV here (default: standard output)")
+    r.add_argument("--trace", help="write the trace CSV here (default: standard output); a name ending .npz "
+                   "gets the same rows as NumPy arrays (x3d_core/trace_npz.py), for programs to read fast")
     r.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording of the run (open it with `rerun OUT.rrd`)")
     r.add_argument("--timing", metavar="FILE", help="write the simulation's wall time (plan, engine build, "
                    "steps, state readback; not the load or the trace writing) to FILE as JSON "

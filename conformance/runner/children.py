@@ -35,11 +35,12 @@ from dataclasses import dataclass, field
 from typing import TextIO
 
 from conformance.results import BLEW_UP, CRASHED, ERROR, TIMED_OUT, UNSUPPORTED, Settings
+from conformance.runner import fork_server
+from conformance.runner.fork_server import GRACE, WarmChild
 
 DEFAULT_TIMEOUT = 60.0
 EXIT_UNSUPPORTED = 3  # conformance.cli.run
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-GRACE = 2.0  # s a child has to end on SIGTERM (X_ITE's node closes its browser) before SIGKILL
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
 SLICE = 0.2  # s: the longest a wait on a child goes without running the handler of a signal (_communicate)
 QUIET, DEFAULT, VERBOSE = -1, 0, 1  # how much a command says of its runs' notes (options.verbosity)
@@ -127,9 +128,11 @@ def _signal_group(proc: subprocess.Popen, signum: int) -> None:
         pass
 
 
-def _running(proc: subprocess.Popen) -> bool:
+def _running(proc: subprocess.Popen | WarmChild) -> bool:
     """Whether the child has not ended, asked without reaping it: Popen.poll answers None while
     another thread's wait on the child holds its lock."""
+    if isinstance(proc, WarmChild):
+        return proc.running()
     if proc.returncode is not None:
         return False
     try:
@@ -194,10 +197,14 @@ def _communicate(proc: subprocess.Popen, timeout: float) -> tuple[str, str]:
                 raise
 
 
-def call(cmd: Sequence[str], timeout: float, stdout: bool = True) -> Ended:
+def call(cmd: Sequence[str], timeout: float, stdout: bool = True,
+         warm: fork_server.Server | None = None, backend: str = "") -> Ended:
     """`cmd` from the project root in a session of its own, its stderr (and stdout, unless
     `stdout` is False) captured, its group ended (_end) past `timeout` s or when an exception
-    leaves this call. OSError when it cannot start; Interrupted when this process was interrupted."""
+    leaves this call. With `warm`, cmd (`python -m conformance.cli ARGS`, stdout not captured)
+    is forked by that fork server, which has imported `backend` if a run of it ended well.
+    OSError when it cannot start (fork_server.Gone where the server could not take it);
+    Interrupted when this process was interrupted."""
     global _deferring
     _check()
     main = threading.current_thread() is threading.main_thread()  # where signal handlers run
@@ -205,9 +212,12 @@ def call(cmd: Sequence[str], timeout: float, stdout: bool = True) -> Ended:
     try:
         if main:
             _deferring = True
-        proc = subprocess.Popen(cmd, cwd=ROOT, stdin=subprocess.DEVNULL,
-                                stdout=subprocess.PIPE if stdout else subprocess.DEVNULL, stderr=subprocess.PIPE,
-                                text=True, start_new_session=True)
+        if warm is not None:
+            proc = warm.start(list(cmd[3:]), backend)
+        else:
+            proc = subprocess.Popen(cmd, cwd=ROOT, stdin=subprocess.DEVNULL,
+                                    stdout=subprocess.PIPE if stdout else subprocess.DEVNULL,
+                                    stderr=subprocess.PIPE, text=True, start_new_session=True)
         _live.add(proc)
         if main:
             _deferring = False
@@ -228,6 +238,8 @@ def call(cmd: Sequence[str], timeout: float, stdout: bool = True) -> Ended:
         if main:
             _deferring = False
         _live.discard(proc)
+        if isinstance(proc, WarmChild):
+            proc.close()
     _check()
     return Ended(returncode, out or "", err or "")
 
@@ -326,7 +338,11 @@ def run_child(scene: str, backend: str, settings: Settings, trace: str,
     cmd = [sys.executable, "-m", "conformance.cli", "run", scene, "--backend", backend, *settings.args(),
            "--trace", trace, *(notes.flag() if notes is not None else ("-q",)), *extra]
     try:
-        ended = call(cmd, timeout, stdout=False)
+        warm = fork_server.server(ROOT, _live, _signal is not None) if fork_server.usable() else None
+        try:
+            ended = call(cmd, timeout, stdout=False, warm=warm, backend=backend)
+        except fork_server.Gone:  # the server could not take it, or ended during it: the run afresh
+            ended = call(cmd, timeout, stdout=False)
     except OSError as e:
         return Outcome(ERROR, f"could not start {sys.executable}: {e}")
     if ended.returncode is None:

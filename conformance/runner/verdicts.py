@@ -68,7 +68,8 @@ def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
         traces = []
         for k, s in enumerate(settings):
             suffix = f"-{k}" if len(settings) > 1 else ""
-            path = os.path.join(folder, f"{case.name}-{backend}{suffix}.csv")
+            # a kept trace is for people and other tools (CSV); else the binary form, read back at once
+            path = os.path.join(folder, f"{case.name}-{backend}{suffix}.{'csv' if keep else 'npz'}")
             if os.path.exists(path):
                 os.unlink(path)
             out = run_child(case.path, backend, s, path, timeout)

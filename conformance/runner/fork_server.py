@@ -1,0 +1,251 @@
+"""A warm fork server for the `x3drbp run` children a command starts by the hundred.
+
+A fresh `python -m conformance.cli run` spends about 0.45 s importing numpy, lxml, x3d_core and
+its engine before its first step; a sweep starts 300 of them. The server imports all that
+once (engines the first time a run of theirs ends well, so that one whose import crashes
+crashes a run, not the server) and forks one child per run. Each run stays a process of
+its own, so a crash or a hang is still one verdict:
+
+- the child calls setsid() before the server names its pid: the command kills its group,
+  as it kills a fresh child's (children._end), and a terminal's Ctrl-C never reaches it;
+- its stderr is a pipe the command made and sent over the socket (SCM_RIGHTS), its stdin and
+  stdout /dev/null, as children.call gives a run; its exit status comes back as the wait
+  status the server reaped, so a signal death reads as Popen's negative return code;
+- a command that goes away (its connection closed before the run ended, or the server's
+  stdin at EOF: the command is gone) has that run's group, or every group, SIGKILLed;
+  SIGTERM to the server ends its runs as children._end does (SIGTERM, GRACE s, SIGKILL).
+
+This module is the command's side (conformance/cli/run_server.py is the server's), used by
+children.run_child where the server can serve: on Linux (pidfd), when the children would
+run this very interpreter (a test that points sys.executable at a stand-in gets fresh
+children), and unless X3DRBP_FORK_SERVER=0. A server that cannot start, or dies, is
+replaced; after MAX_FAILURES the process runs fresh children: slower, never a lost run.
+
+Protocol, one connection per run: the command sends one JSON line {"argv": [...],
+"backend": NAME} with its stderr pipe's write end; the server answers "PID\\n" once the child
+has its own session, then "WAITSTATUS\\n" once it has reaped it ("-1\\n" where it could not fork).
+"""
+
+from __future__ import annotations
+
+import atexit
+import json
+import os
+import select
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+GRACE = 2.0  # s a child has to end on SIGTERM (X_ITE's node closes its browser) before SIGKILL, here or in the server
+READY = b"x3drbp-fork-server ready\n"
+NO_FORK = -1  # the status answered where fork() failed
+SLICE = 0.2  # s: the longest wait for the server's start without looking at the clock
+
+
+def _this_interpreter() -> str | None:
+    try:
+        return os.readlink("/proc/self/exe")
+    except OSError:
+        return None
+
+
+_THIS = _this_interpreter()  # the binary this process runs: children of another (a test's stand-in) start fresh
+READY_WAIT = 60.0  # s for a server to import what it preloads (a loaded 2-core machine: a few s)
+MAX_FAILURES = 2  # servers that could not start or died unasked, after which a command runs fresh children
+_lock = threading.Lock()
+_server: Server | None = None
+_failures = 0
+
+
+class Gone(Exception):
+    """The server could not take the run, or ended before it said how the run ended: run it fresh."""
+
+
+def usable() -> bool:
+    """Whether a run can go to the server: Linux's pidfd and SCM_RIGHTS, this very interpreter
+    as the children's, and not turned off (X3DRBP_FORK_SERVER=0)."""
+    return (_THIS is not None and os.path.realpath(sys.executable) == _THIS
+            and os.environ.get("X3DRBP_FORK_SERVER", "1") != "0"
+            and hasattr(os, "pidfd_open") and hasattr(socket, "send_fds"))
+
+
+class WarmChild:
+    """A run forked by the server, with what children.call needs of a subprocess.Popen: pid
+    (its group's), communicate(timeout) raising TimeoutExpired, returncode, wait()."""
+
+    def __init__(self, conn: socket.socket, err: int, pid: int):
+        self.pid, self.returncode = pid, None
+        self._conn, self._err, self._said, self._status = conn, err, bytearray(), bytearray()
+
+    def running(self) -> bool:
+        """Not reaped by the server and not a zombie (asked of /proc: the command is not its parent)."""
+        if self.returncode is not None:
+            return False
+        try:
+            with open(f"/proc/{self.pid}/stat", "rb") as f:
+                stat = f.read()
+        except OSError:
+            return False
+        return stat[stat.rindex(b")") + 2:stat.rindex(b")") + 3] != b"Z"
+
+    def communicate(self, timeout: float | None = None) -> tuple[None, str]:
+        """(None, its stderr) once it has ended and closed it; TimeoutExpired past timeout s,
+        Gone where the server ended before saying how the run did."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while self.returncode is None:
+            told = self._status.endswith(b"\n")
+            if told and self._err < 0:
+                self.returncode = os.waitstatus_to_exitcode(int(self._status))
+                break
+            left = None if deadline is None else deadline - time.monotonic()
+            if left is not None and left <= 0:
+                raise subprocess.TimeoutExpired("x3drbp run", timeout or 0.0)
+            waiting = ([self._err] if self._err >= 0 else []) + ([] if told else [self._conn.fileno()])
+            ready = select.select(waiting, [], [], left)[0]
+            if self._err in ready:
+                data = os.read(self._err, 1 << 16)
+                self._said += data
+                if not data:
+                    os.close(self._err)
+                    self._err = -1
+            if not told and self._conn.fileno() in ready:
+                data = self._conn.recv(64)
+                if not data:
+                    raise Gone("the fork server ended during the run")
+                self._status += data
+        return None, self._said.decode("utf-8", errors="replace")
+
+    def wait(self) -> int | None:
+        """Its exit status once it has ended (None: the server ended first)."""
+        try:
+            self.communicate()
+        except Gone:
+            pass
+        self.close()
+        return self.returncode
+
+    def close(self) -> None:
+        if self._err >= 0:
+            os.close(self._err)
+            self._err = -1
+        self._conn.close()
+
+
+class Server:
+    """A running server (a subprocess.Popen in the caller's `live` set, so that an interrupt
+    ends it with the runs), started with the environment `env`: a command whose environment
+    changed since gets a new one, its runs seeing what a fresh child would."""
+
+    def __init__(self, proc: subprocess.Popen, path: str, env: dict[str, str], live: set):
+        self.proc, self.path, self.env, self.live = proc, path, env, live
+
+    def start(self, argv: list[str], backend: str) -> WarmChild:
+        """A run of `x3drbp ARGV` forked and in its own session; Gone where the server cannot take it."""
+        conn = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        r, w = os.pipe()
+        try:
+            try:
+                conn.connect(self.path)
+                socket.send_fds(conn, [json.dumps({"argv": argv, "backend": backend}).encode() + b"\n"], [w])
+            finally:
+                os.close(w)
+            answer = b""
+            while not answer.endswith(b"\n"):
+                more = conn.recv(64)
+                if not more:
+                    raise Gone("the fork server ended")
+                answer += more
+            first, _, rest = answer.partition(b"\n")
+            if int(first) == NO_FORK:
+                raise Gone("the fork server could not fork")
+        except (OSError, ValueError, Gone) as e:
+            os.close(r)
+            conn.close()
+            raise Gone(str(e)) from None
+        child = WarmChild(conn, r, int(first))
+        child._status += rest
+        return child
+
+    def alive(self) -> bool:
+        return self.proc.poll() is None
+
+    def close(self) -> None:
+        """Its stdin closed: it ends its runs (none is left: each command waits for its own) and exits."""
+        self.live.discard(self.proc)
+        try:
+            self.proc.stdin.close()
+            self.proc.wait(GRACE)
+        except (OSError, subprocess.TimeoutExpired):
+            self.proc.kill()
+            self.proc.wait()
+
+
+def _start(env: dict[str, str], root: str, live: set) -> Server | None:
+    """A server ready to fork runs (its process in `live`), or None (it could not start within READY_WAIT s)."""
+    folder = tempfile.mkdtemp(prefix="x3drbp-fork-")
+    path = os.path.join(folder, "socket")
+    try:
+        proc = subprocess.Popen([sys.executable, "-m", "conformance.cli.run_server", path], cwd=root,
+                                stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                start_new_session=True)
+    except OSError:
+        os.rmdir(folder)
+        return None
+    live.add(proc)
+    server = Server(proc, path, env, live)
+    atexit.register(_leave, server, folder)
+    ready = b""
+    deadline = time.monotonic() + READY_WAIT
+    while not ready.endswith(READY) and time.monotonic() < deadline:
+        if select.select([proc.stdout.fileno()], [], [], SLICE)[0]:
+            more = os.read(proc.stdout.fileno(), 256)
+            if not more:
+                break
+            ready += more
+    proc.stdout.close()
+    if not ready.endswith(READY):
+        server.close()
+        return None
+    return server
+
+
+def _leave(server: Server, folder: str) -> None:
+    """At exit: the server told to end (its stdin closed), its folder removed."""
+    try:
+        server.proc.stdin.close()
+    except OSError:
+        pass
+    for name in os.listdir(folder) if os.path.isdir(folder) else ():
+        try:
+            os.unlink(os.path.join(folder, name))
+        except OSError:
+            pass
+    try:
+        os.rmdir(folder)
+    except OSError:
+        pass
+
+
+def server(root: str, live: set, interrupted: bool) -> Server | None:
+    """This process's server for the present environment, started (or replaced) as needed to
+    run in `root`, its process kept in `live`; None once MAX_FAILURES servers failed to start
+    or died unasked (not `interrupted`: an interrupt's stop ends it)."""
+    global _server, _failures
+    with _lock:
+        env = dict(os.environ)
+        if _server is not None and not _server.alive():
+            if not interrupted:
+                _failures += 1
+            _server.close()
+            _server = None
+        if _server is not None and _server.env != env:
+            _server.close()
+            _server = None
+        if _server is None and _failures < MAX_FAILURES:
+            _server = _start(env, root, live)
+            if _server is None:
+                _failures += 1
+        return _server

@@ -1,0 +1,108 @@
+"""The warm fork server (conformance/runner/fork_server.py, conformance/cli/run_server.py):
+a run it forks is the same run a fresh `x3drbp run` is, byte for byte, and as isolated: its
+own session, its crash or hang one verdict, nothing left behind; a server that dies or an
+environment that changes costs a new server, never a run. Processes are found through /proc."""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+
+import pytest
+
+from conftest import ROOT, case_scene
+from backends import base
+from conformance import results
+from conformance.results import Settings
+from conformance.runner import children, fork_server
+
+from procs import table
+
+pytestmark = pytest.mark.skipif(not fork_server.usable(), reason="the fork server needs Linux's pidfd")
+INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
+PENDULUM = os.path.join(ROOT, "scenes", "examples", "pendulum.x3d")
+LONG = Settings(30.0, 1e-6)  # minutes of steps: a run that is still going when the test acts on it
+
+
+def _in_thread(fn) -> tuple[threading.Thread, list]:
+    out: list = []
+    t = threading.Thread(target=lambda: out.append(fn()), daemon=True)
+    t.start()
+    return t, out
+
+
+def _the_run(within: float = 30.0) -> int:
+    """The one run the server is forking now, once it is there."""
+    deadline = time.monotonic() + within
+    while time.monotonic() < deadline:
+        server = fork_server._server
+        kids = [p for p, proc in table().items() if server is not None and proc.ppid == server.proc.pid
+                and proc.state != "Z"]
+        if kids:
+            return kids[0]
+        time.sleep(0.02)
+    pytest.fail("the server forked no run")
+
+
+@pytest.mark.parametrize("backend", INSTALLED)
+def test_a_warm_run_writes_the_very_bytes_a_fresh_one_does(tmp_path, monkeypatch, backend):
+    for k, scene in enumerate((PENDULUM, case_scene("sensor_geometry"))):
+        warm, cold = tmp_path / f"warm{k}.csv", tmp_path / f"cold{k}.csv"
+        assert children.run_child(scene, backend, Settings(1.0, 1 / 240), str(warm)).verdict in (None, results.UNSUPPORTED)
+        with monkeypatch.context() as m:
+            m.setenv("X3DRBP_FORK_SERVER", "0")
+            assert not fork_server.usable()
+            out = children.run_child(scene, backend, Settings(1.0, 1 / 240), str(cold))
+        if out.verdict == results.UNSUPPORTED:  # pymunk: a scene out of its plane
+            assert not warm.exists()
+            continue
+        assert out.verdict is None, out
+        assert warm.read_bytes() == cold.read_bytes()
+
+
+def test_a_warm_run_has_a_session_of_its_own_and_its_crash_is_a_verdict(tmp_path):
+    backend = INSTALLED[0]
+    children.run_child(PENDULUM, backend, Settings(0.1, 1 / 240), str(tmp_path / "warmup.npz"))  # the server up
+    thread, out = _in_thread(lambda: children.run_child(case_scene("free_fall"), backend, LONG,
+                                                        str(tmp_path / "t.npz"), timeout=120))
+    pid = _the_run()
+    assert (table()[pid].pgrp, table()[pid].session) == (pid, pid)  # its own group and session: the terminal's Ctrl-C never reaches it
+    with open(f"/proc/{pid}/cmdline", "rb") as f:
+        assert b"conformance.cli run" in f.read()  # what ps shows of it
+    os.kill(pid, signal.SIGSEGV)
+    thread.join(30)
+    assert out and out[0].verdict == results.CRASHED and out[0].reason.startswith("killed by SIGSEGV"), out
+
+
+def test_a_warm_run_past_its_time_limit_is_timed_out_and_gone(tmp_path):
+    backend = INSTALLED[0]
+    children.run_child(PENDULUM, backend, Settings(0.1, 1 / 240), str(tmp_path / "warmup.npz"))
+    thread, out = _in_thread(lambda: children.run_child(case_scene("free_fall"), backend, LONG,
+                                                        str(tmp_path / "t.npz"), timeout=1.0))
+    pid = _the_run()
+    thread.join(30)
+    assert out and out[0].verdict == results.TIMED_OUT and out[0].reason == "no result within 1 s", out
+    with pytest.raises(ProcessLookupError):
+        os.killpg(pid, 0)
+
+
+def test_a_server_that_dies_is_replaced_and_no_run_is_lost(tmp_path):
+    backend = INSTALLED[0]
+    assert children.run_child(PENDULUM, backend, Settings(0.1, 1 / 240), str(tmp_path / "a.npz")).verdict is None
+    first = fork_server._server
+    os.kill(first.proc.pid, signal.SIGKILL)
+    first.proc.wait()
+    assert children.run_child(PENDULUM, backend, Settings(0.1, 1 / 240), str(tmp_path / "b.npz")).verdict is None
+    assert fork_server._server is not first and fork_server._server.alive()
+
+
+def test_a_changed_environment_gets_a_server_started_in_it(tmp_path, monkeypatch):
+    backend = INSTALLED[0]
+    monkeypatch.setenv("X3DRBP_TEST_MARK", "one")
+    assert children.run_child(PENDULUM, backend, Settings(0.1, 1 / 240), str(tmp_path / "a.npz")).verdict is None
+    monkeypatch.setenv("X3DRBP_TEST_MARK", "two")
+    assert children.run_child(PENDULUM, backend, Settings(0.1, 1 / 240), str(tmp_path / "b.npz")).verdict is None
+    with open(f"/proc/{fork_server._server.proc.pid}/environ", "rb") as f:
+        assert b"X3DRBP_TEST_MARK=two\0" in f.read()
