@@ -38,7 +38,6 @@ needs a small contactProcessingThreshold and no contact ERP (which it would add 
 
 from __future__ import annotations
 
-import importlib.metadata
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -778,6 +777,7 @@ class BulletBackend(Backend):
     }
 
     def version(self) -> str:
+        import importlib.metadata  # here: a run never asks, and the import costs it 30 ms
         return importlib.metadata.version("pybullet")
 
     def build(self, world: World, dt: float) -> BulletSimulation:

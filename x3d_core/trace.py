@@ -173,8 +173,9 @@ class Trace:
             order = np.argsort(np.concatenate([s for s, _, _ in held]), kind="stable")
             series[key] = (np.concatenate([t for _, t, _ in held])[order],
                            np.concatenate([v for _, _, v in held])[order])
+        every = np.sort(np.array(times, dtype=np.float64))  # np.unique would import numpy.ma: 8 ms of a run's start
         return TraceView.of(series, {k: (np.array(t), s) for k, (t, s) in texts.items()},
-                            np.unique(np.array(times, dtype=np.float64)), count)
+                            every[np.concatenate(([True], every[1:] != every[:-1]))], count)
 
     @property
     def rows(self) -> list[Row]:
@@ -182,14 +183,27 @@ class Trace:
 
     def text(self) -> str:
         """The CSV, quoted as the csv module quotes (only what holds a comma, quote or
-        line break), written without it: a trace can hold millions of rows."""
+        line break), written without it: a trace can hold millions of rows. A block's time,
+        field and node names are formatted once, and an SF float field's numbers row by row
+        in one join (_float_rows), not through a call per number."""
         lines = [",".join(HEADER)]
         times: dict[float, str] = {}
-        for t, node, field, value in self.events():
-            when = times.get(t)
+        names: dict[str, str] = {}
+        for b in self.blocks:
+            when = times.get(b.time)
             if when is None:
-                when = times[t] = F._num(t)
-            lines.append(f"{when},{_quoted(node)},{_quoted(field)},{_quoted(value)}")
+                when = times[b.time] = F._num(b.time)
+            if isinstance(b, _Block) and b.ftype is not None and b.ftype.kind == "float" and not b.ftype.multi:
+                field = _quoted(b.field)
+                values = b.convert(b.values) if b.convert is not None else b.values
+                for node, value in zip(b.nodes, _float_rows(values)):  # numbers hold no comma or quote
+                    named = names.get(node)
+                    if named is None:
+                        named = names[node] = _quoted(node)
+                    lines.append(f"{when},{named},{field},{value}")
+                continue
+            for _, node, field, value in _events(b):
+                lines.append(f"{when},{_quoted(node)},{_quoted(field)},{_quoted(value)}")
         lines.append("")
         return "\n".join(lines)
 
@@ -208,6 +222,21 @@ def _events(b: _Block | _Table) -> Iterator[tuple[float, str, str, str]]:
         ftype, time, field = b.ftype, b.time, b.field
         for node, value in zip(b.nodes, values.tolist()):
             yield time, node, field, F.format_xml(ftype, value)
+
+
+def _float_rows(values: np.ndarray) -> list[str]:
+    """Each row of an SF float field as format_xml writes it (fields._num: repr, a whole
+    number without its ".0"), made by string operations on the repr of all the rows at once
+    (a list's repr is its floats' reprs): a ".0" followed by a blank or a line break can only
+    end a number."""
+    if not len(values):
+        return []
+    text = repr(values.tolist())
+    if values.ndim == 1:  # "[a, b]"
+        text = text[1:-1].replace(", ", "\n")
+    else:  # "[[a, b], [c, d]]"
+        text = text[2:-2].replace("], [", "\n").replace(", ", " ")
+    return (text + "\n").replace(".0 ", " ").replace(".0\n", "\n")[:-1].split("\n")
 
 
 def _quoted(text: str) -> str:

@@ -5,12 +5,13 @@ from __future__ import annotations
 import argparse
 import os
 import signal
-import statistics
 import sys
 import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+
+import numpy as np
 
 from backends import base
 from x3d_core import atomic
@@ -179,8 +180,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         from reports.rerun_recording import write_recording  # rerun is imported when a recording is asked for
         write_recording(args.rerun, scene, [(args.backend, trace.view())])
     if args.timing:
-        atomic.write_json(args.timing, {"simulation_wall_s": statistics.median(simulation_s),
-                                        "step_wall_s": statistics.median(step_s),
+        atomic.write_json(args.timing, {"simulation_wall_s": float(np.median(simulation_s)),
+                                        "step_wall_s": float(np.median(step_s)),
                                         "repeats": {"simulation_wall_s": simulation_s, "step_wall_s": step_s}},
                           indent=None)
     return EXIT_OK

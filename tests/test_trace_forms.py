@@ -1,4 +1,6 @@
-"""The binary trace (x3d_core/trace_npz.py): what read_view makes of the CSV, array for array.
+"""A trace's two forms: the CSV (x3d_core/trace.py), written as the csv module writes the
+trace's rows, and the .npz (x3d_core/trace_npz.py), what read_view makes of that CSV, array
+for array.
 
 Each run's trace is written both ways from one simulation and read back: the .npz must give
 the same keys in the same order, the same times and values to the bit, the same text rows,
@@ -7,6 +9,8 @@ CollisionSensor's contact tables and its text rows (isActive, SFNode names)."""
 
 from __future__ import annotations
 
+import csv
+import io
 import os
 import subprocess
 import sys
@@ -17,6 +21,7 @@ import pytest
 
 from conftest import ROOT, case_scene
 from backends import base
+from x3d_core import fields as F
 from x3d_core.engine import Unsupported
 from x3d_core.evaluator import RunSettings, run
 from x3d_core.load import load
@@ -61,6 +66,35 @@ def test_the_npz_holds_what_the_csv_reads_as(tmp_path, backend):
         assert_same(read_view(str(tmp_path / "t.npz")), want)
         tried += 1
     assert tried >= 2, f"{backend} ran too few of the scenes to compare"
+
+
+@pytest.mark.parametrize("backend", INSTALLED)
+def test_the_csv_is_what_the_csv_module_writes_of_the_rows(backend):
+    """Trace.text formats an SF float field's numbers in bulk (one repr of every row): it must
+    still write each row as fields.format_xml gives it, quoted as the csv module quotes."""
+    b = base.load(backend)
+    for path in SCENES:
+        scene = load(path)
+        if any(d.support is base.Support.UNSUPPORTED for _, d in base.judged(b, scene, worlds(scene))):
+            continue
+        try:
+            trace = run(worlds(scene), b, RunSettings(duration=0.5))
+        except Unsupported:
+            continue
+        want = io.StringIO()
+        writer = csv.writer(want, lineterminator="\n")
+        writer.writerow(["time", "node", "field", "value"])
+        writer.writerows((F._num(t), node, fld, value) for t, node, fld, value in trace.events())
+        assert trace.text() == want.getvalue()
+
+
+def test_bulk_float_rows_are_format_xmls(tmp_path):
+    """Whole numbers lose their .0 (also the last of a row, and -0.0), others keep every digit."""
+    from x3d_core.trace import _float_rows
+    rows = np.array([[1.0, -0.0, 2.5], [10.0, 1e-05, 100.0], [np.inf, -np.nan, 0.1]])
+    assert _float_rows(rows) == [F.format_xml(F.FIELD_TYPES["SFVec3f"], r) for r in rows.tolist()]
+    assert _float_rows(np.array([3.0, 0.25])) == ["3", "0.25"]
+    assert _float_rows(np.empty((0, 3))) == []
 
 
 def test_the_scenes_cover_tables_and_text_rows(tmp_path):
