@@ -334,6 +334,23 @@ class _Recorder:
             s = self.sim.state()
         except BlewUp as e:  # an engine that found its state unsound (pybullet at its speed clamp)
             raise BlewUp(f"blew up at t={t:g}: {e}") from None
+        sound = (np.abs(s.position).max(initial=0.0) <= STATE_BOUND  # false for a NaN too
+                 and np.abs(s.linear_velocity).max(initial=0.0) <= STATE_BOUND
+                 and np.abs(s.angular_velocity).max(initial=0.0) <= STATE_BOUND and np.isfinite(s.orientation).all())
+        if not sound:
+            self._blew_up(s, t)
+        pick = (lambda a: a) if self.all else (lambda a: a[self.rows])
+        trace.add_many(t, self.names, "position", "SFVec3f", pick(s.position))
+        trace.add_many(t, self.names, "orientation", "SFRotation", pick(s.orientation), convert=R.to_axis_angle)
+        trace.add_many(t, self.names, "linearVelocity", "SFVec3f", pick(s.linear_velocity))
+        trace.add_many(t, self.names, "angularVelocity", "SFVec3f", pick(s.angular_velocity))
+        for joint, field, value in self.outputs.values(s):
+            trace.add(t, joint, field, _OUTPUT_TYPES[field], value)
+        if self.sensors:
+            self.sensors.record(trace, t, self.sim.contacts())
+
+    def _blew_up(self, s: State, t: float) -> None:
+        """BlewUp naming the first body whose state is not finite, else the first beyond STATE_BOUND."""
         for arr in (s.position, s.orientation, s.linear_velocity, s.angular_velocity):
             if not np.isfinite(arr).all():
                 row = int(np.flatnonzero(~np.isfinite(arr).reshape(len(arr), -1).all(axis=1))[0])
@@ -344,12 +361,3 @@ class _Recorder:
                 row = int(np.flatnonzero((np.abs(arr) > STATE_BOUND).any(axis=1))[0])
                 raise BlewUp(f"blew up at t={t:g}: {self.world.bodies.names[row]}'s {what} is beyond "
                              f"{STATE_BOUND:g} (SI units)")
-        pick = (lambda a: a) if self.all else (lambda a: a[self.rows])
-        trace.add_many(t, self.names, "position", "SFVec3f", pick(s.position))
-        trace.add_many(t, self.names, "orientation", "SFRotation", pick(s.orientation), convert=R.to_axis_angle)
-        trace.add_many(t, self.names, "linearVelocity", "SFVec3f", pick(s.linear_velocity))
-        trace.add_many(t, self.names, "angularVelocity", "SFVec3f", pick(s.angular_velocity))
-        for joint, field, value in self.outputs.values(s):
-            trace.add(t, joint, field, _OUTPUT_TYPES[field], value)
-        if self.sensors:
-            self.sensors.record(trace, t, self.sim.contacts())

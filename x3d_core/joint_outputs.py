@@ -24,7 +24,7 @@ class _Frames:
     anchor2: np.ndarray
     axes1: np.ndarray  # (3, 3) the joint's axes in body1's frame
     axes2: np.ndarray  # in body2's frame
-    q_rel0: np.ndarray  # body1's orientation in body2's frame at the start
+    q_rel0_conjugate: np.ndarray  # the conjugate of body1's orientation in body2's frame at the start
     offset0: np.ndarray  # body1's origin minus body2's, in body1's frame, at the start
 
 
@@ -48,7 +48,7 @@ class JointOutputs:
             self.frames.append(_Frames(
                 anchor1=R.rotate(c1, j.anchor - p1), anchor2=R.rotate(c2, j.anchor - p2),
                 axes1=R.rotate(c1, j.axes), axes2=R.rotate(c2, j.axes),
-                q_rel0=R.multiply(c2, q1), offset0=R.rotate(c1, p1 - p2)))
+                q_rel0_conjugate=R.conjugate(R.multiply(c2, q1)), offset0=R.rotate(c1, p1 - p2)))
 
     def values(self, state: State) -> list[tuple[str, str, Any]]:
         """(joint name, field, value) for every selected output."""
@@ -59,34 +59,59 @@ class JointOutputs:
         return out
 
 
+_ON_AXES1 = frozenset({"body1Axis", "angleRate", "hinge1AngleRate", "separation", "separationRate",
+                       "motor1AngleRate", "motor2AngleRate", "motor3AngleRate"})
+_ANGLES = frozenset({"angle", "hinge1Angle", "hinge2Angle", "motor1Angle", "motor2Angle", "motor3Angle"})
+
+
 def _compute(j: Joint, f: _Frames, state: State) -> dict[str, Any]:
+    """The outputs the joint selects, and only those: a sweep's fine steps record a frame per
+    step, and every output of every frame was most of such a run's time."""
+    want = j.outputs
     p1, q1, v1, w1 = _pose(state, j.body1)
     p2, q2, v2, w2 = _pose(state, j.body2)
-    axes1 = R.rotate(q1, f.axes1)  # the joint's axes as carried by body1, now
-    axes2 = R.rotate(q2, f.axes2)
-    delta = R.multiply(R.multiply(R.conjugate(q2), q1), R.conjugate(f.q_rel0))  # body2's frame
+    out: dict[str, Any] = {}
+    if "body1AnchorPoint" in want:
+        out["body1AnchorPoint"] = p1 + R.rotate(q1, f.anchor1)
+    if "body2AnchorPoint" in want:
+        out["body2AnchorPoint"] = p2 + R.rotate(q2, f.anchor2)
+    axes1 = R.rotate(q1, f.axes1) if not _ON_AXES1.isdisjoint(want) else None  # the joint's axes as body1 carries them
+    axis2 = R.rotate(q2, f.axes2[1]) if "body2Axis" in want or "hinge2AngleRate" in want else None
+    if axes1 is not None and "body1Axis" in want:
+        out["body1Axis"] = axes1[0]
+    if axis2 is not None and "body2Axis" in want:
+        out["body2Axis"] = axis2
+    # body1's turn since the start, in body2's frame
+    delta = R.multiply(R.multiply(R.conjugate(q2), q1), f.q_rel0_conjugate) if not _ANGLES.isdisjoint(want) else None
     dw = w1 - w2
-    out: dict[str, Any] = {"body1AnchorPoint": p1 + R.rotate(q1, f.anchor1),
-                           "body2AnchorPoint": p2 + R.rotate(q2, f.anchor2),
-                           "body1Axis": axes1[0], "body2Axis": axes2[1]}
     t = j.type
     if t == "SingleAxisHingeJoint":
-        out["angle"] = float(R.twist_angle(delta, f.axes2[0]))
-        out["angleRate"] = float(axes1[0] @ dw)
+        if "angle" in want:
+            out["angle"] = float(R.twist_angle(delta, f.axes2[0]))
+        if "angleRate" in want:
+            out["angleRate"] = float(axes1[0] @ dw)
     elif t == "DoubleAxisHingeJoint":
-        out["hinge1Angle"] = float(R.twist_angle(delta, f.axes2[0]))
-        out["hinge1AngleRate"] = float(axes1[0] @ dw)
-        out["hinge2Angle"] = float(R.twist_angle(delta, f.axes2[1]))
-        out["hinge2AngleRate"] = float(axes2[1] @ dw)
+        if "hinge1Angle" in want:
+            out["hinge1Angle"] = float(R.twist_angle(delta, f.axes2[0]))
+        if "hinge1AngleRate" in want:
+            out["hinge1AngleRate"] = float(axes1[0] @ dw)
+        if "hinge2Angle" in want:
+            out["hinge2Angle"] = float(R.twist_angle(delta, f.axes2[1]))
+        if "hinge2AngleRate" in want:
+            out["hinge2AngleRate"] = float(axis2 @ dw)
     elif t == "SliderJoint":
-        out["separation"] = float(axes1[0] @ (p1 - p2 - R.rotate(q1, f.offset0)))
-        out["separationRate"] = float(axes1[0] @ (v1 - v2))
+        if "separation" in want:
+            out["separation"] = float(axes1[0] @ (p1 - p2 - R.rotate(q1, f.offset0)))
+        if "separationRate" in want:
+            out["separationRate"] = float(axes1[0] @ (v1 - v2))
     elif t == "MotorJoint" and not j.params["autoCalc"]:  # ODE's user mode: the angles the user gives
         for k in range(3):
             out[f"motor{k + 1}Angle"] = j.params[f"axis{k + 1}Angle"]
             out[f"motor{k + 1}AngleRate"] = 0.0
     elif t == "MotorJoint":
         for k in range(3):
-            out[f"motor{k + 1}Angle"] = float(R.twist_angle(delta, f.axes2[k]))
-            out[f"motor{k + 1}AngleRate"] = float(axes1[k] @ dw)
+            if f"motor{k + 1}Angle" in want:
+                out[f"motor{k + 1}Angle"] = float(R.twist_angle(delta, f.axes2[k]))
+            if f"motor{k + 1}AngleRate" in want:
+                out[f"motor{k + 1}AngleRate"] = float(axes1[k] @ dw)
     return out
