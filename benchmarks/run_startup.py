@@ -5,8 +5,10 @@ children by the hundred, so their start-up is most of the main job's time. Timed
 processes from start to exit, taking turns so that load shifts all alike: the interpreter
 alone (`python -c pass`), numpy and lxml (what any run needs), and `x3drbp run` of the
 bundled pendulum for one 1/240 s step on each installed backend (imports, the backend's
-judgement, the engine build, one step, the trace written). Printed: the median and spread
-of each over --repeat runs, and what x3drbp adds over numpy and lxml.
+judgement, the engine build, one step, the trace written); and the same run as a command
+hands it to children.run_child, forked by the warm fork server (its engine imported by a
+first run), the way every command but `run` itself now starts its runs. Printed: the median
+and spread of each over --repeat runs, and what x3drbp adds over numpy and lxml.
 
     python benchmarks/run_startup.py [--repeat 7] [--backends mujoco,bullet,dart,ode,pymunk]
 """
@@ -22,12 +24,25 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, ROOT)
+
+from conformance.results import Settings  # noqa: E402
+from conformance.runner import children, fork_server  # noqa: E402
+
 SCENE = os.path.join(ROOT, "scenes", "examples", "pendulum.x3d")
 
 
 def _wall(cmd: list[str]) -> float:
     started = time.perf_counter()
     subprocess.run(cmd, cwd=ROOT, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return time.perf_counter() - started
+
+
+def _warm(backend: str, trace: str) -> float:
+    started = time.perf_counter()
+    out = children.run_child(SCENE, backend, Settings(1 / 240, 1 / 240), trace)
+    if out.verdict is not None:
+        raise SystemExit(f"the warm run on {backend} failed: {out.verdict}: {out.reason}")
     return time.perf_counter() - started
 
 
@@ -44,9 +59,15 @@ def main() -> int:
             commands[f"x3drbp run ({b})"] = [sys.executable, "-m", "conformance.cli", "run", SCENE, "--backend", b,
                                              "--duration", repr(1 / 240), "--trace", trace, "-q"]
         times: dict[str, list[float]] = {name: [] for name in commands}
+        warm = {f"forked warm ({b})": b for b in args.backends.split(",")} if fork_server.usable() else {}
+        for b in warm.values():
+            _warm(b, trace)  # the server started, the engine imported in it
+        times.update({name: [] for name in warm})
         for _ in range(args.repeat):  # taking turns
             for name, cmd in commands.items():
                 times[name].append(_wall(cmd))
+            for name, b in warm.items():
+                times[name].append(_warm(b, trace))
     floor = statistics.median(times["import numpy, lxml"])
     print(f"{args.repeat} runs each, taking turns; {os.cpu_count()} CPUs, load average "
           f"{', '.join(f'{x:.2f}' for x in os.getloadavg())}\n")

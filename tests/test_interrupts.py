@@ -4,8 +4,8 @@ a sweep where no run gives a result still writes its files; a backend probe that
 answer lists every backend as unavailable, with why, rather than dropping it.
 
 The interrupt tests start the command in a session of its own, as a shell starts a foreground
-job: a signal to that group is a terminal's Ctrl-C (the command and its pool workers get it,
-the children, in sessions of their own, do not); a signal to the command's pid alone is a
+job: a signal to that group is a terminal's Ctrl-C (the command gets it, the children and
+the fork server, in sessions of their own, do not); a signal to the command's pid alone is a
 SIGTERM from outside. Processes are found through /proc (Linux)."""
 
 from __future__ import annotations
@@ -75,7 +75,7 @@ def _is_run(pid: int) -> bool:
 
 
 def _wait_for_runs(parent: subprocess.Popen, count: int = 1, within: float = 60) -> dict[int, int]:
-    """Once `count` `x3drbp run` children of the command (or of its pool workers) have run a
+    """Once `count` `x3drbp run` children of the command (or of its fork server) have run a
     moment: every descendant of the command -> its process group."""
     deadline = time.monotonic() + within
     while time.monotonic() < deadline:
@@ -201,8 +201,8 @@ def test_a_real_run_is_stopped(tmp_path, command, signals, whole_group, status):
     _assert_none_left(procs)
 
 
-# the commands whose runs are a process pool's children: sweep on every interrupt, advise
-# (the sweep's pool again) on one each of Ctrl-C and SIGTERM; each with the output it must not write
+# the commands whose runs a pool of threads waits on: sweep on every interrupt, advise
+# (the sweep's threads again) on one each of Ctrl-C and SIGTERM; each with the output it must not write
 _POOLED = [pytest.param(command, *sent, id=f"{command}-{name}")
            for command, count in (("sweep", len(_SENT)), ("advise", 2))
            for sent, name in zip(_SENT[:count], _IDS[:count])]
@@ -210,10 +210,9 @@ _POOLED_OUTPUT = {"sweep": ("--out", "out"), "advise": ("--json", "advice.json")
 
 
 @pytest.mark.parametrize("command,signals,whole_group,status", _POOLED)
-def test_a_pooled_command_interrupted_stops_its_pool_workers_and_their_runs(tmp_path, command, signals,
-                                                                             whole_group, status):
-    """The runs are the pool workers' children: the command stops the workers, each its run, and
-    writes none of its output."""
+def test_a_pooled_command_interrupted_stops_its_runs(tmp_path, command, signals, whole_group, status):
+    """Two runs at once, each waited on by a thread of the command's pool: the command stops
+    both, and writes none of its output."""
     pytest.importorskip(BACKEND)
     option, name = _POOLED_OUTPUT[command]
     parent = _start(command, *LONG[command], "--backends", BACKEND, "--workers", "2", "--timeout", "300",

@@ -46,7 +46,7 @@ from conformance import cases as C
 from conformance import results
 from conformance.results import Settings
 from conformance.runner import children, probe
-from conformance.analyses.distribute import executor, guarded
+from conformance.analyses.distribute import executor
 from conformance.analyses.sweep_job import Job, JobResult, run_job
 from conformance.analyses.sweep_metrics import Cost, Positions, comparison_interval, pareto, window_error
 
@@ -334,7 +334,7 @@ def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, pro
     results in the jobs' order. The bar goes to stderr, and only when asked."""
     order = sorted(range(len(jobs)), key=lambda k: -jobs[k].settings.duration / jobs[k].settings.dt)
     with executor(scheduler, workers) as ex:
-        futures = {k: ex.submit(guarded, run_job, jobs[k]) for k in order}
+        futures = {k: ex.submit(run_job, jobs[k]) for k in order}
         children.wait_all(list(futures.values()), progress)
         return [futures[k].result() for k in range(len(jobs))]
 

@@ -9,7 +9,7 @@ Writes DIR/sweep.json (every point), DIR/sweep.md (the Pareto fronts, ties merge
 DIR/sweep_SCENE.png (error against the scene's one reference, closed form or the most
 accurate run, over the median wall time per simulated second with its spread, one line per
 backend and variation); DIR
-defaults to out/sweep. Runs on a local process pool, or on a Dask cluster with --scheduler.
+defaults to out/sweep. Runs on local threads (each waits on its run), or on a Dask cluster with --scheduler.
 Exit status 0 whatever the verdicts (where no run gave a result, the files and one line on
 stderr say "no results"); 2 on bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM
 (every run stopped).

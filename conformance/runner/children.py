@@ -22,7 +22,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import functools
-import multiprocessing
 import os
 import signal
 import subprocess
@@ -121,7 +120,7 @@ def _check() -> None:
         raise Interrupted(_signal)
 
 
-def _signal_group(proc: subprocess.Popen, signum: int) -> None:
+def _signal_group(proc: subprocess.Popen | WarmChild, signum: int) -> None:
     try:
         os.killpg(proc.pid, signum)  # the child's own group: it and anything it started
     except ProcessLookupError:
@@ -141,36 +140,26 @@ def _running(proc: subprocess.Popen | WarmChild) -> bool:
         return False
 
 
-def _end(procs: Sequence[subprocess.Popen], workers: Sequence[multiprocessing.Process] = (),
-         first: int = signal.SIGTERM) -> None:
-    """`first` to each child's group, SIGKILL to what is left of the groups after GRACE s.
-    Each pool worker gets SIGTERM (a second one makes it SIGKILL its children at once) and
-    SIGKILL only when it has not ended GRACE s after its own children's grace."""
+def _end(procs: Sequence[subprocess.Popen | WarmChild], first: int = signal.SIGTERM) -> None:
+    """`first` to each child's group, SIGKILL to what is left of the groups after GRACE s."""
     for p in procs:
         _signal_group(p, first)
-    for w in workers:
-        w.terminate()
     started = time.monotonic()
     while time.monotonic() < started + GRACE and any(map(_running, procs)):
         time.sleep(0.02)
     for p in procs:
         _signal_group(p, signal.SIGKILL)  # stragglers, grandchildren included
-    while time.monotonic() < started + 2 * GRACE and any(w.is_alive() for w in workers):
-        time.sleep(0.02)
-    for w in workers:
-        if w.is_alive():
-            w.kill()
 
 
 def stop(signum: int) -> None:
-    """Stop every child of this process and the multiprocessing pool's workers, and let none
-    start after: SIGTERM first, so that a child can close what it started (X_ITE's browser),
+    """Stop every child of this process (the fork server among them), and let none start
+    after: SIGTERM first, so that a child can close what it started (X_ITE's browser),
     SIGKILL GRACE s later; a signal after the first SIGKILLs at once."""
     global _signal
     first = signal.SIGTERM if _signal is None else signal.SIGKILL
     if _signal is None:
         _signal = signum
-    _end(list(_live.copy()), multiprocessing.active_children(), first)
+    _end(list(_live.copy()), first)
 
 
 def handle_signal(signum: int, frame: object) -> None:
@@ -187,7 +176,7 @@ def _communicate(proc: subprocess.Popen, timeout: float) -> tuple[str, str]:
     """proc.communicate() within `timeout` s (TimeoutExpired past it), in slices of SLICE s:
     the kernel may hand SIGINT or SIGTERM to any thread (a library's, a pool's), and then the
     main thread runs the handler only once it runs Python again, which one long wait on the
-    child would put off until the child ends (seen in pool workers)."""
+    child would put off until the child ends (seen in process pool workers)."""
     deadline = time.monotonic() + timeout
     while True:
         try:
