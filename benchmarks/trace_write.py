@@ -8,7 +8,7 @@ once in a fresh interpreter and times, best of --repeat: Trace.write of the CSV,
 of it, and, where the tree has x3d_core/trace_npz.py, write_npz of Trace.view() and
 read_view of the .npz. The last column checks that the .npz reads as the CSV does.
 
-    python benchmarks/trace_write.py [--before a184511] [--repeat 5]
+    python benchmarks/trace_write.py [--before ba3d4dd] [--repeat 5]
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import run_overhead  # noqa: E402  (beside this script: the scenes)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BEFORE = "a184511"  # the commit before the CSV writer's bulk number formatting
+BEFORE = "ba3d4dd"  # main before this round: the CSV writer formatting each number alone, no .npz
 
 # run in the tree measured (cwd and PYTHONPATH): argv = scene, folder, repeat
 MEASURE = r"""
@@ -53,11 +53,8 @@ def best(fn):
 csv, npz = os.path.join(folder, "t.csv"), os.path.join(folder, "t.npz")
 out = {"rows": sum(1 for _ in trace.events()), "csv_write": best(lambda: trace.write(csv)),
        "csv_read": best(lambda: read_view(csv))}
-try:
+if os.path.exists(os.path.join("x3d_core", "trace_npz.py")):  # this tree's own (x3d_core is a namespace package)
     from x3d_core.trace_npz import write_npz
-except ImportError:
-    pass
-else:
     out["npz_write"] = best(lambda: write_npz(trace.view(), npz))
     out["npz_read"] = best(lambda: read_view(npz))
     a, b = read_view(csv), read_view(npz)

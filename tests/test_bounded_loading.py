@@ -244,3 +244,21 @@ def test_load_follows_a_link_to_a_regular_file(tmp_path):
     os.symlink("good.x3dv", tmp_path / "link.x3dv")
     scene = load(str(tmp_path / "link.x3dv"))
     assert not scene.errors and [n.def_name for n in scene.of_type("RigidBody")] == ["BALL"]
+
+
+def test_reading_a_small_file_allocates_its_size_not_the_limit(tmp_path):
+    """read_regular asks for what fstat says (read(n) allocates n bytes up front: reading
+    limit + 1 cost every load 200 MiB); a file that grows while read is still bounded."""
+    import tracemalloc
+    from x3d_core.inputs import InputRefused, read_regular
+    small = tmp_path / "small.x3d"
+    small.write_bytes(b"<X3D/>" * 100)
+    tracemalloc.start()
+    try:
+        assert read_regular(str(small), 200 * 1024 * 1024) == b"<X3D/>" * 100
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 1024 * 1024
+    with pytest.raises(InputRefused, match="file is 600 bytes; x3drbp reads at most 100"):
+        read_regular(str(small), 100)

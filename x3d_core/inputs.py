@@ -51,7 +51,13 @@ def read_regular(path: str, limit: int) -> bytes:
     """The bytes of the regular file at path, at most `limit` of them (see open_regular)."""
     with open_regular(path, limit) as f:
         try:
-            data = f.read(limit + 1)  # a file that grows while read stops at the limit too
+            # as many bytes as fstat says and one more (read(n) allocates n at once: reading
+            # limit + 1 cost every load a 200 MiB buffer); a file that grew meanwhile is read
+            # on, up to the limit and one more
+            want = min(os.fstat(f.fileno()).st_size, limit) + 1
+            data = f.read(want)
+            if len(data) == want <= limit:
+                data += f.read(limit + 1 - want)
         except OSError as e:
             raise InputRefused(f"cannot read file: {e.strerror}") from None
     if len(data) > limit:
