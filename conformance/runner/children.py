@@ -5,6 +5,10 @@ An engine's segfault or endless loop is then a verdict, not a lost suite: a chil
 died by a signal is crashed, one past its time limit is timed out (its whole process
 group killed), exit 3 is unsupported with the backend's own reason.
 
+A run is forked by the command's warm fork server where it can (fork_server.py: no
+interpreter start-up or imports per run), and is still a process, a session and a verdict
+of its own; else, as every other child, it starts afresh.
+
 Every child (a run, the backend probe, the X_ITE browser) starts through `call`, in a session
 of its own: the terminal's Ctrl-C reaches the parent only, and the child's process group is
 the child and whatever it starts. A command wrapped in `interruptible` answers SIGINT and

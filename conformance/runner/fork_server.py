@@ -30,8 +30,10 @@ from __future__ import annotations
 
 import atexit
 import json
+import math
 import os
 import select
+import shutil
 import socket
 import subprocess
 import sys
@@ -43,6 +45,8 @@ GRACE = 2.0  # s a child has to end on SIGTERM (X_ITE's node closes its browser)
 READY = b"x3drbp-fork-server ready\n"
 NO_FORK = -1  # the status answered where fork() failed
 SLICE = 0.2  # s: the longest wait for the server's start without looking at the clock
+READY_WAIT = 60.0  # s for a server to import what it preloads (a loaded 2-core machine: a few s)
+MAX_FAILURES = 2  # servers that could not start or died unasked, after which a command runs fresh children
 
 
 def _this_interpreter() -> str | None:
@@ -53,8 +57,6 @@ def _this_interpreter() -> str | None:
 
 
 _THIS = _this_interpreter()  # the binary this process runs: children of another (a test's stand-in) start fresh
-READY_WAIT = 60.0  # s for a server to import what it preloads (a loaded 2-core machine: a few s)
-MAX_FAILURES = 2  # servers that could not start or died unasked, after which a command runs fresh children
 _lock = threading.Lock()
 _server: Server | None = None
 _failures = 0
@@ -76,9 +78,9 @@ class WarmChild:
     """A run forked by the server, with what children.call needs of a subprocess.Popen: pid
     (its group's), communicate(timeout) raising TimeoutExpired, returncode, wait()."""
 
-    def __init__(self, conn: socket.socket, err: int, pid: int):
+    def __init__(self, conn: socket.socket, err: int, pid: int, status: bytes = b""):
         self.pid, self.returncode = pid, None
-        self._conn, self._err, self._said, self._status = conn, err, bytearray(), bytearray()
+        self._conn, self._err, self._said, self._status = conn, err, bytearray(), bytearray(status)
 
     def running(self) -> bool:
         """Not reaped by the server and not a zombie (asked of /proc: the command is not its parent)."""
@@ -103,8 +105,7 @@ class WarmChild:
             left = None if deadline is None else deadline - time.monotonic()
             if left is not None and left <= 0:
                 raise subprocess.TimeoutExpired("x3drbp run", timeout or 0.0)
-            waiting = ([self._err] if self._err >= 0 else []) + ([] if told else [self._conn.fileno()])
-            ready = select.select(waiting, [], [], left)[0]
+            ready = _readable(([self._err] if self._err >= 0 else []) + ([] if told else [self._conn.fileno()]), left)
             if self._err in ready:
                 data = os.read(self._err, 1 << 16)
                 self._said += data
@@ -134,13 +135,23 @@ class WarmChild:
         self._conn.close()
 
 
+def _readable(fds: list[int], timeout: float | None) -> list[int]:
+    """Those of fds ready to read (or at EOF) within timeout s (None: no limit); poll, not
+    select, which refuses a descriptor past 1023."""
+    poll = select.poll()
+    for fd in fds:
+        poll.register(fd, select.POLLIN)
+    return [fd for fd, _ in poll.poll(None if timeout is None else max(0, math.ceil(timeout * 1000)))]
+
+
 class Server:
     """A running server (a subprocess.Popen in the caller's `live` set, so that an interrupt
     ends it with the runs), started with the environment `env`: a command whose environment
     changed since gets a new one, its runs seeing what a fresh child would."""
 
-    def __init__(self, proc: subprocess.Popen, path: str, env: dict[str, str], live: set):
-        self.proc, self.path, self.env, self.live = proc, path, env, live
+    def __init__(self, proc: subprocess.Popen, folder: str, env: dict[str, str], live: set):
+        self.proc, self.folder, self.env, self.live = proc, folder, env, live
+        self.path = os.path.join(folder, "socket")
 
     def start(self, argv: list[str], backend: str) -> WarmChild:
         """A run of `x3drbp ARGV` forked and in its own session; Gone where the server cannot take it."""
@@ -165,15 +176,14 @@ class Server:
             os.close(r)
             conn.close()
             raise Gone(str(e)) from None
-        child = WarmChild(conn, r, int(first))
-        child._status += rest
-        return child
+        return WarmChild(conn, r, int(first), rest)
 
     def alive(self) -> bool:
         return self.proc.poll() is None
 
     def close(self) -> None:
-        """Its stdin closed: it ends its runs (none is left: each command waits for its own) and exits."""
+        """Its stdin closed: it ends its runs (none is left: each command waits for its own) and
+        exits, SIGKILLed past GRACE s; its folder removed. Replaced servers and, at exit, the last."""
         self.live.discard(self.proc)
         try:
             self.proc.stdin.close()
@@ -181,26 +191,27 @@ class Server:
         except (OSError, subprocess.TimeoutExpired):
             self.proc.kill()
             self.proc.wait()
+        shutil.rmtree(self.folder, ignore_errors=True)
 
 
 def _start(env: dict[str, str], root: str, live: set) -> Server | None:
     """A server ready to fork runs (its process in `live`), or None (it could not start within READY_WAIT s)."""
     folder = tempfile.mkdtemp(prefix="x3drbp-fork-")
-    path = os.path.join(folder, "socket")
     try:
-        proc = subprocess.Popen([sys.executable, "-m", "conformance.cli.run_server", path], cwd=root,
+        proc = subprocess.Popen([sys.executable, "-m", "conformance.cli.run_server", os.path.join(folder, "socket")],
+                                cwd=root,
                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                                 start_new_session=True)
     except OSError:
         os.rmdir(folder)
         return None
     live.add(proc)
-    server = Server(proc, path, env, live)
-    atexit.register(_leave, server, folder)
+    server = Server(proc, folder, env, live)
+    atexit.register(server.close)
     ready = b""
     deadline = time.monotonic() + READY_WAIT
     while not ready.endswith(READY) and time.monotonic() < deadline:
-        if select.select([proc.stdout.fileno()], [], [], SLICE)[0]:
+        if _readable([proc.stdout.fileno()], SLICE):
             more = os.read(proc.stdout.fileno(), 256)
             if not more:
                 break
@@ -210,23 +221,6 @@ def _start(env: dict[str, str], root: str, live: set) -> Server | None:
         server.close()
         return None
     return server
-
-
-def _leave(server: Server, folder: str) -> None:
-    """At exit: the server told to end (its stdin closed), its folder removed."""
-    try:
-        server.proc.stdin.close()
-    except OSError:
-        pass
-    for name in os.listdir(folder) if os.path.isdir(folder) else ():
-        try:
-            os.unlink(os.path.join(folder, name))
-        except OSError:
-            pass
-    try:
-        os.rmdir(folder)
-    except OSError:
-        pass
 
 
 def server(root: str, live: set, interrupted: bool) -> Server | None:
