@@ -23,7 +23,7 @@ from . import atomic
 from . import fields as F
 from .inputs import open_regular
 from .trace_npz import read_npz
-from .trace_view import TRACE_LIMIT, Row, TraceView, ViewBuilder
+from .trace_view import TRACE_LIMIT, Row, TraceView, ViewBuilder, numbers
 
 HEADER = ("time", "node", "field", "value")
 CHUNK_BYTES = 2 << 20  # read and parsed at a time
@@ -58,12 +58,12 @@ class _Table(NamedTuple):
     count: int
     columns: list[Column]
 
-    def events(self, numbers: bool = False) -> Iterator[tuple[float, str, str, Any]]:
-        """The rows, values as written; with `numbers`, an SF number or vector column's values
+    def events(self, as_numbers: bool = False) -> Iterator[tuple[float, str, str, Any]]:
+        """The rows, values as written; with `as_numbers`, an SF number or vector column's values
         as lists of floats, the numbers its text reads as (Trace.view formats none)."""
         texts = []
         for c in self.columns:
-            if numbers and c.ftype is not None and c.ftype.numeric and not c.ftype.multi:
+            if as_numbers and c.ftype is not None and c.ftype.numeric and not c.ftype.multi:
                 rows = np.asarray(c.values, dtype=np.float64).reshape(1 if c.constant else self.count, -1).tolist()
                 texts.append(rows * self.count if c.constant else rows)
             elif c.constant:
@@ -117,7 +117,7 @@ class Trace:
         """What read_view reads from this trace's CSV, number for number and in the same key
         order, made from the arrays: an SF number or vector field is never formatted, its
         blocks stacked per (field, nodes) and split per node. Tables and the other fields
-        go row by row through the CSV reader's own rule (ViewBuilder.add_row)."""
+        go row by row through the CSV reader's own rule (trace_view.numbers)."""
         groups: dict[tuple[str, tuple[str, ...]], tuple[list[int], list[float], list[np.ndarray]]] = {}
         pieces: dict[tuple[str, str], list[tuple[np.ndarray, np.ndarray, np.ndarray]]] = {}  # first-row order
         loose: dict[tuple[str, str], tuple[list[int], list[float], list[list[float]]]] = {}
@@ -140,11 +140,10 @@ class Trace:
                 count += len(b.nodes)
                 continue
             times.append(b.time)
-            for t, node, fld, value in b.events(numbers=True) if isinstance(b, _Table) else _events(b):
+            for t, node, fld, value in b.events(as_numbers=True) if isinstance(b, _Table) else _events(b):
                 count += 1
-                try:
-                    numbers = value if isinstance(value, list) else [float(x) for x in value.split()]
-                except ValueError:  # as ViewBuilder.add_row: SFBool, SFNode names, MFString
+                read = value if isinstance(value, list) else numbers(value)
+                if read is None:  # SFBool, SFNode names, MFString
                     held = texts.setdefault((node, fld), ([], []))
                     held[0].append(t)
                     held[1].append(value)
@@ -153,7 +152,7 @@ class Trace:
                 held = loose.setdefault((node, fld), ([], [], []))
                 held[0].append(seq)
                 held[1].append(t)
-                held[2].append(numbers)
+                held[2].append(read)
         for (fld, nodes), (seqs, ts, values) in groups.items():
             stacked = np.stack(values)
             stacked = stacked.reshape(len(ts), len(nodes), -1)  # SFFloat's (k,) rows as (k, 1)

@@ -22,6 +22,16 @@ class Row:
 
 
 
+def numbers(value: str) -> list[float] | None:
+    """A row's value as a view holds it: its numbers where every token reads as one, else
+    None (the value is kept as text). Both ways of making a view (ViewBuilder.add_row from
+    the CSV, Trace.view from the arrays) read a row by this one rule."""
+    try:
+        return [float(x) for x in value.split()]
+    except ValueError:
+        return None
+
+
 class ViewBuilder:
     """A TraceView made a piece at a time: whole arrays of one output (add_series), or rows
     one by one (add_row: TraceView's rule, numbers where every token reads as one, else text).
@@ -70,9 +80,8 @@ class ViewBuilder:
         key = (node, fld)
         self.count += 1
         self._loose.append(time)
-        try:
-            values = [float(x) for x in value.split()]
-        except ValueError:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
+        values = numbers(value)
+        if values is None:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
             t, s = self._texts.setdefault(key, ([], []))
             t.append(time)
             s.append(value)
