@@ -18,7 +18,7 @@ import traceback
 
 import setproctitle
 
-from conformance.runner.fork_server import GRACE, NO_FORK, READY
+from conformance.runner.fork_server import GRACE, NO_FORK, READY, kill_group
 
 PRELOAD = ("numpy", "lxml.etree", "conformance.cli", "conformance.cli.run", "x3d_core.trace_npz")
 
@@ -101,7 +101,7 @@ def _fork(request: dict, err: int, conn: socket.socket, keep_out: list[int]) -> 
 def _end_all(runs: dict[int, _Run], first: int) -> None:
     """`first` to every run's group, SIGKILL to what is left after GRACE s; every one reaped."""
     for run in runs.values():
-        _kill(run.pid, first)
+        kill_group(run.pid, first)
     deadline = time.monotonic() + GRACE
     while runs and time.monotonic() < deadline:
         for fd, run in list(runs.items()):
@@ -109,15 +109,8 @@ def _end_all(runs: dict[int, _Run], first: int) -> None:
                 del runs[fd]
         time.sleep(0.02)
     for run in runs.values():
-        _kill(run.pid, signal.SIGKILL)
+        kill_group(run.pid, signal.SIGKILL)
         os.waitpid(run.pid, 0)
-
-
-def _kill(pid: int, signum: int) -> None:
-    try:
-        os.killpg(pid, signum)
-    except (ProcessLookupError, PermissionError):
-        pass
 
 
 def serve(path: str) -> None:
@@ -177,7 +170,7 @@ def serve(path: str) -> None:
                     sel.unregister(run.conn)
                     run.conn.close()
                     run.conn = None
-                    _kill(run.pid, signal.SIGKILL)  # nobody waits for it any more
+                    kill_group(run.pid, signal.SIGKILL)  # nobody waits for it any more
                 else:
                     run = runs.pop(key.fd)
                     sel.unregister(key.fd)

@@ -39,7 +39,7 @@ from typing import TextIO
 
 from conformance.results import BLEW_UP, CRASHED, ERROR, TIMED_OUT, UNSUPPORTED, Settings
 from conformance.runner import fork_server
-from conformance.runner.fork_server import GRACE, WarmChild
+from conformance.runner.fork_server import GRACE, WarmChild, kill_group
 
 DEFAULT_TIMEOUT = 60.0
 EXIT_UNSUPPORTED = 3  # conformance.cli.run
@@ -124,11 +124,6 @@ def _check() -> None:
         raise Interrupted(_signal)
 
 
-def _signal_group(proc: subprocess.Popen | WarmChild, signum: int) -> None:
-    try:
-        os.killpg(proc.pid, signum)  # the child's own group: it and anything it started
-    except ProcessLookupError:
-        pass
 
 
 def _running(proc: subprocess.Popen | WarmChild) -> bool:
@@ -147,12 +142,12 @@ def _running(proc: subprocess.Popen | WarmChild) -> bool:
 def _end(procs: Sequence[subprocess.Popen | WarmChild], first: int = signal.SIGTERM) -> None:
     """`first` to each child's group, SIGKILL to what is left of the groups after GRACE s."""
     for p in procs:
-        _signal_group(p, first)
+        kill_group(p.pid, first)
     started = time.monotonic()
     while time.monotonic() < started + GRACE and any(map(_running, procs)):
         time.sleep(0.02)
     for p in procs:
-        _signal_group(p, signal.SIGKILL)  # stragglers, grandchildren included
+        kill_group(p.pid, signal.SIGKILL)  # stragglers, grandchildren included
 
 
 def stop(signum: int) -> None:

@@ -49,6 +49,14 @@ READY_WAIT = 60.0  # s for a server to import what it preloads (a loaded 2-core 
 MAX_FAILURES = 2  # servers that could not start or died unasked, after which a command runs fresh children
 
 
+def kill_group(pgid: int, signum: int) -> None:
+    """signum to a process group (a child's: it and what it started); nothing if it is gone."""
+    try:
+        os.killpg(pgid, signum)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
 def _this_interpreter() -> str | None:
     try:
         return os.readlink("/proc/self/exe")
