@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import gc
+import subprocess
 import time
 import tracemalloc
 from typing import Any, Callable
@@ -29,3 +30,11 @@ def peak_mb(fn: Callable[[], Any]) -> float:
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
     return peak / 2 ** 20
+
+
+def process_wall(cmd: list[str], **options: Any) -> float:
+    """The wall time of one whole process, start-up to exit, its output discarded
+    (CalledProcessError if it fails); options go to subprocess.run (cwd, env)."""
+    started = time.perf_counter()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, **options)
+    return time.perf_counter() - started

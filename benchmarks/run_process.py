@@ -23,10 +23,8 @@ from __future__ import annotations
 import argparse
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 
@@ -34,16 +32,11 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import run_overhead  # noqa: E402  (benchmarks/run_overhead.py, beside this script: the chain's scene)
+from measure import process_wall  # noqa: E402  (benchmarks/measure.py)
 from x3d_core.trace import read_view  # noqa: E402
 
 LINKS = 10
 SAME = 1e-9  # the two sides' values agree to rounding where they step the same model
-
-def _timed(cmd: list[str], env: dict[str, str]) -> float:
-    started = time.perf_counter()
-    subprocess.run(cmd, check=True, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - started
-
 
 def _gap(path: str, native: str) -> float:
     """The largest difference between two traces' values, over every link, field and frame."""
@@ -76,7 +69,7 @@ def main() -> int:
         times: dict[str, list[float]] = {name: [] for name in sides}
         for _ in range(args.repeat):
             for name, cmd in sides.items():
-                times[name].append(_timed(cmd, env))
+                times[name].append(process_wall(cmd, env=env))
         gaps = {name: _gap(out[file], out["native.csv"]) for name, file in
                 zip(sides, ("native.csv", "x3drbp.csv", "x3drbp.npz"))}
     base = statistics.median(times["native MuJoCo script"])

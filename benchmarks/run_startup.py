@@ -18,7 +18,6 @@ from __future__ import annotations
 import argparse
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -29,13 +28,9 @@ sys.path.insert(0, ROOT)
 from conformance.results import Settings  # noqa: E402
 from conformance.runner import children, fork_server  # noqa: E402
 
+from measure import process_wall  # noqa: E402  (benchmarks/measure.py, beside this script)
+
 SCENE = os.path.join(ROOT, "scenes", "examples", "pendulum.x3d")
-
-
-def _wall(cmd: list[str]) -> float:
-    started = time.perf_counter()
-    subprocess.run(cmd, cwd=ROOT, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    return time.perf_counter() - started
 
 
 def _warm(backend: str, trace: str) -> float:
@@ -65,7 +60,7 @@ def main() -> int:
         times.update({name: [] for name in warm})
         for _ in range(args.repeat):  # taking turns
             for name, cmd in commands.items():
-                times[name].append(_wall(cmd))
+                times[name].append(process_wall(cmd, cwd=ROOT))
             for name, b in warm.items():
                 times[name].append(_warm(b, trace))
     floor = statistics.median(times["import numpy, lxml"])
