@@ -26,37 +26,76 @@ def dt_label(dt: float) -> str:
 
 # -- conformance verdicts ----------------------------------------------------------------
 
-# pass: conforms; conventions: conforms, but differs from x3drbp's reading where the spec
-# is silent (only convention measures fail); fail: violates the spec (a spec measure fails)
+# pass: conforms; conventions: conforms to the clause, but differs from x3drbp's reading where
+# the spec is silent, or from a description outside the clause (only convention or description
+# measures fail); fail: violates the spec (a measure quoting clause 37 fails). Accuracy measures
+# never change a verdict: they are graded apart (Result.accuracy).
 PASS, CONVENTIONS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR = (
     "pass", "conventions", "fail", "unsupported", "crashed", "timed out", "blew up", "error")
 VERDICTS = (PASS, CONVENTIONS, FAIL, UNSUPPORTED, CRASHED, TIMED_OUT, BLEW_UP, ERROR)
 JUDGED = (PASS, CONVENTIONS, FAIL)  # the verdicts of a run the expectation measured
 # what each judged verdict says, in full, where a verdict is shown to people
 MEANING = {PASS: "conforms", CONVENTIONS: "conforms, differs in conventions", FAIL: "violates the spec"}
-SPEC, CONVENTION = "spec", "convention"
+SPEC, CONVENTION, DESCRIPTION, ACCURACY = "spec", "convention", "description", "accuracy"
+KINDS = (SPEC, CONVENTION, DESCRIPTION, ACCURACY)
+# the editions of ISO/IEC 19775-1 a SPEC basis may quote, and the sources of a DESCRIPTION
+EDITIONS = ("V3.3", "V4.0")
+SOURCES = ("X3DUOM 4.0", "X3D tooltips")
 
 
 @dataclass(frozen=True)
 class Basis:
-    """Why a measure holds an implementation to its tolerance. SPEC: `text` quotes the
-    sentence of ISO/IEC 19775-1 the measure enforces (clause and node first). CONVENTION:
-    the spec is silent or ambiguous here; `text` names the reading checked (ODE's, as a
-    rule) and the alternatives real implementations take, none of them wrong."""
+    """Why a measure holds an implementation to its tolerance.
+
+    SPEC: `text` is "37.x.y Node: " and then words of clause 37 of ISO/IEC 19775-1, verbatim
+    and uncut, of the edition `source` names (V3.3 or V4.0); the tolerance is one any consistent
+    integrator and solver meets at the scene's own settings, so a failure is a violation.
+    CONVENTION: the clause is silent or ambiguous; `text` names the reading checked (ODE's, as
+    a rule) and the alternatives real implementations take, none of them wrong.
+    DESCRIPTION: `text` quotes a description from outside the clause (`source`: the X3D Unified
+    Object Model or the tooltips): a weaker basis, failing it is not a violation.
+    ACCURACY: `text` names the closed form or invariant and how the bound follows from the step
+    and the integrator's order; the error is graded against the bound, never a violation."""
     kind: str
     text: str
+    source: str = ""
 
     def __post_init__(self) -> None:
-        if self.kind not in (SPEC, CONVENTION) or not self.text.strip():
-            raise ValueError(f"a basis is {SPEC!r} or {CONVENTION!r} with its text, not {self.kind!r}: {self.text!r}")
+        if self.kind not in KINDS or not self.text.strip():
+            raise ValueError(f"a basis is one of {', '.join(KINDS)} with its text, not {self.kind!r}: {self.text!r}")
+        if self.kind == SPEC and self.source not in EDITIONS:
+            raise ValueError(f"a spec basis names its edition ({', '.join(EDITIONS)}), not {self.source!r}")
+        if self.kind == DESCRIPTION and self.source not in SOURCES:
+            raise ValueError(f"a description names its source ({', '.join(SOURCES)}), not {self.source!r}")
+        if self.kind == SPEC and ("..." in self.text or "\u2026" in self.text):
+            raise ValueError(f"a spec basis quotes whole sentences, uncut: {self.text!r}")
+
+    def label(self) -> str:
+        """The kind as a reader needs it: 'spec (V4.0)', 'description (X3DUOM 4.0)', 'convention'."""
+        return f"{self.kind} ({self.source})" if self.source else self.kind
 
 
-def spec(quote: str) -> Basis:
-    return Basis(SPEC, quote)
+def spec(quote: str, edition: str = "V4.0") -> Basis:
+    return Basis(SPEC, quote, edition)
 
 
 def convention(reading: str) -> Basis:
     return Basis(CONVENTION, reading)
+
+
+def description(quote: str, source: str = "X3DUOM 4.0") -> Basis:
+    return Basis(DESCRIPTION, quote, source)
+
+
+def accuracy(argument: str) -> Basis:
+    return Basis(ACCURACY, argument)
+
+
+def grade(ratio: float) -> str:
+    """An accuracy grade in words: 'within the bound', '3.1x the bound'."""
+    if ratio <= 1:
+        return "within the bound"
+    return "no finite error" if not math.isfinite(ratio) else f"{ratio:.2g}x the bound"
 
 
 @dataclass(frozen=True)
@@ -108,14 +147,26 @@ class Measure:
         return f"error {self.error:.3g}{unit} > tolerance {self.tolerance:.3g}{unit}"
 
     @property
+    def kind(self) -> str:
+        """SPEC, CONVENTION, DESCRIPTION or ACCURACY (a measure with no basis is held as the spec)."""
+        return SPEC if self.basis is None else self.basis.kind
+
+    @property
     def convention(self) -> bool:
-        """The measure checks a reading of a point the spec leaves open."""
-        return self.basis is not None and self.basis.kind == CONVENTION
+        """The measure checks a reading of a point the clause leaves open, or a description
+        outside it: failing it leaves the implementation conforming."""
+        return self.kind in (CONVENTION, DESCRIPTION)
+
+    @property
+    def graded(self) -> bool:
+        """The measure grades accuracy: it never changes a verdict."""
+        return self.kind == ACCURACY
 
     def to_json(self) -> dict:
         return {"quantity": self.quantity, "error": _finite_or_str(self.error),
                 "tolerance": _finite_or_str(self.tolerance), "unit": self.unit, "ok": self.ok,
                 "basis": None if self.basis is None else self.basis.kind,
+                "basis_source": None if self.basis is None else self.basis.source,
                 "basis_text": None if self.basis is None else self.basis.text}
 
 
@@ -136,32 +187,56 @@ class Result:
         return next((m for m in self.measures if m.quantity == quantity), None)
 
     def to_json(self) -> dict:
+        acc = self.accuracy()
         return {"case": self.case, "backend": self.backend, "verdict": self.verdict, "reason": self.reason,
                 "dt": self.dt, "wall_s": round(self.wall_s, 3), "meaning": self.meaning(),
+                "accuracy": None if acc is None else _finite_or_str(acc),
                 "measures": [m.to_json() for m in self.measures]}
 
     def failing(self, kind: str | None = None) -> list[Measure]:
-        """The measures beyond tolerance (of one basis: SPEC, CONVENTION)."""
-        return [m for m in self.measures if not m.ok and (kind is None or m.convention == (kind == CONVENTION))]
+        """The judged measures beyond tolerance (accuracy measures are graded, not failed); of
+        one kind: SPEC, or CONVENTION (conventions and descriptions both)."""
+        return [m for m in self.measures if not m.ok and not m.graded
+                and (kind is None or m.convention == (kind == CONVENTION))]
+
+    def graded(self) -> list[Measure]:
+        return [m for m in self.measures if m.graded]
+
+    def accuracy(self) -> float | None:
+        """The worst accuracy measure's error over its bound (None: the case grades none, or
+        the run was not judged)."""
+        ratios = [m.ratio for m in self.graded()]
+        return max(ratios) if ratios and self.verdict in JUDGED else None
+
+    def accuracy_text(self) -> str:
+        """'accuracy within the bound' or 'accuracy 3.1x the bound (QUANTITY)'; '' where none is graded."""
+        worst = max(self.graded(), key=lambda m: m.ratio, default=None)
+        if worst is None or self.verdict not in JUDGED:
+            return ""
+        return "accuracy " + grade(worst.ratio) + ("" if worst.ratio <= 1 else f" ({worst.quantity})")
 
     def meaning(self) -> str:
         """The verdict as people read it: conforms / conforms, differs in conventions: the
-        readings / violates the spec: measure, quote, figure."""
+        readings / violates the spec: measure, quote, figure; then the accuracy grade."""
         if self.verdict not in JUDGED:
             return self.verdict + (f": {self.reason}" if self.reason else "")
         if self.verdict == PASS:
-            return MEANING[PASS]
-        if self.verdict == CONVENTIONS:
-            return f"{MEANING[CONVENTIONS]}: " + "; ".join(
-                f"{m.quantity} ({m.basis.text}): {m.figure()}" for m in self.failing(CONVENTION))
-        return f"{MEANING[FAIL]}: " + "; ".join(
-            f"{m.quantity}" + (f" (\"{m.basis.text}\")" if m.basis else "") + f": {m.figure()}"
-            for m in self.failing(SPEC))
+            said = MEANING[PASS]
+        elif self.verdict == CONVENTIONS:
+            said = f"{MEANING[CONVENTIONS]}: " + "; ".join(
+                f"{m.quantity} ({m.basis.label()}: {m.basis.text}): {m.figure()}" for m in self.failing(CONVENTION))
+        else:
+            said = f"{MEANING[FAIL]}: " + "; ".join(
+                f"{m.quantity}" + (f" ({m.basis.source}, \"{m.basis.text}\")" if m.basis else "") + f": {m.figure()}"
+                for m in self.failing(SPEC))
+        graded = self.accuracy_text()
+        return f"{said}; {graded}" if graded else said
 
 
 def judge(measures: Sequence[Measure]) -> str:
-    """PASS when every measure holds; CONVENTIONS when only convention measures fail; else FAIL."""
-    failing = [m for m in measures if not m.ok]
+    """PASS when every judged measure holds; CONVENTIONS when only convention or description
+    measures fail; else FAIL. Accuracy measures do not count."""
+    failing = [m for m in measures if not m.ok and not m.graded]
     if not failing:
         return PASS
     return CONVENTIONS if all(m.convention for m in failing) else FAIL

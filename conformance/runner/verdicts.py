@@ -25,6 +25,7 @@ from __future__ import annotations
 import os
 import tempfile
 import time
+import traceback
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import TypeVar
@@ -40,15 +41,23 @@ T = TypeVar("T")  # what run_many's jobs return
 
 
 def evaluate(case: Case, backend: str, traces: Sequence[TraceView], settings: Sequence[Settings]) -> Result:
-    """Apply the case's expectation to traces already read."""
+    """Apply the case's expectation to traces already read. One cell, one fault: whatever the
+    expectation raises (a trace without the rows it reads, an engine's result that breaks its
+    assumptions, a fault of its own) is this cell's ERROR verdict with the reason, never the
+    command's end."""
     dt = settings[0].dt if settings else None
     try:
         measures = case.expect(traces, settings)
     except (KeyError, ValueError, IndexError) as e:
         msg = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
         return Result(case.name, backend, ERROR, f"the expectation could not read the trace: {msg}", dt=dt)
+    except Exception as e:  # noqa: BLE001 -- any fault of the expectation is this cell's verdict
+        where = traceback.extract_tb(e.__traceback__)[-1]
+        return Result(case.name, backend, ERROR,
+                      f"the expectation failed: {type(e).__name__}: {e} "
+                      f"({os.path.basename(where.filename)}:{where.lineno})", dt=dt)
     reason = "; ".join(("[convention] " if m.convention else "") + f"{m.quantity}: {m.figure()}"
-                       for m in measures if not m.ok)
+                       for m in measures if not m.ok and not m.graded)
     return Result(case.name, backend, judge(measures), reason, measures, dt=dt)
 
 

@@ -17,8 +17,9 @@ from conformance.results import Measure, Settings, spec
 # ball_chain.x3d: link k joins Link k (body1) to Link k-1 (body2, Anchor for k = 1), anchors
 # at each link's end, 0.1 m from the link's centre
 CHAIN_LINKS, CHAIN_R, CHAIN_MASS, CHAIN_I, CHAIN_LENGTH = 5, 0.1, 0.2, 0.001, 1.0
-JOINED = spec("37.4.1 BallJoint: body1AnchorPoint and body2AnchorPoint ... can be used to detect if the joint has "
-              "caused a separation if the two values are not the same for a given frame.")
+JOINED = spec("37.4.1 BallJoint: The body1AnchorPoint and body2AnchorPoint output fields represent the location of "
+              "the anchorPoint relative to the body1 and body2 bodies, respectively. This can be used to detect if "
+              "the joint has caused a separation if the two values are not the same for a given frame.")
 
 
 def _omega_cap(inertia: float) -> float:
