@@ -120,16 +120,22 @@ class Settings:
 
 @dataclass(frozen=True)
 class Measure:
-    """One measured error and the tolerance it is held to (same unit)."""
+    """One measured error and the tolerance it is held to (same unit). `bound`, where given, is
+    the accuracy bound the same error is graded against (from the step and the integrator's
+    order): tighter than a spec tolerance, which allows any consistent integrator and solver at
+    the scene's settings. An ACCURACY measure's tolerance is its bound."""
     quantity: str
     error: float
     tolerance: float
     unit: str = ""
     basis: Basis | None = None  # None: not stated yet, held as the spec
+    bound: float | None = None
 
     def __post_init__(self) -> None:  # plain floats (numpy scalars do not go to JSON)
         object.__setattr__(self, "error", float(self.error))
         object.__setattr__(self, "tolerance", float(self.tolerance))
+        if self.bound is not None:
+            object.__setattr__(self, "bound", float(self.bound))
 
     @property
     def ok(self) -> bool:
@@ -137,9 +143,14 @@ class Measure:
 
     @property
     def ratio(self) -> float:
-        if not math.isfinite(self.error):
-            return math.inf
-        return self.error / self.tolerance if self.tolerance > 0 else (0.0 if self.error == 0 else math.inf)
+        return _ratio(self.error, self.tolerance)
+
+    @property
+    def accuracy(self) -> float | None:
+        """The error over its accuracy bound (None: the measure grades no accuracy)."""
+        if self.kind == ACCURACY:
+            return self.ratio
+        return None if self.bound is None else _ratio(self.error, self.bound)
 
     def figure(self) -> str:
         """'error E > tolerance T' with the unit: how a failing measure is reported."""
@@ -159,7 +170,7 @@ class Measure:
 
     @property
     def graded(self) -> bool:
-        """The measure grades accuracy: it never changes a verdict."""
+        """The measure only grades accuracy: it never changes a verdict."""
         return self.kind == ACCURACY
 
     def to_json(self) -> dict:
@@ -167,7 +178,9 @@ class Measure:
                 "tolerance": _finite_or_str(self.tolerance), "unit": self.unit, "ok": self.ok,
                 "basis": None if self.basis is None else self.basis.kind,
                 "basis_source": None if self.basis is None else self.basis.source,
-                "basis_text": None if self.basis is None else self.basis.text}
+                "basis_text": None if self.basis is None else self.basis.text,
+                "bound": None if self.bound is None else _finite_or_str(self.bound),
+                "accuracy": None if self.accuracy is None else _finite_or_str(self.accuracy)}
 
 
 @dataclass
@@ -200,20 +213,25 @@ class Result:
                 and (kind is None or m.convention == (kind == CONVENTION))]
 
     def graded(self) -> list[Measure]:
-        return [m for m in self.measures if m.graded]
+        """The measures that grade accuracy (accuracy measures, and judged ones with a bound)."""
+        return [m for m in self.measures if m.accuracy is not None]
 
     def accuracy(self) -> float | None:
-        """The worst accuracy measure's error over its bound (None: the case grades none, or
-        the run was not judged)."""
-        ratios = [m.ratio for m in self.graded()]
+        """The worst graded error over its bound (None: the case grades none, or the run was
+        not judged)."""
+        ratios = [m.accuracy for m in self.graded()]
         return max(ratios) if ratios and self.verdict in JUDGED else None
+
+    def over_bound(self) -> list[Measure]:
+        """The graded measures beyond their accuracy bound."""
+        return [m for m in self.graded() if not m.accuracy <= 1]
 
     def accuracy_text(self) -> str:
         """'accuracy within the bound' or 'accuracy 3.1x the bound (QUANTITY)'; '' where none is graded."""
-        worst = max(self.graded(), key=lambda m: m.ratio, default=None)
+        worst = max(self.graded(), key=lambda m: m.accuracy, default=None)
         if worst is None or self.verdict not in JUDGED:
             return ""
-        return "accuracy " + grade(worst.ratio) + ("" if worst.ratio <= 1 else f" ({worst.quantity})")
+        return "accuracy " + grade(worst.accuracy) + ("" if worst.accuracy <= 1 else f" ({worst.quantity})")
 
     def meaning(self) -> str:
         """The verdict as people read it: conforms / conforms, differs in conventions: the
@@ -240,6 +258,12 @@ def judge(measures: Sequence[Measure]) -> str:
     if not failing:
         return PASS
     return CONVENTIONS if all(m.convention for m in failing) else FAIL
+
+
+def _ratio(error: float, limit: float) -> float:
+    if not math.isfinite(error):
+        return math.inf
+    return error / limit if limit > 0 else (0.0 if error == 0 else math.inf)
 
 
 def _finite_or_str(x: float) -> float | str:

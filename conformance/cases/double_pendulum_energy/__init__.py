@@ -12,7 +12,7 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, G, steps, max_norm
-from conformance.results import Measure, Settings, spec
+from conformance.results import Measure, Settings, accuracy, spec
 
 
 # double_pendulum_energy.x3d: absolute angles phi from the downward vertical, about +z
@@ -21,7 +21,11 @@ DP_M2, DP_D2, DP_I2 = 1.5, 0.4, 0.08  # mass, elbow-centre, I_zz
 DP_PHI = (math.radians(30.0), math.radians(45.0))
 DP_INERTIA = {"Upper": np.diag([0.1, 0.1, DP_I1]), "Lower": np.diag([0.05, 0.05, DP_I2])}
 DP_MASS = {"Upper": DP_M1, "Lower": DP_M2}
-HINGES = spec("37.4.12 SingleAxisHingeJoint: This node represents a joint with a single axis about which to rotate.")
+HINGES = spec("37.4.12 SingleAxisHingeJoint: This node represents a joint with a single axis about which to "
+              "rotate.", "V3.3")
+FIRST_STEP = accuracy("from rest, every one-step scheme of the Euler family gives w(h) = h q''(0) with rigid joints; a "
+                      "joint softened by the default constantForceMix, or an iterative solve, starts otherwise and "
+                      "converges as h shrinks")
 
 
 def _dp_matrices(phi1: float, phi2: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -84,25 +88,30 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     the first step is checked too: from rest every one-step scheme of the Euler family gives
     w(h) = h q''(0), q''(0) = M(q0)^-1 f(q0) (Coriolis terms vanish at rest), exact up to
     ROUNDING; a scheme evaluating the acceleration elsewhere in the step differs by at most
-    h |M^-1 K| h^2 |q''(0)| (the configuration moves by h^2 |q''| in a step)."""
+    h |M^-1 K| h^2 |q''(0)| (the configuration moves by h^2 |q''| in a step). That exactness
+    holds for rigid joints only: X3D's joints carry the default constantForceMix 1e-4, which
+    lets the bodies start part free (ODE at X3D's defaults: 9% and 45% off), so the first step
+    is graded accuracy, not the spec; the energy bound holds any consistent first-order scheme
+    and is both the spec's tolerance and the accuracy bound."""
     tr, s = traces[0], settings[0]
     d = double_pendulum()
     t, energy = _dp_energy(tr)
     n = steps(t, s.dt)
     drift = (d["E0"] - d["Emin"]) * ((1.0 + (d["omega_max"] * s.dt) ** 2) ** float(n[-1]) - 1.0)
-    out = [Measure("double pendulum |E - E0|", float(np.max(np.abs(energy - d["E0"]))),
-                   drift + ROUNDING * (1 + abs(d["E0"])), "J", HINGES)]
+    energy_tol = drift + ROUNDING * (1 + abs(d["E0"]))
+    out = [Measure("double pendulum |E - E0|", float(np.max(np.abs(energy - d["E0"]))), energy_tol, "J", HINGES,
+                   energy_tol)]
     first = np.flatnonzero(n == 1)
     for k, name in enumerate(DP_MASS):
         a0 = float(d["accel0"][k])
         tol = ROUNDING * (1 + abs(a0) * s.dt) + s.dt ** 3 * d["stiffness0"] * abs(a0)
         if not first.size:
             out.append(Measure(f"{name}.angularVelocity after one step (no frame there)", math.inf, tol, "rad/s",
-                               HINGES))
+                               FIRST_STEP))
             continue
         _, w = tr.series(name, "angularVelocity")
         out.append(Measure(f"{name}.angularVelocity after one step - h q''(0)",
-                           max_norm(w[first[:1]] - np.array([0.0, 0.0, a0 * s.dt])), tol, "rad/s", HINGES))
+                           max_norm(w[first[:1]] - np.array([0.0, 0.0, a0 * s.dt])), tol, "rad/s", FIRST_STEP))
     return out
 
 

@@ -10,15 +10,15 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import G, physics_time, ellipk
+from conformance.cases.closed_forms import G, ellipk, honoured, physics_time
 from conformance.results import Measure, Settings, spec
 
 
 # pendulum_period.x3d: a compound pendulum released 30 degrees from the vertical
 PEND_M, PEND_L, PEND_I, PEND_THETA0 = 1.0, 1.0, 0.001, math.radians(30.0)
 # the period and the vertical crossings do not depend on the sign or the zero of the hinge's angle
-HINGE = spec("37.4.12 SingleAxisHingeJoint: The axis of the hinge is defined to be along the unit vector "
-             "described in the axis field and centered on the anchorPoint described in world coordinates.")
+HINGE = spec("37.4.12 SingleAxisHingeJoint: The axis of the hinge is defined to be along the unit vector described "
+             "in the axis field and centered on the anchorPoint described in world coordinates.", "V3.3")
 
 
 def pendulum_period(theta0: float = PEND_THETA0, m: float = PEND_M, length: float = PEND_L,
@@ -48,7 +48,12 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
         crossing t_c, and the period by |dT/dtheta0| dtheta: first order, c*dt with
         c = |dT/dtheta0| (1 - cos theta0)/sin theta0 w0^2 t_c.
     The crossings are read from a frame after every step by linear interpolation: at the
-    vertical x'' = 0, so the interpolation error is O(dt^3 w^3), far below (a) and (b)."""
+    vertical x'' = 0, so the interpolation error is O(dt^3 w^3), far below (a) and (b).
+    That is the accuracy bound. The spec tolerance (closed_forms.honoured) is half the period's
+    change under the nearest misreading of the scene: the inertia ignored (X3D's default
+    0.4 kg m^2 in its place: T x sqrt(1.4 / 1.001)) or the mass ignored (1 kg is the default
+    and the scene's, so no misreading there); a soft joint or an unconverged iterative solve
+    (ODE's quick-step at the scene's 10 iterations: 3.0 ms) is graded, not accused."""
     tr, s = traces[0], settings[0]
     t, p = tr.series("Bob", "position")
     tp = physics_time(t, s.dt)
@@ -59,11 +64,12 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     dT = abs(pendulum_period(PEND_THETA0 + h) - pendulum_period(PEND_THETA0 - h)) / (2 * h)
     t_c = float(c[-1]) if c.size else float(tp[-1])
     drift = w0 ** 2 * s.dt * t_c * (1 - math.cos(PEND_THETA0)) / math.sin(PEND_THETA0)
-    tol = T * (w0 * s.dt) ** 2 / 3.0 + dT * drift
+    bound = T * (w0 * s.dt) ** 2 / 3.0 + dT * drift
+    tol = honoured(bound, pendulum_period(inertia=0.4) - T)
     if c.size < 2:
-        return [Measure("Bob.period", math.inf, tol, "s", HINGE)]
+        return [Measure("Bob.period", math.inf, tol, "s", HINGE, bound)]
     measured = 2.0 * (c[-1] - c[0]) / (c.size - 1)
-    return [Measure("Bob.period", abs(measured - T), tol, "s", HINGE)]
+    return [Measure("Bob.period", abs(measured - T), tol, "s", HINGE, bound)]
 
 
 CASE = Case("pendulum_period", "pendulum_period.x3d",
