@@ -25,11 +25,14 @@ class Mutation:
     (frame_rate) replaces the runs instead (old = new = "": the scene as it is). `spec` is False
     where what the edit stands for is itself a reading of a point the clause leaves open (a
     frame-period step, friction directions that follow the motion): the edit must then make a
-    measure fail, a convention at least, and the case may still conform."""
+    measure fail, a convention at least, and the case may still conform. `grades` is True where
+    the edit stands for a looser solve, which the clause allows (a loop of joints held softly):
+    it must then push an accuracy grade past its bound, and the verdict may stay."""
     old: str
     new: str
     runs: tuple[Settings, ...] | None = None
     spec: bool = True
+    grades: bool = False
 
     def apply(self, text: str) -> str:
         """The scene's text with the edit made (ValueError unless `old` is there exactly once)."""

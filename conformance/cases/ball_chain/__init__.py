@@ -9,17 +9,18 @@ import numpy as np
 
 from x3d_core.trace import TraceView
 
-from conformance.cases.case import Case
-from conformance.cases.closed_forms import ROUNDING, G, ERROR_CORRECTION, max_norm, omega
+from conformance.cases.case import Case, Mutation
+from conformance.cases.closed_forms import ERROR_CORRECTION, ROUNDING, G, honoured, max_norm, omega
 from conformance.results import Measure, Settings, spec
 
 
 # ball_chain.x3d: link k joins Link k (body1) to Link k-1 (body2, Anchor for k = 1), anchors
 # at each link's end, 0.1 m from the link's centre
 CHAIN_LINKS, CHAIN_R, CHAIN_MASS, CHAIN_I, CHAIN_LENGTH = 5, 0.1, 0.2, 0.001, 1.0
-JOINED = spec("37.4.1 BallJoint: The body1AnchorPoint and body2AnchorPoint output fields represent the location of "
-              "the anchorPoint relative to the body1 and body2 bodies, respectively. This can be used to detect if "
-              "the joint has caused a separation if the two values are not the same for a given frame.")
+JOINED = spec("37.4.1 BallJoint: body1AnchorPoint and body2AnchorPoint represent the output that "
+              "describes where the anchorPoint is relative to the two bodies local coordinate "
+              "reference frame. This can be used to detect if the joint has caused a separation if the "
+              "two values are not the same for a given frame.", "V3.3")
 
 
 def _omega_cap(inertia: float) -> float:
@@ -38,7 +39,14 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     distance from the body's origin); error correction (ERP, 0.8 by default) removes that
     fraction of the gap each step, so it settles below dt^2/(2 ERP) (|w1|^2 r1 + |w2|^2 r2):
     second order per step, with the rates read from the trace at every step (capped by the
-    energy the chain can release, so that a runaway cannot widen its own tolerance)."""
+    energy the chain can release, so that a runaway cannot widen its own tolerance).
+
+    That is the accuracy bound of a rigid, converged solve. The clause says a separation shows
+    as the two anchor points differing, not how closely a joint must hold: X3D's joints carry
+    the default constantForceMix (soft), and an iterative solver stops at the scene's
+    iterations. The spec tolerance (closed_forms.honoured) is half the gap of the misreading
+    nearest to a held joint: an anchor taken at a body's origin instead of anchorPoint (the
+    links then hang apart by their lever arm, CHAIN_R)."""
     tr, s = traces[0], settings[0]
     errors, bounds = [], []
     for k in range(1, CHAIN_LINKS + 1):
@@ -51,7 +59,9 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
         errors.append(max_norm(a1 - a2))
         bounds.append(float(np.max(w1 ** 2 * CHAIN_R + w2 ** 2 * r2)) * s.dt ** 2 / (2 * ERROR_CORRECTION))
     worst = int(np.argmax(np.array(errors) / (np.array(bounds) + ROUNDING)))
-    return [Measure(f"Joint{worst + 1} anchor gap (worst joint)", errors[worst], bounds[worst] + ROUNDING, "m", JOINED)]
+    bound = bounds[worst] + ROUNDING
+    return [Measure(f"Joint{worst + 1} anchor gap (worst joint)", errors[worst], honoured(bound, CHAIN_R), "m", JOINED,
+                    bound)]
 
 
 CASE = Case("ball_chain", "ball_chain.x3d",
@@ -61,5 +71,6 @@ CASE = Case("ball_chain", "ball_chain.x3d",
                 # the chain's far end pinned too: one joint then closes a loop through the static
                 # world, which a reduced-coordinate engine holds only softly (MuJoCo: an equality
                 # constraint), and the anchors of a joint come apart
-                ("<RigidBody DEF='Link5' mass='0.2'", "<RigidBody DEF='Link5' fixed='true' mass='0.2'"),
+                Mutation("<RigidBody DEF='Link5' mass='0.2'", "<RigidBody DEF='Link5' fixed='true' mass='0.2'",
+                         grades=True),
             ))
