@@ -36,8 +36,11 @@ AD_STRIKER_U = np.array([2.0, 0.0, 0.0])
 AD_PUSH = np.array([0.02, 0.0, 0.0])  # Pushed's force / mass
 AD_DRIFT_P0, AD_DRIFT_V0, AD_DRIFT_W0 = np.array([0.0, 2.0, 0.0]), np.array([0.05, 0.0, 0.0]), np.array([0.0, 0.0, 0.5])
 
-AT_REST = ("37.4 RigidBody: Once any one of these values is achieved, the body is considered as being at rest, "
-           "unless acted upon by an external force (e.g., collision or action of connected joint).")
+AT_REST = ("37.4.10 RigidBody: These values define tolerances for which the physics model should start to ignore "
+           "this object in any calculation, thus resulting in them being actually at rest and not subject to "
+           "these instability conditions. Once any one of these values is achieved, the body is considered as "
+           "being at rest unless acted upon by an external force (e. g., collision or action of connected "
+           "joint).")
 ANY_ONE = ("any one speed under its threshold, held for disableTime, stops a body (x3drbp, the literal reading of "
            "'Once any one of these values is achieved'); ODE, Xj3D: both speeds under their thresholds for the "
            "time (never here: it spins at 0.5 rad/s); X_ITE: Bullet's sleeping thresholds and its own 2 s")

@@ -14,9 +14,10 @@ from conformance.cases.case import Case
 from conformance.cases.closed_forms import BOUNCE, CFM_DEFAULT, ROUNDING, G, honoured, max_norm, physics_time
 from conformance.results import Measure, Settings, convention, spec
 
-MIN_BOUNCE = spec("37.4.4 CollisionCollection: The minBounceSpeed field indicates the minimum speed, in speed base "
-                  "units, that an object shall have before an object will bounce. If the object is below this "
-                  "speed, it will not bounce, effectively having an equivalent value for the bounce field of zero.", "V3.3")
+MIN_BOUNCE = spec("37.4.4 CollisionCollection: The minBounceSpeed field indicates the minimum speed, "
+                  "in speed base units, that an object shall have before an object will bounce. If the "
+                  "object is below this speed, it will not bounce, effectively having an equivalent "
+                  "value for the bounce field of zero.", "V3.3")
 RESTITUTION = convention("bounce is the coefficient of restitution: the rebound speed is bounce x the impact speed, "
                          "so the apex after bounce n is bounce^(2n) h0 (ODE's dContactBounce, Xj3D, FreeWRL); "
                          "alternatives: the fraction of the impact's energy kept (apex bounce^n h0), an engine's own "

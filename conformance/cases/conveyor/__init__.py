@@ -23,7 +23,8 @@ from conformance.results import Measure, Settings, spec
 # conveyor.x3d: the box ends moving at surfaceSpeed along ODE's first friction direction (-x)
 CV_MU, CV_SPEED, CV_ODE = 0.5, 1.5, np.array([-1.0, 0.0, 0.0])
 SURFACE_SPEED = spec("37.4.4 CollisionCollection: The surfaceSpeed field defines the speed in the two friction "
-                     "directions")
+                     "directions in speed base units. This is used to indicate if the contact surface is moving "
+                     "independently of the motion of the bodies.", "V3.3")
 
 
 def belt_direction(tr: TraceView) -> np.ndarray:

@@ -19,8 +19,11 @@ from conformance.results import Measure, Settings, convention, spec
 SPRING_ERP, SPRING_CFM = 0.2, 1e-5
 SPRING_WEIGHTS = {"Light": (1.0, np.array([0.0, 1.0, 0.0])), "Heavy": (4.0, np.array([1.0, 1.0, 0.0]))}
 SPRING_SETTLED = 0.5  # s: measured from here on
-SOFT = spec("37.4.11 RigidBodyCollection: The larger the value, the more soft each of the constraints being "
-            "evaluated. A value of zero indicates hard constraints so that everything is exactly honoured.")
+SOFT = spec("37.4.11 RigidBodyCollection: The constantForceMix field can be used to apply damping to the "
+            "calculations by violating the normal constraints by applying a small, constant force to those "
+            "calculations. This allows joints and bodies to be a fraction springy, as well as helping to eliminate "
+            "numerical instability. The larger the value, the more soft each of the constraints being evaluated. "
+            "A value of zero indicates hard constraints so that everything is exactly honoured.", "V3.3")
 ODE_SPRING = convention("errorCorrection and constantForceMix are ODE's ERP and CFM of every joint row, a spring "
                         "k = ERP/(h CFM) whatever hangs from it (x3drbp, ODE, Xj3D, FreeWRL); alternatives: a "
                         "softness scaled by each row's effective mass (Bullet's, MuJoCo's solref), or other "

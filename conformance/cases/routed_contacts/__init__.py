@@ -6,10 +6,10 @@ from conformance.cases.case import Case
 from conformance.cases.closed_forms import kept_rests_ghost_falls
 from conformance.results import Settings, spec
 
-SET_CONTACTS = spec("37.4.11 RigidBodyCollection: The set_contacts input field is used to provide per-frame sets of "
-                    "information about contacts between bodies in this frame. These contacts are then used to modify "
-                    "the location of the bodies within the scene graph when the physics model is evaluated at the end "
-                    "of the frame.")
+SET_CONTACTS = spec("37.4.11 RigidBodyCollection: The set_contacts input field is used to provide per-frame sets "
+                    "of information about contacts between bodies in this frame. These contacts are then used to "
+                    "modify the location of the bodies within the scene graph when the physics model is evaluated "
+                    "at the end of the frame.", "V3.3")
 
 
 CASE = Case("routed_contacts", "routed_contacts.x3d",

@@ -18,8 +18,8 @@ from conformance.results import Measure, Settings, convention, spec
 # min stop, and gravity takes it toward the max stop
 SLIDE_AXIS = np.array([0.6, -0.8, 0.0])
 SLIDE_MIN, SLIDE_MAX, SLIDE_ERP = 0.0, 0.3, 1.0  # SliderJoint.stopErrorCorrection default is 1
-STOPS = spec("37.4.13 SliderJoint: minSeparation is minimum separation distance between the two bodies; "
-             "maxSeparation is maximum separation distance between the two bodies.")
+STOPS = spec("37.4.13 SliderJoint: If minSeparation is greater than maxSeparation, the stops become ineffective as "
+             "if the object has no stops at all.", "V3.3")
 ODE_SEPARATION = convention(
     "separation of body1 relative to body2 along the axis, from the initial configuration (ODE's "
     "dJointGetSliderPosition): the block starts at 0 and slides to the max stop; alternatives: body2 relative "

@@ -15,7 +15,7 @@ from conformance.cases.closed_forms import ROUNDING, physics_time, max_norm
 from conformance.results import Measure, Settings, spec
 
 
-INERTIA = spec("37.4.10 RigidBody: The inertia field represents a inertia tensor matrix.")
+INERTIA = spec("37.4.10 RigidBody: The inertia field represents a 3x2 inertia tensor matrix.", "V3.3")
 
 
 # torque_free.x3d

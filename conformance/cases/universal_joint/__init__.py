@@ -17,8 +17,8 @@ from conformance.results import Measure, Settings, spec
 UJ_INERTIA = {"Upper": 0.02, "Lower": 0.01}
 # |cosine|: the same whichever sense either axis output has
 PERPENDICULAR = spec("37.4.14 UniversalJoint: Given the axis specified by the axis1 field on the body specified by "
-                     "the body1 field, and the axis specified by the axis2 field on body2 that is perpendicular to "
-                     "axis1, the UniversalJoint node keeps the axes perpendicular to each other.")
+                     "the body1 field, and the axis specified by the axis2 field on body2 that is perpendicular "
+                     "to axis1, the UniversalJoint node keeps the axes perpendicular to each other.", "V3.3")
 # the most energy gravity can give the arms: Upper's centre (0.5 m from the fixed shoulder, at
 # y = -0.4) can fall 0.1 m; Lower's (at most 1.0 + 0.5 m from the shoulder, at y = -0.8) 0.7 m
 UJ_ENERGY = 1.0 * G * 0.1 + 0.5 * G * 0.7
