@@ -10,7 +10,7 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import G, CFM_DEFAULT, BOUNCE
+from conformance.cases.closed_forms import BOUNCE, CFM_DEFAULT, G, honoured
 from conformance.results import Measure, Settings
 
 
@@ -33,7 +33,11 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     and each striker keeps at most gamma v.
     Gravity. Each ball strikes up to x = gap + v h past its lowest point, where gravity's
     tangential pull g x / L has slowed it for x / v: together at most 4 g x^2 / (L v) (1.8e-3 v).
-    The line of centres and the velocity tilt by x / L or less (cosines within 1.1e-4 of 1)."""
+    The line of centres and the velocity tilt by x / L or less (cosines within 1.1e-4 of 1).
+    Those are accuracy bounds. The clause fixes bounce 1 as the most bounce, not a law: the spec
+    tolerances (closed_forms.honoured) are half the misreading's errors, bounce ignored (X3D's
+    default 0: the five balls end moving together at v / 5, so Ball5's speed is 0.8 v short and
+    0.2 v is left in the others)."""
     tr, s = traces[0], settings[0]
     h = s.dt
     speed = {k: np.linalg.norm(tr.series(f"Ball{k}", "linearVelocity")[1], axis=1) for k in range(1, NC_BALLS + 1)}
@@ -46,14 +50,17 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     drag = 4 * G * x * x / (NC_L * v_est * v_est) + 2 * x / NC_L
     tol_pass = 1 - (1 + gamma) ** -(NC_BALLS - 1) + drag
     tol_left = gamma + drag
-    if not moved.size or moved[0] == 0:
-        return [Measure(names[0], math.inf, tol_pass, basis=BOUNCE), Measure(names[1], math.inf, tol_left, basis=BOUNCE)]
-    v = float(speed[1][moved[0] - 1])
+    inelastic = 1.0 / NC_BALLS
+    spec_pass, spec_left = honoured(tol_pass, 1 - inelastic), honoured(tol_left, inelastic)
+    v = float(speed[1][moved[0] - 1]) if moved.size and moved[0] > 0 else 0.0
+    if not v > 0:  # Ball2 never moved, moved from the start, or Ball1 never struck it
+        return [Measure(names[0], math.inf, spec_pass, basis=BOUNCE, bound=tol_pass),
+                Measure(names[1], math.inf, spec_left, basis=BOUNCE, bound=tol_left)]
     fastest = int(np.argmax(speed[5]))
     after = min(fastest + 5, len(speed[5]) - 1)
     left = max(float(speed[k][after]) for k in range(1, NC_BALLS))
-    return [Measure(names[0], abs(float(speed[5][fastest]) / v - 1), tol_pass, basis=BOUNCE),
-            Measure(names[1], left / v, tol_left, basis=BOUNCE)]
+    return [Measure(names[0], abs(float(speed[5][fastest]) / v - 1), spec_pass, basis=BOUNCE, bound=tol_pass),
+            Measure(names[1], left / v, spec_left, basis=BOUNCE, bound=tol_left)]
 
 
 CASE = Case("newtons_cradle", "newtons_cradle.x3d",
