@@ -9,6 +9,7 @@ every reading of table 37.2; without the flag, applying mu at all would be ODE's
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -16,7 +17,7 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import FRICTION_DIRECTIONS, friction_fit
+from conformance.cases.closed_forms import FRICTION_DIRECTIONS, friction_fit, honoured
 from conformance.results import Measure, Settings, spec
 
 
@@ -36,14 +37,18 @@ def belt_direction(tr: TraceView) -> np.ndarray:
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
     """friction_fit() along the direction the parcel ends up in (the spec: some friction direction
-    of the belt) and along -x (ODE's first friction direction)."""
+    of the belt) and along -x (ODE's first friction direction). friction_fit()'s tolerances are
+    the accuracy bounds; the tolerances (closed_forms.honoured) are half the misreading's error:
+    surfaceSpeed ignored (the parcel stays put: 1.5 m/s off), and for the convention the other
+    friction direction (a quarter turn off: sqrt(2) x 1.5 m/s)."""
     tr, s = traces[0], settings[0]
     d = belt_direction(tr)
+    along, bound = friction_fit(tr, s, "Parcel", CV_MU, 0.0, CV_SPEED, d)
+    ode, ode_bound = friction_fit(tr, s, "Parcel", CV_MU, 0.0, CV_SPEED, CV_ODE)
     return [Measure(f"Parcel.linearVelocity reaches surfaceSpeed {CV_SPEED:g} at mu g along one horizontal direction "
-                    "(the one it ends up in)", *friction_fit(tr, s, "Parcel", CV_MU, 0.0, CV_SPEED, d),
-                    "m/s", SURFACE_SPEED),
-            Measure(f"Parcel.linearVelocity along ODE's first friction direction {CV_ODE.tolist()}",
-                    *friction_fit(tr, s, "Parcel", CV_MU, 0.0, CV_SPEED, CV_ODE), "m/s", FRICTION_DIRECTIONS)]
+                    "(the one it ends up in)", along, honoured(bound, CV_SPEED), "m/s", SURFACE_SPEED, bound),
+            Measure(f"Parcel.linearVelocity along ODE's first friction direction {CV_ODE.tolist()}", ode,
+                    honoured(ode_bound, math.sqrt(2) * CV_SPEED), "m/s", FRICTION_DIRECTIONS, ode_bound)]
 
 
 CASE = Case("conveyor", "conveyor.x3d",
