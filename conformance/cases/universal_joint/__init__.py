@@ -39,7 +39,8 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     with np.errstate(invalid="ignore", divide="ignore"):  # an axis of length 0 is NaN: a failure
         cos = np.abs(np.einsum("ni,ni->n", a1, a2)) / (np.linalg.norm(a1, axis=1) * np.linalg.norm(a2, axis=1))
     bound = float(np.max((w1 + w2) ** 2)) * s.dt ** 2 / (2 * ERROR_CORRECTION)
-    return [Measure("Cross |body1Axis . body2Axis|", float(np.max(cos)), bound + ROUNDING, "", PERPENDICULAR)]
+    return [Measure("Cross |body1Axis . body2Axis|", float(np.max(cos)), bound + ROUNDING, "", PERPENDICULAR,
+                    bound + ROUNDING)]
 
 
 CASE = Case("universal_joint", "universal_joint.x3d",
