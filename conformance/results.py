@@ -339,6 +339,8 @@ class Expected:
     failing: tuple[str, ...] = ()  # fail: the measures beyond tolerance, sorted
     reason: str = ""  # unsupported: the backend's reason
     why: str = ""  # a person's word on it
+    # pass, conventions, fail: the measures graded beyond their accuracy bound, sorted
+    over_bound: tuple[str, ...] = ()
 
 
 # -- comparisons of runs -----------------------------------------------------------------

@@ -26,7 +26,8 @@ def _features(reason: str) -> str:
 
 
 def markdown(cases: Sequence[str], pins: Mapping[str, Mapping[str, Expected]]) -> str:
-    """Cases by backends; every fail (and difference in conventions) numbered and explained below."""
+    """Cases by backends; every fail, difference in conventions and accuracy beyond its bound
+    numbered and explained below."""
     backends = list(pins)
     notes: list[str] = []
     lines = ["| case | " + " | ".join(backends) + " |", "|---|" + "---|" * len(backends)]
@@ -34,9 +35,13 @@ def markdown(cases: Sequence[str], pins: Mapping[str, Mapping[str, Expected]]) -
         cells = []
         for b in backends:
             e = pins[b].get(case, Expected(PASS))
-            if e.verdict in (FAIL, CONVENTIONS):
-                notes.append(f"{case} on {b}: " + (e.why or "fails on " + ", ".join(e.failing)))
-                cells.append(f"{'conventions' if e.verdict == CONVENTIONS else '**fail**'} [{len(notes)}]")
+            graded = "; accuracy beyond its bound" if e.over_bound else ""
+            if e.verdict in (FAIL, CONVENTIONS) or e.over_bound:
+                said = "fails on " + ", ".join(e.failing) if e.failing else ""
+                beyond = "accuracy beyond its bound in " + ", ".join(e.over_bound) if e.over_bound else ""
+                notes.append(f"{case} on {b}: " + (e.why or "; ".join(filter(None, (said, beyond)))))
+                label = {CONVENTIONS: "conventions", FAIL: "**fail**"}.get(e.verdict, e.verdict)
+                cells.append(f"{label}{graded} [{len(notes)}]")
             elif e.verdict == UNSUPPORTED:
                 cells.append(f"unsupported ({_features(e.reason)})")
             else:

@@ -21,7 +21,8 @@ the same step. The recommendation is a rule, stated here and in README, not a sc
    the scene makes (a routed input, say: each refusal is listed).
 Speeds whose repeats' spreads overlap the fastest's are ties; ties go to the backend with
 fewer approximations of what the scene uses (one per declared note, however many uses it
-covers), then to the run that stays within 1 mm /
+covers), then to fewer conformance cases exercising the scene's features whose accuracy is
+graded beyond its bound, then to the run that stays within 1 mm /
 1 mrad of more other backends for the whole run, then to the coarser step, then to the
 backend's name. Each other backend's best run by the same rule is a runner-up, with what it
 would cost or lose against the recommendation.
@@ -64,14 +65,24 @@ def kind(scene: Scene) -> str:
             (False, False): "free bodies"}[(joints, contacts)]
 
 
+@dataclass(frozen=True)
+class Said:
+    """A conformance case's verdict on a backend, and whether its accuracy is graded beyond
+    the case's bound (the verdict does not say: conforming is not being accurate)."""
+    verdict: str
+    beyond_bound: bool = False
+
+
 @dataclass
 class Judged:
-    """What one backend makes of a scene: refused and approximated uses, and the verdicts of
-    the cases exercising the features it uses (those that do not pass; the count of the rest)."""
+    """What one backend makes of a scene: refused and approximated uses, the verdicts of the
+    cases exercising the features it uses (those that do not pass; the count of the rest), and
+    those cases whose accuracy is graded beyond their bound."""
     refused: list[str] = field(default_factory=list)  # "use: why"
     approximated: list[str] = field(default_factory=list)  # "uses: note", one per approximation
     failing: dict[str, str] = field(default_factory=dict)  # case -> verdict
     passing: int = 0
+    beyond_bound: list[str] = field(default_factory=list)  # cases
 
 
 _JUDGED = """
@@ -85,10 +96,11 @@ print("x3drbp-answer " + json.dumps(out))
 """
 
 
-def judge(paths: Sequence[str], backends: Sequence[str], verdict: Callable[[str, str], str],
+def judge(paths: Sequence[str], backends: Sequence[str], verdict: Callable[[str, str], Said],
           timeout: float) -> tuple[dict[str, dict[str, Judged]] | None, str]:
     """Per scene and backend, what the backend makes of it, asked in a child (the judgement
-    needs each engine's module); verdict(case, backend): a case's verdict, measured or pinned."""
+    needs each engine's module); verdict(case, backend): a case's verdict and accuracy grade,
+    measured or pinned."""
     answer, why = probe.ask(_JUDGED, [",".join(backends), *paths], timeout, "the judgement's child")
     if answer is None:
         return None, why
@@ -106,10 +118,12 @@ def judge(paths: Sequence[str], backends: Sequence[str], verdict: Callable[[str,
             cases = dict.fromkeys(c for _, feature, _, _ in uses for c in exercised.get(feature, ()))
             for case in cases:
                 said = verdict(case, b)
-                if said == PASS:
+                if said.verdict == PASS:
                     j.passing += 1
                 else:
-                    j.failing[case] = said
+                    j.failing[case] = said.verdict
+                if said.beyond_bound:
+                    j.beyond_bound.append(case)
             out[path][b] = j
     return out, ""
 
@@ -190,7 +204,8 @@ def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, 
 
     def tiebreak(o: Option) -> tuple:
         agreeing = sum(1 for t in o.parts.values() if t is None)
-        return len(judged[o.backend].approximated), -agreeing, -o.dt, o.backend
+        j = judged[o.backend]
+        return len(j.approximated), len(j.beyond_bound), -agreeing, -o.dt, o.backend
 
     def fastest(group: list[Option]) -> Option:
         """The fastest by median, ties (spreads overlapping its own) broken by tiebreak."""

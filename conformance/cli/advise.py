@@ -50,25 +50,35 @@ def _usage(message: str) -> int:
     return EXIT_USAGE
 
 
-def _matrix(path: str | None) -> dict[tuple[str, str], str] | None:
-    """(case, backend) -> verdict from a conformance matrix.json (None without one); ValueError
-    naming the file where it is not one."""
+def _matrix(path: str | None) -> dict[tuple[str, str], A.Said] | None:
+    """(case, backend) -> verdict and accuracy grade from a conformance matrix.json (None
+    without one); ValueError naming the file where it is not one."""
     if path is None:
         return None
     try:
         with open(path, encoding="utf-8") as f:
-            return {(r["case"], r["backend"]): r["verdict"] for r in json.load(f)["results"]}
+            return {(r["case"], r["backend"]): A.Said(r["verdict"], _beyond(r.get("accuracy")))
+                    for r in json.load(f)["results"]}
     except (OSError, ValueError, KeyError, TypeError) as e:
         raise ValueError(f"--verdicts {path}: not a conformance matrix.json ({type(e).__name__}: {e})") from None
 
 
-def _verdict(matrix: dict[tuple[str, str], str] | None, backends: list[str]) -> Callable[[str, str], str]:
-    """A case's verdict on a backend: the matrix's, else the pinned one (conformance/expectations,
-    which the tests hold equal to what a run measures)."""
+def _beyond(accuracy: float | str | None) -> bool:
+    """A matrix's accuracy grade (the worst error over its bound; "inf" as JSON writes it) is beyond the bound."""
+    return accuracy is not None and not float(accuracy) <= 1
+
+
+def _verdict(matrix: dict[tuple[str, str], A.Said] | None, backends: list[str]) -> Callable[[str, str], A.Said]:
+    """A case's verdict and accuracy grade on a backend: the matrix's, else the pinned ones
+    (conformance/expectations, which the tests hold equal to what a run measures)."""
     if matrix is not None:
-        return lambda case, backend: matrix.get((case, backend), "not run")
+        return lambda case, backend: matrix.get((case, backend), A.Said("not run"))
     pinned = {b: expectations.load(b) for b in backends}
-    return lambda case, backend: pinned[backend][case].verdict if case in pinned[backend] else PASS
+
+    def said(case: str, backend: str) -> A.Said:
+        e = pinned[backend].get(case)
+        return A.Said(PASS) if e is None else A.Said(e.verdict, bool(e.over_bound))
+    return said
 
 
 @children.interruptible

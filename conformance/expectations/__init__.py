@@ -1,12 +1,14 @@
 """Every conformance verdict pinned, one file per backend, as web-platform-tests' metadata.
 
 `conformance/expectations/BACKEND.toml` lists each case whose verdict on that backend is
-not a pass; a case it does not name must pass. An entry says the verdict and what makes
-it that verdict, so that a backend that changes in any way turns the conformance test red:
+not a pass, or whose accuracy is graded beyond a bound; a case it does not name must pass
+within every bound. An entry says the verdict and what makes it that verdict, so that a
+backend that changes in any way turns the conformance test red:
 
     [box_stack]
     verdict = "fail"
     failing = ["Box1.displacement", "Box5.displacement"]  # the measures beyond tolerance
+    over_bound = ["Box3 rotation angle"]  # graded beyond their accuracy bound (any verdict)
     why = "..."  # a person's explanation, kept when the file is regenerated
 
     [hinge_bounce]
@@ -31,12 +33,14 @@ FOLDER = os.path.dirname(os.path.abspath(__file__))
 
 
 def pinned(r: Result, why: str = "") -> Expected:
-    """What a result pins: its verdict and what makes it that verdict."""
+    """What a result pins: its verdict and what makes it that verdict, and the accuracy grades
+    beyond their bound."""
+    over = tuple(sorted(m.quantity for m in r.over_bound())) if r.verdict in (PASS, CONVENTIONS, FAIL) else ()
     if r.verdict in (FAIL, CONVENTIONS):
-        return Expected(r.verdict, tuple(sorted(m.quantity for m in r.failing())), why=why)
+        return Expected(r.verdict, tuple(sorted(m.quantity for m in r.failing())), why=why, over_bound=over)
     if r.verdict == UNSUPPORTED:
         return Expected(UNSUPPORTED, reason=r.reason, why=why)
-    return Expected(r.verdict, why=why if r.verdict != PASS else "")
+    return Expected(r.verdict, why=why if r.verdict != PASS or over else "", over_bound=over)
 
 
 def path(backend: str, folder: str | None = None) -> str:
@@ -56,13 +60,19 @@ def load(backend: str, folder: str | None = None) -> dict[str, Expected]:
             raise ValueError(f"{file}: {e}") from None
     out = {}
     for case, entry in data.items():
-        if not isinstance(entry, dict) or entry.get("verdict") not in VERDICTS or entry["verdict"] == PASS:
-            raise ValueError(f"{file}: [{case}]: verdict must be one of {', '.join(VERDICTS[1:])}")
-        unknown = set(entry) - {"verdict", "failing", "reason", "why"}
+        if not isinstance(entry, dict) or entry.get("verdict") not in VERDICTS or (
+                entry["verdict"] == PASS and not entry.get("over_bound")):
+            raise ValueError(f"{file}: [{case}]: verdict must be one of {', '.join(VERDICTS[1:])} "
+                             f"(or {PASS} with over_bound)")
+        unknown = set(entry) - {"verdict", "failing", "reason", "why", "over_bound"}
         if unknown:
             raise ValueError(f"{file}: [{case}]: unknown key(s) {', '.join(sorted(unknown))}")
-        out[case] = Expected(entry["verdict"], tuple(sorted(entry.get("failing", ()))), entry.get("reason", ""),
-                             entry.get("why", ""))
+        lists = {k: entry.get(k, []) for k in ("failing", "over_bound")}
+        for k, v in lists.items():
+            if not isinstance(v, list) or not all(isinstance(q, str) for q in v):
+                raise ValueError(f"{file}: [{case}]: {k} must be a list of measure names")
+        out[case] = Expected(entry["verdict"], tuple(sorted(lists["failing"])), entry.get("reason", ""),
+                             entry.get("why", ""), tuple(sorted(lists["over_bound"])))
     return out
 
 
@@ -77,6 +87,9 @@ def mismatch(r: Result, expected: Expected) -> str | None:
                 f"{', '.join(expected.failing)} ({r.reason})")
     if got.reason != expected.reason:
         return f"{r.case} on {r.backend}: unsupported for {got.reason!r}, pinned {expected.reason!r}"
+    if got.over_bound != expected.over_bound:
+        return (f"{r.case} on {r.backend}: accuracy beyond its bound in {', '.join(got.over_bound) or 'nothing'}, "
+                f"pinned {', '.join(expected.over_bound) or 'nothing'} ({r.accuracy_text()})")
     return None
 
 
@@ -84,7 +97,7 @@ def regenerate(outcomes: Iterable[Result], previous: Mapping[str, Expected]) -> 
     """The pins of a run, each keeping the previous `why` while it still describes the result."""
     out = {}
     for r in outcomes:
-        if r.verdict == PASS:
+        if r.verdict == PASS and not r.over_bound():
             continue
         old = previous.get(r.case)
         out[r.case] = pinned(r, old.why if old is not None and mismatch(r, old) is None else "")
@@ -102,6 +115,8 @@ def dumps(backend: str, version: str, table: Mapping[str, Expected]) -> str:
         lines.append(f"verdict = {json.dumps(e.verdict)}")
         if e.failing:
             lines.append("failing = [" + ", ".join(json.dumps(q) for q in e.failing) + "]")
+        if e.over_bound:
+            lines.append("over_bound = [" + ", ".join(json.dumps(q) for q in e.over_bound) + "]")
         if e.reason:
             lines.append(f"reason = {json.dumps(e.reason, ensure_ascii=False)}")
         if e.why:

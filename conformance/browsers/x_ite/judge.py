@@ -142,7 +142,7 @@ def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, results.Backend
                    for r, rows in zip(c.runs, rows_of)]
     v = Validation(case.path, [r.out for r in c.runs], dict(thresholds), result, comparisons)
     verdict = {results.PASS: RIGHT, results.CONVENTIONS: CONVENTIONS}.get(result.verdict, WRONG)
-    detail = "" if verdict == RIGHT else result.meaning()
+    detail = result.accuracy_text() if verdict == RIGHT else result.meaning()  # a right case's grade
     c.verdict = CaseVerdict(case.name, verdict, detail, dt, agreeing=v.agreeing(), wall_s=wall, messages=messages, validation=v.to_json())
     parted = [b for b in comparisons[0].pairs if comparisons[0].verdict(b) != "agrees"]
     if recordings is not None and parted:
