@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from conformance.results import dt_label
 
-from .text import escape, num
+from .text import escape, num, one_line
 
 
 def _find(scene: dict, key: dict | None) -> dict | None:
@@ -134,6 +134,6 @@ def markdown(doc: dict, details: bool = True) -> str:
         lines += ["", "<details markdown=\"1\"><summary>Why, per scene: error, speed, agreement, approximations, the cases, "
                       "the runners-up</summary>", "", "```"]
         for scene in doc["scenes"]:
-            lines += scene_lines(scene, s) + [""]
+            lines += [*map(one_line, scene_lines(scene, s)), ""]  # a name's line break would end the block
         lines += ["```", "", "</details>"]
     return "\n".join(lines) + "\n"

@@ -26,13 +26,13 @@ def _rtf(r: BackendRun) -> str:
 
 def rms_max(d: Divergence) -> str:
     """A divergence's cell: RMS / max (the body and time of the max)."""
-    return "-" if d.max is None else f"{num(d.rms)} / {num(d.max)} ({d.max_body}, {num(d.max_time)} s)"
+    return "-" if d.max is None else f"{num(d.rms)} / {num(d.max)} ({escape(d.max_body)}, {num(d.max_time)} s)"
 
 
 def _crossing(c: Crossing | None) -> str:
     if c is None:
         return "never"
-    named = ", ".join(f"{b} {num(v)}" for b, v in zip(c.bodies[:_SHOWN_BODIES], c.values))
+    named = ", ".join(f"{escape(b)} {num(v)}" for b, v in zip(c.bodies[:_SHOWN_BODIES], c.values))
     more = len(c.bodies) - _SHOWN_BODIES
     return f"{num(c.time)} s: {named}" + (f" +{more} more" if more > 0 else "")
 
@@ -42,7 +42,7 @@ def worst_joint(p: PairComparison) -> str:
     j = p.worst_joint()
     if j is None:
         return "-"
-    return f"{j.node}.{j.field} {num(j.max)} {j.unit} ({num(j.max_time)} s)"
+    return f"{escape(j.node)}.{j.field} {num(j.max)} {j.unit} ({num(j.max_time)} s)"
 
 
 def _integration(p: PairComparison, schemes: dict[str, str | None], dt: float) -> str | None:
@@ -69,10 +69,10 @@ def _notes(p: PairComparison, schemes: dict[str, str | None], dt: float) -> list
         notes.append(order)
     for what, names in (("bodies", p.only_in_a), ("joint outputs", p.joints_only_in_a)):
         if names:
-            notes.append(f"{what} only in {p.a}: {', '.join(names)}")
+            notes.append(f"{what} only in {p.a}: {escape(', '.join(names))}")
     for what, names in (("bodies", p.only_in_b), ("joint outputs", p.joints_only_in_b)):
         if names:
-            notes.append(f"{what} only in {p.b}: {', '.join(names)}")
+            notes.append(f"{what} only in {p.b}: {escape(', '.join(names))}")
     if not p.times.size:
         notes.append("no frame time in common")
     return [f"- {p.a} / {p.b}: {n}" for n in notes]
@@ -80,7 +80,7 @@ def _notes(p: PairComparison, schemes: dict[str, str | None], dt: float) -> list
 
 def render(c: Comparison) -> str:
     th = c.thresholds
-    lines = [f"# x3drbp compare {c.scene}", "",
+    lines = [f"# x3drbp compare {escape(c.scene)}", "",
              f"{c.duration:g} s, dt {c.dt:g} s, {c.frame_rate:g} frames/s; thresholds: position "
              f"{num(th['position'])} m, orientation {num(th['orientation'])} rad", "",
              "| backend | version | verdict | real-time factor |", "|---|---|---|---:|"]

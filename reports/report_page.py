@@ -27,10 +27,11 @@ from x3d_core import atomic
 from .advice_text import markdown as render_advice
 from .compare_text import render as render_comparison
 from .summary import answers
-from .text import escape
+from .text import escape, link
 from .x_ite_text import render as render_x_ite
 
 DIVERGENCE = ".divergence.png"  # beside each compare/SCENE.json, its divergence plot
+EXTENSIONS = ["tables", "toc", "md_in_html", "fenced_code"]  # Python-Markdown's, for index.html
 
 _STYLE = """
 body { font: 15px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 82em; padding: 0 1em; color: #222; }
@@ -62,8 +63,8 @@ def _section(text: str, prefix: str = "") -> str:
     if lines and lines[0].startswith("# "):
         lines = lines[1:]
     text = re.sub(r"^(#+) ", r"#\1 ", "\n".join(lines), flags=re.M)
-    if prefix:
-        text = re.sub(r"\]\((?!https?:|/|#)([^)]+)\)", lambda m: f"]({prefix}/{m.group(1)})", text)
+    if prefix:  # a link's "](", not an escaped "\](" in a name
+        text = re.sub(r"(?<!\\)\]\((?!https?:|/|#)([^)]+)\)", lambda m: f"]({prefix}/{m.group(1)})", text)
     return text.strip() + "\n"
 
 
@@ -78,10 +79,8 @@ def _cell(cell: dict) -> str:
         parts.append(f"{len(failing)} not ({', '.join(failing)})")
     if UNSUPPORTED in verdicts:
         parts.append(f"{verdicts.count(UNSUPPORTED)} refused")
-    text = f"{_MARK[cell['support']]}: {', '.join(parts)}"
-    if cell["support"] == "native" and failing:
-        text = f"**{text}**"  # declared native, measured failing: a finding
-    return escape(text)
+    text = escape(f"{_MARK[cell['support']]}: {', '.join(parts)}")
+    return f"**{text}**" if cell["support"] == "native" and failing else text  # declared native, failing: a finding
 
 
 def _features(data: dict) -> str:
@@ -107,7 +106,7 @@ def _folded(summary: str, body: str) -> str:
 
 def _beside(body: str, image: str, alt: str) -> str:
     """Markdown with its plot beside it (below it on a narrow screen)."""
-    return f'<div class="side" markdown="1">\n<div markdown="1">\n\n{body.strip()}\n\n</div>\n\n![{alt}]({image})\n\n</div>\n'
+    return f'<div class="side" markdown="1">\n<div markdown="1">\n\n{body.strip()}\n\n</div>\n\n!{link(image, alt)}\n\n</div>\n'
 
 
 def comparisons(out: str) -> list[tuple[str, Comparison]]:
@@ -126,14 +125,14 @@ def _comparisons(out: str, found: list[tuple[str, Comparison]]) -> str:
              "which bodies, the worst joint output difference, and each run's real-time factor (the tables)."]
     for stem, comparison in found:
         name = os.path.basename(stem)
-        text = _folded(f"{os.path.basename(comparison.scene)}: the tables", _section(render_comparison(comparison)))
+        text = _folded("The tables", _section(render_comparison(comparison)))  # the heading names the scene
         rrd = name + ".rrd"
         parted = any(d.first_over is not None for p in comparison.pairs for d in (p.position, p.orientation))
         if parted and os.path.exists(os.path.join(out, "compare", rrd)):
-            text += f"\nWhere they part, as a rerun recording: [{rrd}](compare/{rrd}) (open it with `rerun {rrd}`).\n"
+            text += f"\nWhere they part, as a rerun recording: {link('compare/' + rrd, rrd)} (open it with `rerun`).\n"
         plot = f"compare/{name}{DIVERGENCE}"
         body = _beside(text, plot, f"{name}: divergence over time") if os.path.exists(os.path.join(out, plot)) else text
-        parts += ["", f"### {os.path.basename(comparison.scene)}", "", body]
+        parts += ["", f"### {escape(os.path.basename(comparison.scene))}", "", body]
     return "\n".join(parts) + "\n"
 
 
@@ -143,10 +142,11 @@ def _sweep(out: str) -> str:
     if not sweep:
         return "## Speed against error\n\nNot run (`x3drbp report --quick` leaves it out).\n"
     head, *scenes = re.split(r"^(?=### )", _section(sweep, "sweep"), flags=re.M)
+    with open(os.path.join(out, "sweep", "sweep.json"), encoding="utf-8") as f:
+        names = [scene["name"] for scene in json.load(f)["scenes"]]  # as given: the headings' are escaped
     parts = ["## Speed against error", "", _folded("What is measured, and how", head)]
-    for chunk in scenes:
+    for chunk, name in zip(scenes, names, strict=True):
         title, _, body = chunk.partition("\n")
-        name = title[4:].strip()
         plot = f"sweep/sweep_{name}.png"
         parts += [title, "", _beside(body, plot, f"{name}: error against speed")
                   if os.path.exists(os.path.join(out, plot)) else body]
@@ -155,14 +155,14 @@ def _sweep(out: str) -> str:
 
 def _logs(meta: dict, out: str) -> str:
     steps = [k for k in meta["timings_s"] if k != "total" and os.path.exists(os.path.join(out, "logs", f"{k}.log"))]
-    return "Each step's log: " + ", ".join(f"[{k}](logs/{k}.log)" for k in steps) + "." if steps else ""
+    return "Each step's log: " + ", ".join(link(f"logs/{k}.log", k) for k in steps) + "." if steps else ""
 
 
 def _header(meta: dict, out: str) -> str:
     t = meta["timings_s"]
     steps = ", ".join(f"{k} {v:g} s" for k, v in t.items() if k != "total")
     failed = f" Steps that could not run: {', '.join(meta['failed'])} (see their logs)." if meta["failed"] else ""
-    yours = (f" Your scenes: {', '.join(f'`{s}`' for s in meta['scenes'])}." if meta.get("scenes") else "")
+    yours = f" Your scenes: {', '.join(map(escape, meta['scenes']))}." if meta.get("scenes") else ""
     return "\n".join([
         "# x3drbp report", "",
         f"Generated {meta['generated']} on {meta['cpus']} CPUs in {t['total']:g} s ({steps}).{failed}{yours}", "",
@@ -223,7 +223,7 @@ def write_report(out: str) -> str:
         divergence_plot(comparison, stem + DIVERGENCE)
     text = report_markdown(out, found)
     atomic.write_text(os.path.join(out, "report.md"), text)
-    body = md.markdown(text, extensions=["tables", "toc", "md_in_html", "fenced_code"])
+    body = md.markdown(text, extensions=EXTENSIONS)
     page = os.path.join(out, "index.html")
     atomic.write_text(page, "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
                             f"<title>{html.escape('x3drbp report')}</title><style>{_STYLE}</style></head>\n"

@@ -4,7 +4,7 @@ run that did not hold gave way, linking its kept trace (a path relative to stabi
 
 from __future__ import annotations
 
-from .text import escape, num
+from .text import escape, link, num
 
 HELD = ("survived", "stopped")
 PLAIN = (*HELD, "unsupported", "error")  # not a breakdown: no bold
@@ -77,7 +77,7 @@ def markdown(data: dict) -> str:
     if others:
         lines += ["", "## Why", ""]
         for r in others:
-            trace = f" (trace: [{r['trace']}]({r['trace']}))" if r.get("trace") else ""
+            trace = f" (trace: {link(r['trace'])})" if r.get("trace") else ""
             lines.append(f"- {r['case']} on {r['backend']} at dt {label[r['dt']]}: {_label(r['verdict'])}: "
                          f"{escape(r['reason'])}{trace}")
     return "\n".join(lines) + "\n"

@@ -6,7 +6,7 @@ from collections import Counter
 
 from conformance.results import dt_label
 
-from .text import escape, num
+from .text import escape, link, num
 
 NO_RESULTS = "no run gave both an error and a speed"  # what "no results" means, wherever it is said
 
@@ -78,8 +78,8 @@ def markdown(doc: dict) -> str:
     for scene in doc["scenes"]:
         name = scene["name"]
         points = [p for p in doc["points"] if p["scene"] == name]
-        lines += ["", f"## {name}", "",
-                  f"Reference: {reference(scene)}. Plot: [sweep_{name}.png](sweep_{name}.png)", ""]
+        lines += ["", f"## {escape(name)}", "",
+                  f"Reference: {reference(scene)}. Plot: {link(f'sweep_{name}.png')}", ""]
         if measured(points):
             lines += ["Pareto front over every backend:", ""]
             lines += _rows(points, scene["unit"], "pareto_scene", points)

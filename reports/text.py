@@ -1,10 +1,20 @@
-"""Number and cell formatting shared by the text and markdown reports."""
+"""Number and text formatting shared by the text and markdown reports.
+
+Every renderer writes text that came from a user's file (its name, its DEF names, the
+reasons that quote them) through escape() and link(): report.md becomes index.html through
+Python-Markdown, which passes raw HTML and javascript: links through as they are.
+"""
 
 from __future__ import annotations
 
+import html
 import math
+import re
+import urllib.parse
 
 from conformance.results import Measure
+
+_MARKDOWN = re.compile(r"([\\`*_\[\]#|])")  # code spans, emphasis, links and images, headings, table cells
 
 
 def num(x: float | None) -> str:
@@ -16,9 +26,21 @@ def num(x: float | None) -> str:
     return "0" if x == 0 else f"{x:.3g}"
 
 
+def one_line(text: str) -> str:
+    """Text on one line: a line break in a name would end a table row, a list item or a code block."""
+    return " ".join(text.splitlines())
+
+
 def escape(text: str) -> str:
-    """Text safe inside a markdown table cell."""
-    return text.replace("|", "\\|").replace("\n", " ")
+    """Text as text in markdown, anywhere on a line (a table cell, a heading, a list item, a link's
+    words): HTML's specials as entities, markdown's backslash-escaped, its lines joined."""
+    return _MARKDOWN.sub(r"\\\1", html.escape(one_line(text), quote=False))
+
+
+def link(path: str, text: str | None = None) -> str:
+    """A markdown link to a relative path (its words the path's own unless given): the target
+    percent-encoded, so a name such as `javascript:x` or `a) b` stays a file's name."""
+    return f"[{escape(path if text is None else text)}]({urllib.parse.quote(path)})"
 
 
 def basis_cell(m: Measure) -> str:

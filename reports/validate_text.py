@@ -24,7 +24,7 @@ def _case(v: Validation) -> list[str]:
 
 def _comparison(c: TraceComparison) -> list[str]:
     s = c.settings
-    lines = [f"## {c.trace} against the backends", "",
+    lines = [f"## {escape(c.trace)} against the backends", "",
              f"Run as the trace reads: {s.duration:g} s, dt {s.dt:g} s, {s.frame_rate:g} frames/s.", "",
              "| backend | verdict | frames | position RMS / max (m) | orientation RMS / max (rad) "
              "| worst joint output |", "|---|---|---:|---|---|---|"]
@@ -35,7 +35,7 @@ def _comparison(c: TraceComparison) -> list[str]:
         else:
             lines.append(f"| {r.backend} | {c.verdict(r.backend)} | {p.times.size} | {rms_max(p.position)} | "
                          f"{rms_max(p.orientation)} | {worst_joint(p)} |")
-    missing = [f"- {p.b}: {what} it records that the trace lacks: {', '.join(names)}"
+    missing = [f"- {p.b}: {what} it records that the trace lacks: {escape(', '.join(names))}"
                for p in c.pairs.values()
                for what, names in (("bodies", p.only_in_b), ("joint outputs", p.joints_only_in_b)) if names]
     return lines + ([""] + missing if missing else []) + [""]
@@ -43,7 +43,7 @@ def _comparison(c: TraceComparison) -> list[str]:
 
 def render(v: Validation) -> str:
     th = v.thresholds
-    lines = [f"# x3drbp validate {v.scene}", "", f"Traces: {', '.join(v.traces)}; thresholds: position "
+    lines = [f"# x3drbp validate {escape(v.scene)}", "", f"Traces: {escape(', '.join(v.traces))}; thresholds: position "
              f"{num(th['position'])} m, orientation {num(th['orientation'])} rad.", ""]
     lines += _case(v)
     for c in v.comparisons:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from .text import escape, num
+from .text import escape, link, num
 
 _SHOWN = {"right": "right", "conventions": "right, other conventions", "ignores": "**ignores**", "wrong": "**wrong**",
           "error": "**error**"}
@@ -61,12 +61,12 @@ def render(data: dict, matrix: dict | None = None) -> str:
         "|---|" + "---|" * len(backends) + "---|---:|---:|---|---|---|"]
     for c in data["cases"]:
         cells = "".join(f"{verdicts.get((c['case'], b), '-')} | " for b in backends)
-        rec = f"[{c['recording'].split('/')[-1]}]({c['recording']})" if c["recording"] else "-"
+        rec = link(c["recording"], c["recording"].split("/")[-1]) if c["recording"] else "-"
         rates = ", ".join(num(r) for r in c.get("frame_rates", [])) or "-"
         lines.append(f"| {c['case']} | {cells}{_SHOWN[c['verdict']]} | {rates} | {num(c['dt'])} | {_evidence(c)} | "
                      f"{', '.join(c['agreeing']) or 'none'} | {rec} |")
     said = sorted({m for c in data["cases"] for m in c["messages"]})
     if said:
         lines += ["", "What X_ITE printed (errors and warnings, each once):", ""]
-        lines += [f"- `{escape(m[:300])}`" for m in said]
+        lines += [f"- {escape(m[:300])}" for m in said]
     return "\n".join(lines) + "\n"

@@ -136,7 +136,7 @@ def test_the_column_says_right_ignores_wrong_and_error_with_evidence():
     assert "(recordings/hinge_limits.rrd)" in rows["hinge_limits"]
     assert "**wrong**" in rows["incline"] and "every probed field has an effect" in rows["incline"]
     assert "**error**" in rows["bounce_apex"] and "timeout" in rows["bounce_apex"]
-    assert "1 right, 0 right with other conventions, 1 ignores, 1 wrong, 1 error" in text and "- `Ammo: warning`" in text
+    assert "1 right, 0 right with other conventions, 1 ignores, 1 wrong, 1 error" in text and "- Ammo: warning" in text
 
 
 def test_the_report_gains_the_x_ite_section_only_when_it_ran(tmp_path):
