@@ -48,7 +48,9 @@ def _cases(j: dict) -> str:
     failing = ", ".join(f"{c} ({v})" for c, v in j["failing"].items())
     if not j["passing"] and not failing:
         return "no case exercises them"
-    return f"{j['passing']} pass" + (f"; not: {failing}" if failing else "")
+    beyond = j.get("beyond_bound") or []
+    return (f"{j['passing']} pass" + (f"; not: {failing}" if failing else "")
+            + (f"; accuracy beyond its bound: {', '.join(beyond)}" if beyond else ""))
 
 
 def _versus(o: dict, best: dict) -> str:

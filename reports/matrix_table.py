@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
-from conformance.results import CONVENTIONS, FAIL, PASS, VERDICTS, BackendInfo, Convergence, Result, dt_label, grade
+from conformance.results import CONVENTIONS, FAIL, PASS, VERDICTS, BackendInfo, Convergence, Result, dt_label
 
-from .text import basis_cell, escape, num
+from .text import basis_cell, escape, grade_cell, num
 
 
 def _cell(r: Result) -> str:
@@ -56,17 +56,14 @@ def markdown(outcomes: Sequence[Result], cases: Sequence[tuple[str, str]], backe
         lines += ["", "## Not passing", ""]
         for r in not_pass:
             lines.append(f"- {r.case} on {r.backend}: **{r.verdict}**: {escape(r.meaning())}")
-    lines += ["", "## Measures", "", "| case | backend | quantity | basis | error | tolerance | ok | accuracy bound "
-              "| grade |", "|---|---|---|---|---:|---:|---|---:|---|"]
+    lines += ["", "## Measures", "", "| case | backend | quantity | basis | error | tolerance | ok | accuracy (bound) |",
+              "|---|---|---|---|---:|---:|---|---|"]
     for r in outcomes:
         for m in r.measures:
             unit = f" {m.unit}" if m.unit else ""
-            bound = m.tolerance if m.graded else m.bound
             ok = "graded" if m.graded else ("yes" if m.ok else "**no**")
-            acc = m.accuracy
             lines.append(f"| {r.case} | {r.backend} | {escape(m.quantity)} | {basis_cell(m)} | {num(m.error)}{unit} | "
-                         f"{'-' if m.graded else num(m.tolerance) + unit} | {ok} | "
-                         f"{'-' if bound is None else num(bound) + unit} | {'-' if acc is None else grade(acc)} |")
+                         f"{'-' if m.graded else num(m.tolerance) + unit} | {ok} | {grade_cell(m)} |")
     if convergence:
         lines += ["", "## Convergence", "",
                   "Error of each case's closed-form quantity against its continuous closed form, per step size, "

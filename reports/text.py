@@ -12,7 +12,7 @@ import math
 import re
 import urllib.parse
 
-from conformance.results import Measure
+from conformance.results import Measure, grade
 
 _MARKDOWN = re.compile(r"([\\`*_\[\]#|])")  # code spans, emphasis, links and images, headings, table cells
 
@@ -44,7 +44,16 @@ def link(path: str, text: str | None = None) -> str:
 
 
 def basis_cell(m: Measure) -> str:
-    """A measure's basis in a table: the spec's words it enforces, or the convention it checks."""
+    """A measure's basis in a table: the clause's words it enforces with their edition, the
+    convention or description it checks, or the accuracy it grades."""
     if m.basis is None:
         return "spec (not quoted)"
-    return f"{m.basis.kind}: {escape(m.basis.text)}"
+    return f"{m.basis.label()}: {escape(m.basis.text)}"
+
+
+def grade_cell(m: Measure) -> str:
+    """A measure's accuracy grade in a table: its bound and the error over it ('-': none graded)."""
+    if m.accuracy is None:
+        return "-"
+    bound = m.tolerance if m.graded else m.bound
+    return f"{grade(m.accuracy)} ({num(bound)}{' ' + m.unit if m.unit else ''})"

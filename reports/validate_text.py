@@ -8,7 +8,7 @@ from __future__ import annotations
 from conformance.results import RAN, TraceComparison, Validation
 
 from .compare_text import rms_max, worst_joint
-from .text import basis_cell, escape, num
+from .text import basis_cell, escape, grade_cell, num
 
 
 def _case(v: Validation) -> list[str]:
@@ -16,9 +16,10 @@ def _case(v: Validation) -> list[str]:
     if r is None:
         return ["No conformance case has this scene: the trace conforms when it agrees with at least one backend.", ""]
     lines = [f"## Case {r.case}: **{escape(r.meaning())}**", "",
-             "| measure | basis | error | tolerance | verdict |", "|---|---|---:|---:|---|"]
-    lines += [f"| {escape(m.quantity)} | {basis_cell(m)} | {num(m.error)} {m.unit} | {num(m.tolerance)} {m.unit} | "
-              f"{'pass' if m.ok else '**fail**'} |" for m in r.measures]
+             "| measure | basis | error | tolerance | verdict | accuracy (bound) |", "|---|---|---:|---:|---|---|"]
+    lines += [f"| {escape(m.quantity)} | {basis_cell(m)} | {num(m.error)} {m.unit} | "
+              f"{'-' if m.graded else f'{num(m.tolerance)} {m.unit}'} | "
+              f"{'graded' if m.graded else 'pass' if m.ok else '**fail**'} | {grade_cell(m)} |" for m in r.measures]
     return lines + [""]
 
 

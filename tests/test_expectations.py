@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 
 import pytest
@@ -11,7 +12,7 @@ from conformance import cases as C
 from conformance import expectations as E
 from conformance.cli import main as cli_main
 from conformance.cli.expectations import write_readme
-from conformance.results import CONVENTIONS, FAIL, PASS, UNSUPPORTED, Expected, Measure, Result
+from conformance.results import CONVENTIONS, FAIL, PASS, UNSUPPORTED, Expected, Measure, Result, accuracy, spec
 from reports.expectations_table import BEGIN, END, markdown, replace_section
 
 from conftest import ROOT
@@ -26,11 +27,24 @@ def test_every_pin_names_a_case_and_parses():
         pins = E.load(b)
         assert set(pins) <= set(C.BY_NAME), (b, set(pins) - set(C.BY_NAME))
         for case, e in pins.items():
-            assert e.verdict != PASS
+            assert e.verdict != PASS or e.over_bound, (b, case)
             assert (e.verdict in (FAIL, CONVENTIONS)) == bool(e.failing), (b, case)
             assert (e.verdict == UNSUPPORTED) == bool(e.reason), (b, case)
-            if e.verdict in (FAIL, CONVENTIONS):
-                assert e.why, f"{b}: {case}: a pinned fail says why"
+            if e.verdict in (FAIL, CONVENTIONS) or e.over_bound:
+                assert e.why, f"{b}: {case}: a pinned fail, or accuracy beyond its bound, says why"
+
+
+def test_accuracy_beyond_its_bound_is_pinned_and_a_change_in_it_named():
+    graded = Measure("period", 3.0, 10.0, "s", spec("37.4.12 SingleAxisHingeJoint: quoted."), bound=1.0)
+    r = Result("c", "engine", PASS, "", [graded, Measure("first step", 0.5, 1.0, basis=accuracy("rigid"))])
+    pin = E.pinned(r, "why")
+    assert pin == Expected(PASS, why="why", over_bound=("period",))
+    assert E.mismatch(r, pin) is None
+    within = Result("c", "engine", PASS, "", [dataclasses.replace(graded, error=0.5)])
+    assert "accuracy beyond its bound in nothing, pinned period" in E.mismatch(within, pin)
+    assert E.pinned(within) == Expected(PASS)  # a pass within every bound pins nothing
+    text = E.dumps("engine", "1", {"c": pin})
+    assert 'over_bound = ["period"]' in text
 
 
 def test_a_result_must_be_its_pin_exactly():
