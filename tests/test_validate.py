@@ -51,7 +51,7 @@ def test_own_trace_conforms_against_another_backend(bullet_fall, tmp_path, capsy
     assert _validate(FREE_FALL, "--trace", _write(tmp_path, lines), "--against", "mujoco",
                      "--json", str(out_json)) == 0
     out = capsys.readouterr().out
-    assert "Case free_fall: **conforms**" in out and "| mujoco | agrees | 61 |" in out and "**Conforms**" in out
+    assert "Case free_fall: **conforms; accuracy within the bound**" in out and "| mujoco | agrees | 61 |" in out and "**Conforms**" in out
     data = json.loads(out_json.read_text())
     assert data["conforms"] and data["agreeing"] == ["mujoco"] and data["case"]["verdict"] == "pass"
 
@@ -63,7 +63,8 @@ def test_halved_gravity_fails_naming_the_measure(bullet_fall, tmp_path, capsys):
     lines = _edit(bullet_fall, "Ball,position", half)
     assert _validate(FREE_FALL, "--trace", _write(tmp_path, lines), "--against", "mujoco") == 1
     out = capsys.readouterr().out
-    assert "Case free_fall: **violates the spec: Ball.position" in out and "| Ball.position |" in out and "**fail** |" in out
+    assert "Case free_fall: **violates the spec: Ball acceleration (fitted to position)" in out
+    assert "| Ball acceleration (fitted to position) - (0 -9.81 0) |" in out and "**fail** |" in out
     assert "| mujoco | differs |" in out and "**Does not conform**" in out
 
 
