@@ -8,7 +8,6 @@ wheel spinning at 60 rad/s about the axis keeps that rate, so its angle is 60 t 
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -17,7 +16,8 @@ from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, honoured, max_norm, physics_time
+from conformance.cases.closed_forms import (ROUNDING, ROUNDING_ANGLE, honoured, infinitesimal_lag, max_norm,
+                                           physics_time)
 from conformance.results import Measure, Settings, accuracy, spec
 
 
@@ -32,12 +32,6 @@ EXACT = accuracy("a torque-free spin about a principal axis keeps its angular ve
 # finite_rotation.x3d: the wheel's spin about z (its finiteRotationAxis), rad/s
 FR_OMEGA = 60.0
 FR_AXIS = np.array([0.0, 0.0, 1.0])
-
-
-def infinitesimal_lag(omega: float, dt: float) -> float:
-    """How far a body spinning at omega falls behind each second under the infinitesimal update
-    (q += h/2 w q, normalised), which turns it by 2 atan(omega h / 2) a step."""
-    return (omega * dt - 2.0 * math.atan(0.5 * omega * dt)) / dt
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
