@@ -1,0 +1,421 @@
+"""Which case turns a verdict on each field of clause 37's nodes: docs/field-coverage.md.
+
+    .venv/bin/python -m conformance.coverage
+
+Every field of every RigidBodyPhysics node of the X3D Unified Object Model 4.0 is accounted for
+(KINDS, the first that applies). Found from the cases themselves, so the table cannot drift:
+- covered: a case's mutation (a scene edit tests/test_conformance.py checks the case fails on)
+  changes or removes what the case's scene sets for the field;
+- judged: an output (outputOnly, or a field of the Contact nodes a CollisionSensor reports) that
+  a case's scene reports and its expectation reads by name;
+- exercised: a case sets it (Case.exercises), but no mutation of that case edits it.
+Written here: pending (PENDING: a case is being written), a reason no verdict can turn on it
+(REASONS, and _ANY for the fields every node has), and uncovered (UNCOVERED: observable, no
+mutation shows it, with what would). tests/test_field_coverage.py fails while a field is none of
+these, or still pending.
+"""
+
+from __future__ import annotations
+
+import ast
+import difflib
+import importlib
+import inspect
+import os
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from lxml import etree
+
+from x3d_core import atomic, schema, uom
+
+from conformance.cases import CASES, ROOT, closed_forms
+from conformance.cases.case import Case, Mutation
+
+TABLE = os.path.join(ROOT, "docs", "field-coverage.md")
+Field = tuple[str, str]  # (node type, field name)
+
+# Fields a case is being written for (what it must show): a field, or with a third part a feature
+# (x3d_core/analysis.py); answered once a case exercises it or a mutation covers it.
+PENDING: dict[str, str] = {
+    "RigidBody.fixed": "a fixed body's state: it stays where it is put, whatever acts on it",
+    "CollisionCollection.slipFactors": "SLIP-1/SLIP-2 in appliedParameters apply slipFactors",
+    "CollidableShape.geometry.Cylinder": "a Cylinder's collisions",
+    "CollidableShape.geometry.Cone": "a Cone's collisions",
+}
+
+# Why no verdict can turn on a field no case covers or judges: nothing observable depends on it,
+# or (argued from the case, not run) every browser that ignored it would already fail a case.
+_BBOX = "a bounding-box hint for culling and display, never physics"
+_ANY: dict[str, str] = {
+    "metadata": "X3DMetadataObject nodes carry data for authors and scripts, never physics",
+    "bboxCenter": _BBOX, "bboxSize": _BBOX, "bboxDisplay": _BBOX,
+    "visible": "rendering only: whether the node's geometry is drawn",
+    "description": "X3D 4.0's author prose about the node, never physics",
+}
+_NO_STOPS = "{} has no stop angles (no min/max field), so there is no stop for this to act at"
+_UNRUN = " (no mutation; argued from the case, not run)"
+REASONS: dict[str, str] = {
+    "RigidBodyCollection.iterations": "no verdict can turn on it: the clause asks only that more iterations be more "
+                                      "stable, and where a closed form assumes a converged solve the spec "
+                                      "tolerance is honoured() and the converged bound graded "
+                                      "(docs/spec-loose-ends.md 20)",
+    "RigidBodyCollection.preferAccuracy": "a performance hint (\"a performance hint to the underlying evaluation\"): "
+                                          "no result is wrong under either value",
+    "CollisionSpace.useGeometry": "a hint: FALSE allows \"approximations using geometry bounds\" (UOM), TRUE the "
+                                  "geometry itself, so no contact is wrong under either value",
+    "UniversalJoint.stop1Bounce": _NO_STOPS.format("UniversalJoint"),
+    "UniversalJoint.stop1ErrorCorrection": _NO_STOPS.format("UniversalJoint"),
+    "UniversalJoint.stop2Bounce": _NO_STOPS.format("UniversalJoint"),
+    "UniversalJoint.stop2ErrorCorrection": _NO_STOPS.format("UniversalJoint"),
+    **{f"MotorJoint.stop{i}{f}": _NO_STOPS.format("MotorJoint") for i in (1, 2, 3)
+       for f in ("Bounce", "ErrorCorrection")},
+    "RigidBodyCollection.bodies": "ignoring it moves no body: free_fall's Ball stays at y = 10 m" + _UNRUN,
+    "RigidBodyCollection.collider": "ignoring it, a browser collides nothing (collision_filtering's Kept falls "
+                                    "through the floor) or everything (Ghost rests on it): both fail" + _UNRUN,
+    "RigidBody.position": "every body's start: ignoring it starts free_fall's Ball at the origin, 10 m below the "
+                          "closed form's y0" + _UNRUN,
+    "RigidBody.orientation": "torque_free's Tumbler starts turned 0.7 rad about (1 1 0): ignoring it changes the "
+                             "world angular momentum I_world w the case holds to L0" + _UNRUN,
+    "RigidBody.geometry": "attaches collidables to bodies: ignoring it leaves collision_filtering's Kept with no "
+                          "shape, falling through the floor" + _UNRUN,
+    "RigidBody.autoDamp": "damping's switch: ignoring it leaves damping's ratio at 1, outside every reading's band "
+                          "(docs/spec-loose-ends.md 1: \"no damping at all fails the same way\")" + _UNRUN,
+    "RigidBody.angularDampingFactor": "damping sets 0.02: the default 0.001 keeps the angular ratio outside every "
+                                      "reading's band (docs/spec-loose-ends.md 1)" + _UNRUN,
+    "CollidableShape.shape": "every collidable's geometry: ignoring it, collision_filtering's Kept has no shape "
+                             "and falls through the floor" + _UNRUN,
+    "CollidableShape.translation": "resting_penetration's floor box is moved down 0.1 m to put its top at y = 0: "
+                                   "ignoring it puts Touching 0.1 m into the floor, ten times the "
+                                   "contactSurfaceThickness" + _UNRUN,
+    "CollidableShape.rotation": "incline's ramps are tilted 20 and 35 degrees by it: ignoring it leaves them flat "
+                                "and Slider still, against g (sin - mu cos)" + _UNRUN,
+    "SingleAxisHingeJoint.axis": "pendulum_period's hinge turns about z: the default axis (0 1 0) is along "
+                                 "gravity, and Bob never crosses the vertical" + _UNRUN,
+    "SingleAxisHingeJoint.body1": "pendulum_period's Bob is body1 (body2 the fixed Anchor): ignoring it frees Bob, "
+                                  "which never crosses the vertical" + _UNRUN,
+    "DoubleAxisHingeJoint.body2": "motor_speed's Wheel is body2 (body1 the fixed Chassis): ignoring it leaves the "
+                                  "Wheel undriven, off the torque-limited ramp" + _UNRUN,
+    "MotorJoint.body1": "motor_joint_torque's rotors: ignoring it, the torque reaches at most one body of the pair "
+                        "and I1 w1 + I2 w2 or the rotor's spin is off" + _UNRUN,
+    "MotorJoint.body2": "motor_joint_torque's stators: ignoring it, the torque reaches at most one body of the pair "
+                        "and I1 w1 + I2 w2 is off" + _UNRUN,
+    "MotorJoint.motor1Axis": "motor_joint_torque turns about z: the default axis (1 0 0) leaves UserRotor's spin "
+                             "about z at 0" + _UNRUN,
+}
+
+# Observable fields no mutation shows a verdict turn on, and no case is being written for: what
+# a case (or a mutation of one) would have to show.
+_CONTACT = ("a CollisionSensor's Contacts carry the collection's value (37.4.4: default values \"assigned to all "
+            "Contact nodes generated from the CollisionSensor node\"), and no case reads it there; an author's own "
+            "value reaches the physics only through set_contacts from a Script, which x3drbp does not run")
+_NO_CASE = {
+    "output": "an output no case reads (forceOutput would select it)",
+    "offset": "no scene places a collidable through a CollidableOffset",
+    "space": "no scene groups collidables in a CollisionSpace",
+}
+UNCOVERED: dict[str, str] = {
+    **{f"Contact.{f}": _CONTACT for f in ("appliedParameters", "bounce", "frictionCoefficients", "frictionDirection",
+                                          "minBounceSpeed", "slipCoefficients", "softnessConstantForceMix",
+                                          "softnessErrorCorrection", "surfaceSpeed")},
+    **{f"CollidableOffset.{f}": _NO_CASE["offset"] for f in ("collidable", "enabled", "rotation", "translation")},
+    **{f"CollisionSpace.{f}": _NO_CASE["space"] for f in ("collidables", "enabled")},
+    **{f"{n}.{f}": _NO_CASE["output"] for n, fs in (
+        ("DoubleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint", "body1Axis", "body2Axis", "hinge1Angle",
+                                  "hinge1AngleRate", "hinge2Angle")),
+        ("MotorJoint", ("motor1Angle", "motor2Angle", "motor2AngleRate", "motor3Angle", "motor3AngleRate")),
+        ("SingleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint")),
+        ("SliderJoint", ("separationRate",)),
+        ("UniversalJoint", ("body1AnchorPoint", "body2AnchorPoint"))) for f in fs},
+    "CollidableShape.enabled": "no scene disables a collidable (it would then take no part in collisions)",
+    "CollisionCollection.enabled": "no scene sets it FALSE (the collection's collisions would not be run)",
+    "CollisionSensor.enabled": "no scene disables a sensor (it would report nothing)",
+    "RigidBodyCollection.enabled": "no scene sets it FALSE (the collection's physics would not be run)",
+    "CollisionCollection.softnessConstantForceMix": "acts only with CONSTANT_FORCE in appliedParameters, which no "
+                                                    "scene sets",
+    "CollisionCollection.softnessErrorCorrection": "acts only with ERROR_REDUCTION in appliedParameters, which no "
+                                                   "scene sets",
+    "RigidBodyCollection.contactSurfaceThickness": "resting_penetration sets 0.01 but no mutation resets it; its "
+                                                   "spec measure bounds the depth by it, which a thickness of 0 "
+                                                   "also meets, so only the ODE-layer convention would turn",
+    "RigidBodyCollection.maxCorrectionSpeed": "no scene sets it: a cap on how fast penetration is corrected",
+    **{f"RigidBodyCollection.{f}": "no scene sets the collection's own: auto_disable sets each body's"
+       for f in ("autoDisable", "disableAngularSpeed", "disableLinearSpeed", "disableTime")},
+    **{f"RigidBody.{f}": "auto_disable sets it on every body, but no mutation resets it (its mutations remove "
+                         "Pushed's force and Striker's velocity)"
+       for f in ("autoDisable", "disableAngularSpeed", "disableLinearSpeed", "disableTime")},
+    "BallJoint.anchorPoint": "ball_chain and erp_cfm_spring set it, but no mutation moves it: anchors elsewhere "
+                             "still coincide, so the anchor gap alone would not show it",
+    "BallJoint.body1": "no mutation drops it; where body2 is fixed the joint would then hold nothing",
+    "BallJoint.body2": "no mutation drops it; ball_chain's links would then hang from fixed points, their anchor "
+                       "gap still small",
+    "SingleAxisHingeJoint.body2": "every hinge case's body2 is fixed or a swinging arm; no mutation drops it "
+                                  "(double_pendulum_energy's Elbow would then hang from a fixed point)",
+    "SingleAxisHingeJoint.maxAngle": "hinge_limits and hinge_bounce set it, but ODE's sign never reaches it and no "
+                                     "mutation resets it",
+    "SingleAxisHingeJoint.stopErrorCorrection": "hinge_bounce sets 0.2, but no mutation resets it",
+    "SliderJoint.axis": "slider_stops sets it, but no mutation resets it (along the default 0 1 0 the block "
+                        "would rest at its min stop, which only the ODE-sign convention tells apart)",
+    "SliderJoint.body1": "no mutation drops slider_stops' Block",
+    "SliderJoint.body2": "slider_stops' body2 is the fixed Rail: dropping it joins the Block to the world alike",
+    "SliderJoint.minSeparation": "slider_stops' Block starts at its min stop 0, the default, and slides away from it",
+    "SliderJoint.sliderForce": "no scene sets it: a force along the axis on both bodies",
+    "SliderJoint.stopBounce": "no scene sets it: a slider's bounce off its stops",
+    "SliderJoint.stopErrorCorrection": "no scene sets it (slider_stops keeps the default 1)",
+    "DoubleAxisHingeJoint.anchorPoint": "motor_speed sets it, but no mutation moves it",
+    "DoubleAxisHingeJoint.axis1": "motor_speed sets it, but no mutation resets it",
+    "DoubleAxisHingeJoint.axis2": "motor_speed sets it, but no mutation resets it",
+    "DoubleAxisHingeJoint.body1": "motor_speed's body1 is the fixed Chassis: dropping it joins the Wheel to the "
+                                  "world alike",
+    **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's motor, limits and stop, and the suspension"
+       for f in ("desiredAngularVelocity1", "maxTorque1", "minAngle1", "maxAngle1", "stop1Bounce",
+                 "stop1ConstantForceMix", "stop1ErrorCorrection", "suspensionErrorCorrection", "suspensionForce")},
+    **{f"MotorJoint.{f}": "no scene sets it: motor axes 2 and 3" for f in ("axis2Torque", "axis3Torque",
+                                                                            "motor2Axis", "motor3Axis")},
+    **{f"MotorJoint.axis{i}Angle": "no case reads the motorNAngle output that echoes it with autoCalc FALSE"
+       for i in (1, 2, 3)},
+    "MotorJoint.enabledAxes": "motor_joint_torque sets 1, its default; no scene sets 0 (the motor disabled)",
+    "DoubleAxisHingeJoint.hinge2AngleRate": "motor_speed selects it but judges the Wheel's own angularVelocity",
+    "DoubleAxisHingeJoint.forceOutput": "motor_speed selects hinge2AngleRate but reads no joint output",
+    "UniversalJoint.anchorPoint": "universal_joint sets it, but no mutation moves it",
+    "UniversalJoint.axis1": "universal_joint sets it, but its mutation resets axis2 only",
+    "UniversalJoint.body1": "no mutation drops it",
+    "UniversalJoint.body2": "no mutation drops it",
+}
+
+
+@dataclass
+class Row:
+    """One field and what accounts for it."""
+    node: str
+    name: str
+    access: str
+    covered: list[str] = field(default_factory=list)  # 'case: edit' of each mutation that changes it
+    judged: list[str] = field(default_factory=list)  # cases that read it as an output
+    exercised: list[str] = field(default_factory=list)  # cases exercising it whose mutations edit other fields
+    pending: str = ""
+    reason: str = ""
+    gap: str = ""
+
+    @property
+    def key(self) -> str:
+        return f"{self.node}.{self.name}"
+
+
+def catalogue() -> list[Row]:
+    """Every field of every concrete RigidBodyPhysics node in the UOM, in the UOM's order."""
+    rows = []
+    for el in etree.parse(uom.UOM).iter("ConcreteNode"):
+        if el.find("InterfaceDefinition/componentInfo").get("name") == "RigidBodyPhysics":
+            rows += [Row(el.get("name"), name, f.get("accessType")) for name, f in uom.interface_fields(el).items()]
+    return rows
+
+
+# -- mutations: which fields a scene edit changes -----------------------------------------------
+
+def _children(el: etree._Element) -> list[etree._Element]:
+    return [c for c in el if isinstance(c.tag, str)]
+
+
+def _slot(child: etree._Element) -> str:
+    """The field of its parent a child node fills: its containerField, else its type's default."""
+    t = schema.definition(child.tag)
+    return child.get("containerField") or (t.container_field if t is not None else "children")
+
+
+def _route_ends(route: etree._Element, defs: dict[str, str]) -> Iterator[Field]:
+    yield defs.get(route.get("fromNode"), ""), route.get("fromField")
+    yield defs.get(route.get("toNode"), ""), route.get("toField")
+
+
+def _diff(a: etree._Element, b: etree._Element, defs: dict[str, str]) -> Iterator[Field]:
+    """The fields where element b differs from a: attributes a sets that b drops or changes, and
+    node fields whose children differ. An attribute b adds is not a change of what a sets."""
+    if a.tag == "ROUTE":
+        if dict(a.attrib) != dict(b.attrib):
+            yield from _route_ends(a, defs)
+        return
+    for name, value in a.attrib.items():
+        if b.get(name) != value and name not in ("DEF", "USE", "containerField"):
+            yield a.tag, name
+    ca, cb = _children(a), _children(b)
+    sign = [[(c.tag, c.get("DEF"), c.get("USE"), _slot(c)) for c in cs] for cs in (ca, cb)]
+    for op, i1, i2, j1, j2 in difflib.SequenceMatcher(None, *sign, autojunk=False).get_opcodes():
+        if op == "equal":
+            for x, y in zip(ca[i1:i2], cb[j1:j2]):
+                yield from _diff(x, y, defs)
+            continue
+        for c in ca[i1:i2] + cb[j1:j2]:
+            yield from _route_ends(c, defs) if c.tag == "ROUTE" else [(a.tag, _slot(c))]
+
+
+def touched(case: Case, mutation: Mutation) -> set[Field]:
+    """The fields a mutation changes or removes in the case's scene (none for a change of runs)."""
+    with open(case.path, encoding="utf-8") as f:
+        text = f.read()
+    if not mutation.old:
+        return set()
+    a = etree.fromstring(text.encode())
+    b = etree.fromstring(mutation.apply(text).encode())
+    defs = {e.get("DEF"): e.tag for e in a.iter() if isinstance(e.tag, str) and e.get("DEF")}
+    return set(_diff(a, b, defs))
+
+
+def _edit(mutation: Mutation) -> str:
+    """A mutation as the table shows it: the text it replaces, and by what."""
+    old, new = (" ".join(s.split()) for s in (mutation.old, mutation.new))
+    return f"`{old}` → " + (f"`{new}`" if new else "removed") + ("" if mutation.spec else " (conventions)")
+
+
+# -- outputs: which a case reads --------------------------------------------------------------
+
+def _path(node: ast.expr) -> str:
+    """A string argument as written (an f-string's fields as {}); '' for anything else."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if isinstance(node, ast.JoinedStr):
+        return "".join(v.value if isinstance(v, ast.Constant) else "{}" for v in node.values)
+    return ""
+
+
+def _reads(case: Case) -> tuple[set[str], set[str]]:
+    """What the case's expectation reads: the outputs its trace reads name (the series() and
+    text() calls of its module and of the closed_forms helpers it imports), and the keys it takes
+    from the contacts closed_forms.sensor_contacts returns."""
+    own = ast.parse(inspect.getsource(importlib.import_module(f"conformance.cases.{case.name}")))
+    helpers = [getattr(closed_forms, a.name) for n in ast.walk(own)
+               if isinstance(n, ast.ImportFrom) and n.module == closed_forms.__name__ for a in n.names
+               if inspect.isfunction(getattr(closed_forms, a.name, None))]
+    trees = [own, *(ast.parse(inspect.getsource(h)) for h in helpers)]
+    outputs = {re.match(r"\w*", _path(c.args[1])).group() for t in trees for c in ast.walk(t)
+               if isinstance(c, ast.Call) and isinstance(c.func, ast.Attribute) and c.func.attr in ("series", "text")
+               and len(c.args) > 1}
+    keys = {n.slice.value for n in ast.walk(own) if isinstance(n, ast.Subscript) and
+            isinstance(n.slice, ast.Constant) and isinstance(n.slice.value, str)}
+    return outputs, keys if closed_forms.sensor_contacts in helpers else set()
+
+
+def _reported(case: Case) -> set[Field]:
+    """The outputs the case's scene has reported: joints' forceOutput selections, and a
+    CollisionSensor's outputs and its Contact nodes' fields."""
+    root = etree.parse(case.path).getroot()
+    out: set[Field] = set()
+    for el in root.iter():
+        t = schema.definition(el.tag) if isinstance(el.tag, str) else None
+        if t is None or el.get("USE"):
+            continue
+        if t.is_a("X3DRigidJointNode"):
+            chosen = re.findall(r'"([^"]*)"', el.get("forceOutput", ""))
+            out |= {(el.tag, f) for f, d in t.fields.items() if d.access == "outputOnly" and
+                    ("ALL" in chosen or f in chosen)}
+        elif el.tag == "CollisionSensor":
+            out |= {(el.tag, f) for f, d in t.fields.items() if d.access == "outputOnly"}
+            out |= {("Contact", f) for f in schema.definition("Contact").fields}
+    return out
+
+
+def judged(case: Case) -> set[Field]:
+    """The outputs the case reads (reported by its scene and named in its expectation), and the
+    forceOutput of each joint type whose outputs it reads: the selection that reports them."""
+    outputs, keys = _reads(case)
+    read = {(node, name) for node, name in _reported(case) if name in (keys if node == "Contact" else outputs)}
+    return read | {(node, "forceOutput") for node, _ in read if schema.definition(node).is_a("X3DRigidJointNode")}
+
+
+# -- the table --------------------------------------------------------------------------------
+
+def _exercising() -> dict[str, list[str]]:
+    """Field key -> the cases whose exercises name it (the field, or a feature of it)."""
+    out: dict[str, list[str]] = {}
+    for case in CASES:
+        for key in sorted({".".join(f.split(".")[:2]) for f in case.exercises}):
+            out.setdefault(key, []).append(case.name)
+    return out
+
+
+def open_pending(table: list[Row]) -> list[str]:
+    """The PENDING keys no case answers yet: no case exercises them and no mutation covers them."""
+    answered = {r.key for r in table if r.covered} | {f for c in CASES for f in c.exercises}
+    return [k for k in PENDING if k not in answered]
+
+
+def rows() -> list[Row]:
+    """The catalogue with what accounts for each field."""
+    table = catalogue()
+    by_key = {(r.node, r.name): r for r in table}
+    for case in CASES:
+        for m in case.mutations:
+            for f in sorted(touched(case, m)):
+                if f in by_key:
+                    by_key[f].covered.append(f"{case.name}: {_edit(m)}")
+        for f in sorted(judged(case)):
+            if f in by_key:
+                by_key[f].judged.append(case.name)
+    exercising = _exercising()
+    waiting = set(open_pending(table))
+    for r in table:
+        mutated = {c.split(":")[0] for c in r.covered}
+        r.exercised = [c for c in exercising.get(r.key, []) if c not in mutated and not r.judged]
+        r.pending = PENDING[r.key] if r.key in waiting else ""
+        r.reason = REASONS.get(r.key) or _ANY.get(r.name, "")
+        r.gap = UNCOVERED.get(r.key, "")
+    return table
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|")
+
+
+KINDS = ("covered", "judged", "pending", "reason", "uncovered", "exercised")
+
+
+def kind(r: Row) -> str:
+    """What accounts for a field, the first that applies in KINDS' order ('' for nothing)."""
+    found = (r.covered, r.judged, r.pending, r.reason, r.gap, r.exercised)
+    return next((k for k, f in zip(KINDS, found) if f), "")
+
+
+def _standing(r: Row) -> str:
+    """The last column: the word a pending, explained or uncovered field needs."""
+    return {"pending": f"pending: {r.pending}", "reason": r.reason, "uncovered": f"uncovered: {r.gap}"}.get(
+        kind(r), "")
+
+
+def render(table: list[Row]) -> str:
+    """docs/field-coverage.md's text."""
+    kinds = [kind(r) for r in table]
+    lines = ["# Field coverage: which case turns a verdict on each field of clause 37",
+             "",
+             "Generated by `.venv/bin/python -m conformance.coverage` from the X3D Unified Object Model 4.0",
+             "and `conformance/cases/` (do not edit; `tests/test_field_coverage.py` checks it is current).",
+             "**Covered**: a case's mutation, a scene edit on which the case must fail",
+             "(`tests/test_conformance.py::test_case_fails_when_mutated`), changes or removes what its scene",
+             "sets for the field; \"(conventions)\" marks an edit that turns the verdict only to \"conforms,",
+             "differs in conventions\". **Judged**: an output the case's scene reports and its expectation",
+             "reads. **Exercised**: a case sets the field at a non-default value (its `exercises`), but no",
+             "mutation of that case edits it. **Pending**: a case is being written for it. **Uncovered**: a",
+             "field a scene could observe, on which no mutation shows a verdict turn, and what would show it.",
+             "Otherwise the reason no verdict can turn on it.",
+             "",
+             f"{len(table)} fields: " + ", ".join(f"{kinds.count(k)} {k}" for k in KINDS) + "."]
+    pending = open_pending(table)
+    if pending:
+        lines += ["", "Still pending: " + ", ".join(f"`{k}`" for k in pending) + "."]
+    node = None
+    for r in table:
+        if r.node != node:
+            node = r.node
+            lines += ["", f"## {node}", "", "| field | access | covered by (case: mutation) | judged by | "
+                      "exercised by | pending, uncovered, or why no verdict |", "|---|---|---|---|---|---|"]
+        lines.append(f"| `{r.name}` | {r.access} | {_cell('<br>'.join(r.covered))} | "
+                     f"{', '.join(r.judged)} | {', '.join(r.exercised)} | {_cell(_standing(r))} |")
+    return "\n".join(lines) + "\n"
+
+
+def main() -> None:
+    atomic.write_text(TABLE, render(rows()))
+
+
+if __name__ == "__main__":
+    main()
