@@ -229,10 +229,15 @@ def plan(world: World, names: dict[int, str], routes: list[Route]) -> Collisions
 
     for node in collider_node.get("collidables"):
         collidable(node)
+    # joined bodies never touch: the pair of the bodies' own rows. World.joints ties a fixed
+    # body's end to the static world, but excluding (STATIC, body) would keep the body off every
+    # static shape (it would fall through the floor) and on the fixed body it is joined to
+    rows = {id(b): i for i, b in enumerate(world.bodies.nodes)}
     excluded = set()
     for j in world.joints:
-        if j.body1 != j.body2:
-            excluded.add((min(j.body1, j.body2), max(j.body1, j.body2)))
+        ends = [rows.get(id(j.node.get(f)), STATIC) for f in ("body1", "body2")]
+        if STATIC not in ends and ends[0] != ends[1]:
+            excluded.add((min(ends), max(ends)))
     return Collisions(out, excluded, parameters(collider_node, world.contact_surface_thickness), collider_node)
 
 
