@@ -458,8 +458,9 @@ def test_hinge_bounce_expectation_passes_odes_stop_bounce():
     rates = ok.measure("|Hinge.angleRate| after the impact - 0.5 x speed before")
     assert rates.error < 0.05 * rates.tolerance  # only the stop's CFM yield is left
     assert verdict(bounce=0.0).verdict == results.FAIL  # an inelastic stop: no bounce at all
-    # another law between the clause's ends is a convention, not a violation
-    assert verdict(bounce=0.4).verdict == results.CONVENTIONS and verdict(bounce=0.6).verdict == results.CONVENTIONS
+    # 0.4 or 0.6 for 0.5: nearer ODE's law than no bounce is, so within its reading; graded beyond the bound
+    for other in (verdict(bounce=0.4), verdict(bounce=0.6)):
+        assert other.verdict == results.PASS and other.accuracy() > 1, other.meaning()
     assert verdict(cfm=1e-4).accuracy() > 1  # why the scene sets constantForceMix 1e-6
 
 
