@@ -21,7 +21,7 @@ import numpy as np
 from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
-from conformance.cases.case import Case
+from conformance.cases.case import Case, Mutation
 from conformance.cases.closed_forms import (ROUNDING, ROUNDING_ANGLE, G, CFM_DEFAULT, ERP_DEFAULT, ballistic,
                                             max_norm, steps)
 from conformance.results import Measure, Settings, convention, spec
@@ -124,6 +124,10 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     return out
 
 
+# the scene's text just before Drifting's disable fields (the other bodies' read alike)
+DRIFTING = "angularVelocity='0 0 0.5' inertia='0.004 0 0 0 0.004 0 0 0 0.004'\n         "
+
+
 CASE = Case("auto_disable", "auto_disable.x3d",
             "RigidBody autoDisable (0.1 m/s, 0.1 rad/s, 0.25 s): a box at rest on the floor is held still, "
             "a collision wakes it (horizontal momentum m u kept); a pushed body is never disabled; a drifting, "
@@ -131,4 +135,11 @@ CASE = Case("auto_disable", "auto_disable.x3d",
             (Settings(1.0, 1 / 240),), expect,
             exercises=("RigidBody.autoDisable", "RigidBody.disableLinearSpeed", "RigidBody.disableAngularSpeed",
                        "RigidBody.disableTime", "RigidBody.forces"),
-            mutations=((" forces='0.02 0 0'", ""), (" linearVelocity='2 0 0'", "")))
+            mutations=((" forces='0.02 0 0'", ""), (" linearVelocity='2 0 0'", ""),
+                       # Drifting never stops (no test, or no linear speed under 0), or stops at once
+                       *(Mutation(DRIFTING + old, DRIFTING + new, spec=False) for old, new in (
+                           (" autoDisable='true'", ""),
+                           (" autoDisable='true' disableLinearSpeed='0.1'", " autoDisable='true'"),
+                           (" autoDisable='true' disableLinearSpeed='0.1' disableAngularSpeed='0.1' "
+                            "disableTime='0.25'", " autoDisable='true' disableLinearSpeed='0.1' "
+                                                  "disableAngularSpeed='0.1'")))))

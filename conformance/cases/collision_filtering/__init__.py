@@ -22,4 +22,8 @@ CASE = Case("collision_filtering", "collision_filtering.x3d",
                 ("<CollidableShape containerField='collidables' USE='KeptShape'/>",
                  "<CollidableShape containerField='collidables' USE='KeptShape'/>"
                  "<CollidableShape containerField='collidables' USE='GhostShape'/>"),  # every body collides
+                # Kept's collidable without its geometry: nothing of Kept to collide
+                ("<CollidableShape DEF='KeptShape' containerField='geometry'>\n"
+                 "          <Shape containerField='shape'><Sphere radius='0.1'/></Shape>",
+                 "<CollidableShape DEF='KeptShape' containerField='geometry'>"),
             ))

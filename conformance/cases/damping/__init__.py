@@ -94,4 +94,6 @@ CASE = Case("damping", "damping.x3d",
             "r = (1-d) once a step or a frame, 1 - d h/m, or (1-d)^h (x3drbp: v_n = v0 (1-d)^n)",
             (Settings(1.0, 1 / 240),), expect,
             exercises=("RigidBody.autoDamp", "RigidBody.linearDampingFactor", "RigidBody.angularDampingFactor"),
-            mutations=((" linearDampingFactor='0.01'", ""),))
+            mutations=((" linearDampingFactor='0.01'", ""),
+                       (" autoDamp='true'", ""),  # no damping: a ratio of 1, no reading's
+                       (" angularDampingFactor='0.02'", "")))  # the default 0.001

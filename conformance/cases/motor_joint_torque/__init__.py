@@ -98,4 +98,9 @@ CASE = Case("motor_joint_torque", "motor_joint_torque.x3d",
                 ("DEF='UserMotor' enabledAxes='1' motor1Axis='0 0 1' axis1Torque='0.6'",
                  "DEF='UserMotor' enabledAxes='1' motor1Axis='0 0 1'"),
                 (" autoCalc='true'", ""),  # motor1AngleRate is then the user's (0) while the bodies turn
+                # the torque on one body of the pair only: I1 w1 + I2 w2 = -/+ tau t
+                ("<RigidBody USE='UserRotor' containerField='body1'/>", ""),
+                ("<RigidBody USE='UserStator' containerField='body2'/>", ""),
+                # the default axis 1 0 0: UserRotor spins about x, not z
+                ("DEF='UserMotor' enabledAxes='1' motor1Axis='0 0 1'", "DEF='UserMotor' enabledAxes='1'"),
             ))

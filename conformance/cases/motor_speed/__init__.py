@@ -75,4 +75,11 @@ CASE = Case("motor_speed", "motor_speed.x3d",
             mutations=(
                 (" maxTorque2='0.2'", ""),
                 (" desiredAngularVelocity2='4'", ""),
+                # the pivot at the chassis' origin, 0.5 m under the wheel: the motor tips it over
+                (" anchorPoint='0 0.5 0'", ""),
+                # both axes at their defaults, 1 0 0 and 0 1 0 (axis2's alone would lie along axis1: a
+                # degenerate joint ODE refuses): the motor turns the wheel about y, not its axle
+                (" axis1='0 1 0' axis2='0 0 1'", ""),
+                # the wheel not on the joint: nothing drives it
+                ("<RigidBody USE='Wheel' containerField='body2'/>", ""),
             ))

@@ -78,4 +78,9 @@ CASE = Case("pendulum_period", "pendulum_period.x3d",
             (Settings(2.0, 1 / 240, None),), expect,
             convergence="Bob.period", expected_order=2.0,
             exercises=("SingleAxisHingeJoint", "SingleAxisHingeJoint.axis", "RigidBody.inertia"),
-            mutations=(("inertia='0.001 0 0 0 0.001 0 0 0 0.001'", ""),))
+            mutations=(("inertia='0.001 0 0 0 0.001 0 0 0 0.001'", ""),
+                       # the default axis 0 1 0 is along gravity: Bob hangs still, never crossing the vertical
+                       (" axis='0 0 1'", ""),
+                       # Bob free, or hung at the pivot (no lever arm): no swing either way
+                       ("<RigidBody USE='Bob' containerField='body1'/>", ""),
+                       (" position='0.5 -0.8660254037844386 0'", "")))

@@ -78,4 +78,6 @@ CASE = Case("resting_penetration", "resting_penetration.x3d",
             exercises=("RigidBodyCollection.contactSurfaceThickness", "CollisionSensor"),
             # without the thickness ODE pushes Sunk out: a reading the spec allows (LAYER fails, not
             # THICKNESS); a gravity 100 times the scene's sinks both boxes beyond the thickness
-            mutations=((" gravity='0 -9.81 0'", " gravity='0 -981 0'"),))
+            mutations=((" gravity='0 -9.81 0'", " gravity='0 -981 0'"),
+                       # the floor's top 0.1 m higher: both boxes start 0.1 m deep, ten times the thickness
+                       (" translation='0 -0.1 0'", "")))

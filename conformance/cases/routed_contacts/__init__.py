@@ -17,5 +17,7 @@ CASE = Case("routed_contacts", "routed_contacts.x3d",
             "the floor, the other falls through it",
             (Settings(1.0, 1 / 240),), kept_rests_ghost_falls(SET_CONTACTS),
             exercises=("RigidBodyCollection.set_contacts.fromSensor", "CollisionSensor"),
-            # nothing collides
-            mutations=(("<ROUTE fromNode='Sensor' fromField='contacts' toNode='World' toField='set_contacts'/>", ""),))
+            mutations=(("<ROUTE fromNode='Sensor' fromField='contacts' toNode='World' toField='set_contacts'/>",
+                        ""),  # nothing collides
+                       # Kept's shape on no body: it collides, but moves nothing, and Kept falls
+                       ("<CollidableShape USE='KeptShape' containerField='geometry'/>", "")))

@@ -48,4 +48,5 @@ CASE = Case("universal_joint", "universal_joint.x3d",
             (Settings(1.5, 1 / 240, None),), expect,
             exercises=("UniversalJoint.axis1", "UniversalJoint.axis2", "UniversalJoint.anchorPoint"),
             # the default 0 1 0: 53 degrees from axis1, not a cross
-            mutations=((" axis2='-0.6 0.8 0'", ""),))
+            mutations=((" axis2='-0.6 0.8 0'", ""),
+                       (" axis1='0.8 0.6 0'", "")))  # the default 1 0 0: 127 degrees from axis2
