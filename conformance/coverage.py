@@ -93,8 +93,7 @@ UNCOVERED: dict[str, str] = {
     **{f"CollidableOffset.{f}": _NO_CASE["offset"] for f in ("collidable", "enabled", "rotation", "translation")},
     **{f"CollisionSpace.{f}": _NO_CASE["space"] for f in ("collidables", "enabled")},
     **{f"{n}.{f}": _NO_CASE["output"] for n, fs in (
-        ("DoubleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint", "body1Axis", "body2Axis", "hinge1Angle",
-                                  "hinge1AngleRate", "hinge2Angle")),
+        ("DoubleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint", "body1Axis", "body2Axis", "hinge2Angle")),
         ("MotorJoint", ("motor1Angle", "motor2Angle", "motor2AngleRate", "motor3Angle", "motor3AngleRate")),
         ("SingleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint")),
         ("SliderJoint", ("separationRate",)),
@@ -107,9 +106,6 @@ UNCOVERED: dict[str, str] = {
                                                     "scene sets",
     "CollisionCollection.softnessErrorCorrection": "acts only with ERROR_REDUCTION in appliedParameters, which no "
                                                    "scene sets",
-    "RigidBodyCollection.contactSurfaceThickness": "resting_penetration sets 0.01 but no mutation resets it; its "
-                                                   "spec measure bounds the depth by it, which a thickness of 0 "
-                                                   "also meets, so only the ODE-layer convention would turn",
     "RigidBodyCollection.maxCorrectionSpeed": "no scene sets it: a cap on how fast penetration is corrected",
     **{f"RigidBodyCollection.{f}": "no scene sets the collection's own: auto_disable sets each body's"
        for f in ("autoDisable", "disableAngularSpeed", "disableLinearSpeed", "disableTime")},
@@ -123,7 +119,6 @@ UNCOVERED: dict[str, str] = {
                        "gap still small",
     "SingleAxisHingeJoint.maxAngle": "hinge_limits and hinge_bounce set it, but ODE's sign never reaches it and no "
                                      "mutation resets it",
-    "SingleAxisHingeJoint.stopErrorCorrection": "hinge_bounce sets 0.2, but no mutation resets it",
     "SliderJoint.axis": "slider_stops sets it, but no mutation resets it (along the default 0 1 0 the block "
                         "would rest at its min stop, which only the ODE-sign convention tells apart)",
     "SliderJoint.body1": "no mutation drops slider_stops' Block",
@@ -132,18 +127,14 @@ UNCOVERED: dict[str, str] = {
     "SliderJoint.sliderForce": "no scene sets it: a force along the axis on both bodies",
     "SliderJoint.stopBounce": "no scene sets it: a slider's bounce off its stops",
     "SliderJoint.stopErrorCorrection": "no scene sets it (slider_stops keeps the default 1)",
-    "DoubleAxisHingeJoint.body1": "motor_speed's body1 is the fixed Chassis: dropping it joins the Wheel to the "
-                                  "world alike",
-    **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's motor, limits and stop, and the suspension"
-       for f in ("desiredAngularVelocity1", "maxTorque1", "minAngle1", "maxAngle1", "stop1Bounce",
-                 "stop1ConstantForceMix", "stop1ErrorCorrection", "suspensionErrorCorrection", "suspensionForce")},
+    **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's stop bounce and softness, and the suspension"
+       for f in ("stop1Bounce", "stop1ConstantForceMix", "stop1ErrorCorrection", "suspensionErrorCorrection",
+                 "suspensionForce")},
     **{f"MotorJoint.{f}": "no scene sets it: motor axes 2 and 3" for f in ("axis2Torque", "axis3Torque",
                                                                             "motor2Axis", "motor3Axis")},
     **{f"MotorJoint.axis{i}Angle": "no case reads the motorNAngle output that echoes it with autoCalc FALSE"
        for i in (1, 2, 3)},
     "MotorJoint.enabledAxes": "motor_joint_torque sets 1, its default; no scene sets 0 (the motor disabled)",
-    "DoubleAxisHingeJoint.hinge2AngleRate": "motor_speed selects it but judges the Wheel's own angularVelocity",
-    "DoubleAxisHingeJoint.forceOutput": "motor_speed selects hinge2AngleRate but reads no joint output",
     "UniversalJoint.anchorPoint": "universal_joint sets it, but no mutation moves it",
     "UniversalJoint.body1": "no mutation drops it",
     "UniversalJoint.body2": "no mutation drops it",

@@ -64,6 +64,9 @@ GRAVITY = spec("37.4.11 RigidBodyCollection: The gravity field indicates directi
 FORCES = spec("37.4.10 RigidBody: The torques and forces fields define zero or more sets of torque and force "
               "values that are applied to the object every frame. These are continuously applied until reset to "
               "zero by the user.", "V3.3")
+HINGE2_OUTPUTS = spec("37.4.8 DoubleAxisHingeJoint: The hingeXAngle output fields report the current relative angle "
+                      "between the two bodies in radians and the hingeXAngleRate field describes the rate at which "
+                      "that angle is currently changing in radians per second.", "V3.3")
 # constraint drift, shared by the ball chain and the universal joint
 ERROR_CORRECTION = 0.8  # RigidBodyCollection.errorCorrection default: the scenes leave it
 
