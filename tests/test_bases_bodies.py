@@ -73,7 +73,7 @@ def test_every_measure_states_its_basis(real):
         missing = [m.quantity for m in r.measures if m.basis is None]
         assert not missing, (name, missing)
         for m in r.measures:
-            assert m.basis.kind in (results.SPEC, results.CONVENTION)
+            assert m.basis.kind in results.KINDS
             if m.basis.kind == results.SPEC:
                 assert m.basis.text.startswith("37."), (name, m.basis.text)
 
@@ -161,7 +161,7 @@ def test_hinge_resting_at_max_angle_with_the_other_sign_conforms(real):
     other = _negated(rows, {"angle", "angleRate"}, cap=LIMITS.HINGE_MAX)  # the fall is positive: maxAngle stops it
     broken = _negated(rows, {"angle", "angleRate"})  # the other sign, but the arm goes on past maxAngle
     _split(_judge("hinge_limits", rows), _judge("hinge_limits", other), _judge("hinge_limits", broken))
-    assert _failing(_judge("hinge_limits", other), results.CONVENTION) == ["Hinge.angle at the end - minAngle"]
+    assert _failing(_judge("hinge_limits", other), results.CONVENTION) == ["Hinge.angle farthest - minAngle"]
 
 
 # -- hinge_bounce: the impact at minAngle (ODE's sign) or maxAngle ---------------------------
@@ -190,7 +190,7 @@ def _bounce_rows(stop: float, sign: float = 1.0, ratio: float = BOUNCE.BOUNCE) -
 def test_bounce_at_max_angle_with_the_other_sign_conforms():
     ode = _judge("hinge_bounce", _bounce_rows(BOUNCE.BOUNCE_MIN))
     other = _judge("hinge_bounce", _bounce_rows(-BOUNCE.BOUNCE_MAX, sign=-1.0))
-    broken = _judge("hinge_bounce", _bounce_rows(BOUNCE.BOUNCE_MIN, ratio=0.8))
+    broken = _judge("hinge_bounce", _bounce_rows(BOUNCE.BOUNCE_MIN, ratio=0.0))  # no bounce at all
     _split(ode, other, broken)
     assert all(m.basis is not None for m in ode.measures)
     # the impact read with the other sign at minAngle's place (+0.6) is beyond maxAngle: a spec failure
@@ -230,8 +230,10 @@ def test_motor_joint_torque_only_in_user_calculated_mode_conforms(real):
     rows = real["motor_joint_torque"][1][0]
     gated = _judge("motor_joint_torque", _zeroed(rows, {"AutoRotor", "AutoStator", "AutoMotor"}))
     assert gated.verdict == results.CONVENTIONS, gated.reason
-    assert sorted(_failing(gated, results.CONVENTION)) == [
-        "AutoMotor.motor1AngleRate", "AutoRotor.angularVelocity, either sense (the torque acts with autoCalc TRUE)"]
+    # (a rate of 0 lies as near ODE's sign as the other: the sign convention holds it; the spec holds
+    # it to the bodies' rate, 0 here)
+    assert _failing(gated, results.CONVENTION) == [
+        "AutoRotor.angularVelocity, either sense (the torque acts with autoCalc TRUE)"]
     stuck_rate = _judge("motor_joint_torque", _zeroed(rows, {"AutoMotor"}))
     assert "|AutoMotor.motor1AngleRate| = |motor1Axis . (w1 - w2)|" in _failing(stuck_rate, results.SPEC)
     no_torque = _judge("motor_joint_torque", _zeroed(rows, {"UserRotor", "UserStator", "AutoRotor", "AutoStator",

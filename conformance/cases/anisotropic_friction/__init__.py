@@ -38,21 +38,31 @@ NORMAL_DIRECTIONS = convention(
     "sliding velocity (Bullet's), where every sliding box meets mu1")
 
 
+def _apart(mu_a: float, mu_b: float, duration: float) -> float:
+    """The most two boxes sliding from AF_V0 and slowing at mu_a g and mu_b g differ by in speed
+    over the run: when the rougher stops (or at the end)."""
+    rough, smooth = max(mu_a, mu_b), min(mu_a, mu_b)
+    t = min(AF_V0 / (rough * G), duration)
+    return (rough - smooth) * G * t
+
+
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
     """Each box against friction_fit() with mu1 and with mu2. Spec: the better of the two, each box
     on its own. Conventions: the better of the two assignments that give the boxes one coefficient
     each, and ODE's assignment (Along1 mu1, Along2 mu2).
 
     friction_fit()'s tolerances are the accuracy bounds. The tolerances (closed_forms.honoured)
-    are half the misreading's error: for the spec, friction ignored (X3D's default coefficients
-    0: the box keeps v0, or mu g T of it); for the conventions, the other assignment (the boxes
-    part by at most v0 (1 - mu1/mu2), when the rougher one stops)."""
+    are half the nearest misreading's error (_apart: how far two decelerations' velocities get):
+    for the spec, friction ignored (X3D's default coefficients 0: the box keeps v0) and the two
+    coefficients made one (their mean, as an engine with one coefficient per contact has it);
+    for the conventions, the other assignment."""
     tr, s = traces[0], settings[0]
     graded = {name: [friction_fit(tr, s, name, mu, AF_V0, 0.0, d) for mu in AF_MU]
               for name, (_, d) in AF_BOXES.items()}
-    ignored = min(AF_V0, min(AF_MU) * G * s.duration)
-    swapped = AF_V0 * (1 - min(AF_MU) / max(AF_MU))
-    fits = {name: [(e, honoured(b, ignored), b) for e, b in pair] for name, pair in graded.items()}
+    mean = sum(AF_MU) / len(AF_MU)
+    fits = {name: [(e, honoured(b, _apart(mu, 0.0, s.duration), _apart(mu, mean, s.duration)), b)
+                   for (e, b), mu in zip(pair, AF_MU)] for name, pair in graded.items()}
+    swapped = _apart(*AF_MU, s.duration)
     assigned = {name: [(e, honoured(b, swapped), b) for e, b in pair] for name, pair in graded.items()}
 
     def better(pair: list[tuple[float, float, float]]) -> tuple[float, float, float]:
