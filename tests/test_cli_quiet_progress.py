@@ -209,8 +209,8 @@ def test_stability_links_the_traces_its_reasons_cite_and_they_exist(stability):
         assert link(r["trace"]) in text
     links = re.findall(r"\]\(([^)]+)\)", text)
     assert sorted(links) == sorted(r["trace"] for r in broke)
-    for link in links:
-        with open(os.path.join(out, link), encoding="utf-8") as f:  # relative to stability.md, whole
+    for target in links:
+        with open(os.path.join(out, target), encoding="utf-8") as f:  # relative to stability.md, whole
             assert f.readline() == "time,node,field,value\n"
     assert sorted(os.listdir(os.path.join(out, S.TRACES))) == sorted(os.path.basename(r["trace"]) for r in broke)
     assert tempfile.gettempdir() not in text.replace(out, "")
