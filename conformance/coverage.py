@@ -81,24 +81,17 @@ REASONS: dict[str, str] = {
 _CONTACT = ("a CollisionSensor's Contacts carry the collection's value (37.4.4: default values \"assigned to all "
             "Contact nodes generated from the CollisionSensor node\"), and no case reads it there; an author's own "
             "value reaches the physics only through set_contacts from a Script, which x3drbp does not run")
-_NO_CASE = {
-    "output": "an output no case reads (forceOutput would select it)",
-    "offset": "no scene places a collidable through a CollidableOffset",
-    "space": "no scene groups collidables in a CollisionSpace",
-}
+_UNREAD = "an output no case reads (forceOutput would select it)"
 UNCOVERED: dict[str, str] = {
     **{f"Contact.{f}": _CONTACT for f in ("appliedParameters", "bounce", "frictionCoefficients", "frictionDirection",
                                           "minBounceSpeed", "slipCoefficients", "softnessConstantForceMix",
                                           "softnessErrorCorrection", "surfaceSpeed")},
-    **{f"CollidableOffset.{f}": _NO_CASE["offset"] for f in ("collidable", "enabled", "rotation", "translation")},
-    **{f"CollisionSpace.{f}": _NO_CASE["space"] for f in ("collidables", "enabled")},
-    **{f"{n}.{f}": _NO_CASE["output"] for n, fs in (
+    **{f"{n}.{f}": _UNREAD for n, fs in (
         ("DoubleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint", "body1Axis", "body2Axis", "hinge2Angle")),
         ("MotorJoint", ("motor1Angle", "motor2Angle", "motor2AngleRate", "motor3Angle", "motor3AngleRate")),
         ("SingleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint")),
         ("SliderJoint", ("separationRate",)),
         ("UniversalJoint", ("body1AnchorPoint", "body2AnchorPoint"))) for f in fs},
-    "CollidableShape.enabled": "no scene disables a collidable (it would then take no part in collisions)",
     "CollisionCollection.enabled": "no scene sets it FALSE (the collection's collisions would not be run)",
     "CollisionSensor.enabled": "no scene disables a sensor (it would report nothing)",
     "RigidBodyCollection.enabled": "no scene sets it FALSE (the collection's physics would not be run)",

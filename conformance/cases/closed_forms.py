@@ -275,23 +275,33 @@ def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
 KEPT_START, GHOST_START, BALL_MASS = np.array([-0.5, 0.1, 0.0]), np.array([0.5, 0.1, 0.0]), 1.0
 
 
+def rests(tr: TraceView, s: Settings, body: str, start: Sequence[float], basis: Basis,
+          mass: float = BALL_MASS) -> list[Measure]:
+    """A body put down touching a static floor stays: at rest within one step of unresisted fall
+    (g h^2, g h) and ODE's softness (sinking to CFM m g h / ERP, at a speed at most CFM m g):
+    accuracy bounds; the tolerances are half the misreading's error, the floor not colliding (it
+    falls g T^2 / 2 and gains g T)."""
+    h, T = s.dt, s.duration
+    _, p = tr.series(body, "position")
+    _, v = tr.series(body, "linearVelocity")
+    sink = G * h * h + CFM_DEFAULT * mass * G * h / ERP_DEFAULT + ROUNDING
+    creep = G * h + CFM_DEFAULT * mass * G + ROUNDING
+    return [Measure(f"{body} |position - start| (rests on the floor)", max_norm(p - np.asarray(start)),
+                    honoured(sink, 0.5 * G * T * T), "m", basis, sink),
+            Measure(f"{body} |linearVelocity|", max_norm(v), honoured(creep, G * T), "m/s", basis, creep)]
+
+
+def falls(traces: Sequence[TraceView], settings: Sequence[Settings], body: str, start: Sequence[float],
+          basis: Basis) -> list[Measure]:
+    """A body nothing touches: the ballistic closed form from rest under the scenes' gravity."""
+    return [dataclasses.replace(m, quantity=m.quantity + " (falls through the floor)")
+            for m in ballistic(body, start, (0, 0, 0), (0, -G, 0), basis)(traces, settings)]
+
+
 def kept_rests_ghost_falls(basis: Basis) -> Expectation:
-    """Ghost: the ballistic closed form (nothing touches it). Kept: at rest on the floor within one
-    step of unresisted fall (g h^2, g h) and ODE's softness (sinking to CFM m g h / ERP, at a speed
-    at most CFM m g): accuracy bounds; Kept's tolerances are half the misreading's error, its
-    shape not colliding (it falls g T^2 / 2 and gains g T). Every measure held to `basis`: the
-    sentence that says which shapes collide."""
+    """Ghost falls (nothing touches it), Kept rests on the floor (rests). Every measure held to
+    `basis`: the sentence that says which shapes collide."""
     def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
-        tr, s = traces[0], settings[0]
-        h = s.dt
-        _, p = tr.series("Kept", "position")
-        _, v = tr.series("Kept", "linearVelocity")
-        T = s.duration
-        sink = G * h * h + CFM_DEFAULT * BALL_MASS * G * h / ERP_DEFAULT + ROUNDING
-        creep = G * h + CFM_DEFAULT * BALL_MASS * G + ROUNDING
-        kept = [Measure("Kept |position - start| (rests on the floor)", max_norm(p - KEPT_START),
-                        honoured(sink, 0.5 * G * T * T), "m", basis, sink),
-                Measure("Kept |linearVelocity|", max_norm(v), honoured(creep, G * T), "m/s", basis, creep)]
-        ghost = ballistic("Ghost", GHOST_START, (0, 0, 0), (0, -G, 0), basis)(traces, settings)
-        return kept + [dataclasses.replace(m, quantity=m.quantity + " (falls through the floor)") for m in ghost]
+        return (rests(traces[0], settings[0], "Kept", KEPT_START, basis)
+                + falls(traces, settings, "Ghost", GHOST_START, basis))
     return expect
