@@ -92,9 +92,6 @@ UNCOVERED: dict[str, str] = {
         ("SingleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint")),
         ("SliderJoint", ("separationRate",)),
         ("UniversalJoint", ("body1AnchorPoint", "body2AnchorPoint"))) for f in fs},
-    "CollisionCollection.enabled": "no scene sets it FALSE (the collection's collisions would not be run)",
-    "CollisionSensor.enabled": "no scene disables a sensor (it would report nothing)",
-    "RigidBodyCollection.enabled": "no scene sets it FALSE (the collection's physics would not be run)",
     "CollisionCollection.softnessConstantForceMix": "acts only with CONSTANT_FORCE in appliedParameters, which no "
                                                     "scene sets",
     "CollisionCollection.softnessErrorCorrection": "acts only with ERROR_REDUCTION in appliedParameters, which no "

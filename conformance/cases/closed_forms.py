@@ -48,6 +48,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Expectation
@@ -273,6 +274,25 @@ def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
 # collision_filtering.x3d and routed_contacts.x3d: two 1 kg balls start at rest touching the floor,
 # Kept, whose shape collides with it, and Ghost, whose shape does not
 KEPT_START, GHOST_START, BALL_MASS = np.array([-0.5, 0.1, 0.0]), np.array([0.5, 0.1, 0.0]), 1.0
+
+
+def held(tr: TraceView, body: str, position: Sequence[float], orientation: Sequence[float],
+         basis: Basis) -> list[Measure]:
+    """A body no physics runs on: whatever it reports against its file state, with no tolerance
+    beyond rounding (a body the engine never gets is moved by nothing; a run reporting no rows
+    for it has nothing moved: error 0)."""
+    p0, q0 = np.asarray(position, dtype=np.float64), R.from_axis_angle(np.asarray(orientation, dtype=np.float64))
+    checks = {"position": (lambda p: max_norm(p - p0), ROUNDING * (1 + float(np.linalg.norm(p0))), "m"),
+              "orientation": (lambda q: float(np.max(R.angle_between(R.from_axis_angle(q), q0))), ROUNDING_ANGLE,
+                              "rad"),
+              "linearVelocity": (max_norm, ROUNDING, "m/s"),
+              "angularVelocity": (max_norm, ROUNDING, "rad/s")}
+    out = []
+    for field, (moved, tolerance, unit) in checks.items():
+        values = tr.series(body, field)[1] if (body, field) in tr.keys() else None
+        out.append(Measure(f"{body}.{field} - its file value (where reported at all)",
+                           0.0 if values is None else moved(values), tolerance, unit, basis))
+    return out
 
 
 def rests(tr: TraceView, s: Settings, body: str, start: Sequence[float], basis: Basis,
