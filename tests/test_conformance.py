@@ -9,6 +9,7 @@ expectations` when a change is meant.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import os
@@ -172,6 +173,30 @@ def test_expectation_that_cannot_read_the_trace_is_an_error():
     case = C.BY_NAME["free_fall"]
     r = verdicts.evaluate(case, "fake", [TraceView([Row(0.0, "Other", "position", "0 0 0")])], case.runs)
     assert r.verdict == results.ERROR and "Ball.position" in r.reason
+
+
+def test_an_expectation_that_raises_is_its_cells_error_and_the_command_writes_every_other(tmp_path, monkeypatch,
+                                                                                        capsys):
+    """One cell, one fault: newtons_cradle's expectation once divided by zero where an engine got
+    fixed bodies wrong, and the traceback ended the whole command."""
+    if REFERENCE is None:
+        pytest.skip("no backend is installed")
+    free_fall = C.BY_NAME["free_fall"]
+
+    def faulty(traces, settings):
+        return [results.Measure("x", 1.0 / (len(traces) - 1), 1.0)]  # one trace: ZeroDivisionError
+    broken = dataclasses.replace(free_fall, expect=faulty)
+    r = verdicts.evaluate(broken, "fake", [TraceView([])], free_fall.runs)
+    assert r.verdict == results.ERROR
+    assert r.reason.startswith("the expectation failed: ZeroDivisionError: ") and "test_conformance.py:" in r.reason
+    monkeypatch.setitem(C.BY_NAME, "free_fall", broken)
+    monkeypatch.setattr(C, "CASES", tuple(broken if c.name == "free_fall" else c for c in C.CASES))
+    out = tmp_path / "conf"
+    assert cli_main(["conformance", "--cases", "free_fall,damping", "--backends", REFERENCE, "--out", str(out)]) == 0
+    data = json.loads((out / "matrix.json").read_text())
+    got = {r["case"]: r["verdict"] for r in data["results"]}
+    assert got == {"free_fall": results.ERROR, "damping": results.PASS}
+    assert "the expectation failed: ZeroDivisionError" in (out / "matrix.md").read_text()
 
 
 def test_classify():
