@@ -88,7 +88,7 @@ UNCOVERED: dict[str, str] = {
                                           "softnessErrorCorrection", "surfaceSpeed")},
     **{f"{n}.{f}": _UNREAD for n, fs in (
         ("DoubleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint", "body1Axis", "body2Axis", "hinge2Angle")),
-        ("MotorJoint", ("motor1Angle", "motor2Angle", "motor2AngleRate", "motor3Angle", "motor3AngleRate")),
+        ("MotorJoint", ("motor2AngleRate", "motor3AngleRate")),
         ("SingleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint")),
         ("SliderJoint", ("separationRate",)),
         ("UniversalJoint", ("body1AnchorPoint", "body2AnchorPoint"))) for f in fs},
@@ -120,11 +120,6 @@ UNCOVERED: dict[str, str] = {
     **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's stop bounce and softness, and the suspension"
        for f in ("stop1Bounce", "stop1ConstantForceMix", "stop1ErrorCorrection", "suspensionErrorCorrection",
                  "suspensionForce")},
-    **{f"MotorJoint.{f}": "no scene sets it: motor axes 2 and 3" for f in ("axis2Torque", "axis3Torque",
-                                                                            "motor2Axis", "motor3Axis")},
-    **{f"MotorJoint.axis{i}Angle": "no case reads the motorNAngle output that echoes it with autoCalc FALSE"
-       for i in (1, 2, 3)},
-    "MotorJoint.enabledAxes": "motor_joint_torque sets 1, its default; no scene sets 0 (the motor disabled)",
     "UniversalJoint.anchorPoint": "universal_joint sets it, but no mutation moves it",
     "UniversalJoint.body1": "no mutation drops it",
     "UniversalJoint.body2": "no mutation drops it",

@@ -53,7 +53,8 @@ CASE = Case("collidable_layout", "collidable_layout.x3d",
                 ("<CollidableShape DEF='RaisedFloor' containerField='collidable'>\n"
                  "            <Shape containerField='shape'><Box size='0.2 1 1'/></Shape>\n"
                  "          </CollidableShape>", ""),
-                ("DEF='Dropped' containerField='collidables' enabled='false'", "DEF='Dropped' containerField='collidables'"),
+                ("DEF='Dropped' containerField='collidables' enabled='false'",
+                 "DEF='Dropped' containerField='collidables'"),
                 ("<CollidableShape DEF='GroupedFloor' containerField='collidables' translation='0 -0.1 0'>\n"
                  "            <Shape containerField='shape'><Box size='1 0.2 1'/></Shape>\n"
                  "          </CollidableShape>", ""),
