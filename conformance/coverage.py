@@ -90,7 +90,6 @@ UNCOVERED: dict[str, str] = {
         ("DoubleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint", "body1Axis", "body2Axis", "hinge2Angle")),
         ("MotorJoint", ("motor2AngleRate", "motor3AngleRate")),
         ("SingleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint")),
-        ("SliderJoint", ("separationRate",)),
         ("UniversalJoint", ("body1AnchorPoint", "body2AnchorPoint"))) for f in fs},
     "CollisionCollection.softnessConstantForceMix": "acts only with CONSTANT_FORCE in appliedParameters, which no "
                                                     "scene sets",
@@ -109,14 +108,8 @@ UNCOVERED: dict[str, str] = {
                        "gap still small",
     "SingleAxisHingeJoint.maxAngle": "hinge_limits and hinge_bounce set it, but ODE's sign never reaches it and no "
                                      "mutation resets it",
-    "SliderJoint.axis": "slider_stops sets it, but no mutation resets it (along the default 0 1 0 the block "
-                        "would rest at its min stop, which only the ODE-sign convention tells apart)",
-    "SliderJoint.body1": "no mutation drops slider_stops' Block",
-    "SliderJoint.body2": "slider_stops' body2 is the fixed Rail: dropping it joins the Block to the world alike",
     "SliderJoint.minSeparation": "slider_stops' Block starts at its min stop 0, the default, and slides away from it",
     "SliderJoint.sliderForce": "no scene sets it: a force along the axis on both bodies",
-    "SliderJoint.stopBounce": "no scene sets it: a slider's bounce off its stops",
-    "SliderJoint.stopErrorCorrection": "no scene sets it (slider_stops keeps the default 1)",
     **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's stop bounce and softness, and the suspension"
        for f in ("stop1Bounce", "stop1ConstantForceMix", "stop1ErrorCorrection", "suspensionErrorCorrection",
                  "suspensionForce")},
