@@ -108,8 +108,6 @@ UNCOVERED: dict[str, str] = {
                        "gap still small",
     "SingleAxisHingeJoint.maxAngle": "hinge_limits and hinge_bounce set it, but ODE's sign never reaches it and no "
                                      "mutation resets it",
-    "SliderJoint.minSeparation": "slider_stops' Block starts at its min stop 0, the default, and slides away from it",
-    "SliderJoint.sliderForce": "no scene sets it: a force along the axis on both bodies",
     **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's stop bounce and softness, and the suspension"
        for f in ("stop1Bounce", "stop1ConstantForceMix", "stop1ErrorCorrection", "suspensionErrorCorrection",
                  "suspensionForce")},

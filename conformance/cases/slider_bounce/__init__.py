@@ -15,8 +15,8 @@ from conformance.results import Measure, Settings, convention, spec
 
 # slider_bounce.x3d: Shuttle (body1) leaves its min stop at v0 along the axis, Sled (body2) at rest
 SB_AXIS = np.array([0.8, 0.0, 0.6])
-SB_V0, SB_BOUNCE, SB_ERP, SB_MAX, SB_M1, SB_M2 = 2.0, 0.5, 0.2, 0.31, 1.0, 3.0
-SB_DEFAULT_MAX = 1.0  # maxSeparation's default
+SB_V0, SB_BOUNCE, SB_ERP, SB_MIN, SB_MAX, SB_M1, SB_M2 = 2.0, 0.5, 0.2, -0.2, 0.31, 1.0, 3.0
+SB_DEFAULT_MIN, SB_DEFAULT_MAX = 0.0, 1.0  # the separations' defaults
 SLIDE = spec("37.4.13 SliderJoint: The SliderJoint node represents a joint where all movement between the bodies "
              "specified by the body1 and body2 fields is constrained to a single dimension along a user-defined axis.",
              "V3.3")
@@ -45,16 +45,16 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     pair's reduced mass m1 m2/(m1 + m2) turned through (1 + e) v0 in a step: CFM m (1 + e) v0 /
     h, 0.054 m/s); the relative motion stays on the axis, the pair's momentum m1 v0 axis to
     rounding (the joint's forces are internal), and the outputs are the bodies' relative
-    displacement and rate along the axis, to rounding. The stops hold the separation within a
-    step's travel v0 h.
+    displacement and rate along the axis, to rounding. The slide reaches each stop (in 0.8 s,
+    in either sense) and goes past it by at most a step's travel v0 h.
 
     Spec: stopBounce 0.5 sends the slide back part way: faster than the error correction alone
     could (a step's depth at most v0 h, corrected at stopErrorCorrection per step: ERP v0) and
     slower than it came. The law between the ends is ODE's (convention): after = e x before,
     held to half the distance to no bounce or a full one. The momentum's tolerance is half its
     error where body2 is not on the joint (the world takes the stop's impulse: (1 + e) m1 v0);
-    the stops', half the slide on to the default maxSeparation; the outputs', their not being
-    reported (0)."""
+    the outputs', their not being reported (0); the stops', half the distance to the stop's
+    default (0 and 1 m), where the slide turns if the field is ignored."""
     tr, s = traces[0], settings[0]
     h = s.dt
     t, p1 = tr.series("Shuttle", "position")
@@ -72,8 +72,10 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     rounding = ROUNDING * (1 + SB_V0)
     travel = SB_V0 * h + ROUNDING
     momentum = SB_M1 * v1 + SB_M2 * v2 - SB_M1 * SB_V0 * SB_AXIS
-    out = [Measure("Track.separation beyond the stops", max(float(np.max(sep)) - SB_MAX, -float(np.min(sep)), 0.0),
+    out = [Measure(f"Track.separation farthest out - maxSeparation {SB_MAX:g}", abs(float(np.max(sep)) - SB_MAX),
                    honoured(travel, SB_DEFAULT_MAX - SB_MAX), "m", STOPS, travel),
+           Measure(f"Track.separation farthest in - minSeparation {SB_MIN:g}", abs(float(np.min(sep)) - SB_MIN),
+                   honoured(travel, SB_DEFAULT_MIN - SB_MIN), "m", STOPS, travel),
            Measure("m1 Shuttle.linearVelocity + m2 Sled.linearVelocity - m1 v0 axis", max_norm(momentum),
                    honoured(rounding, (1 + SB_BOUNCE) * SB_M1 * SB_V0), "kg m/s", SLIDE, rounding),
            Measure("|Track.separation| - |axis . relative displacement|", max_norm(np.abs(sep) - np.abs(moved)),
@@ -96,14 +98,15 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
 
 
 CASE = Case("slider_bounce", "slider_bounce.x3d",
-            "SliderJoint stopBounce 0.5, stopErrorCorrection 0.2, axis 0.8 0 0.6, two free bodies: the stop sends the "
-            "slide back part way (ODE's law: at 0.5 x the impact rate); the pair's momentum kept; separation and "
+            "SliderJoint stopBounce 0.5, stopErrorCorrection 0.2, stops -0.2 and 0.31, axis 0.8 0 0.6, two free "
+            "bodies: each stop is reached, and sends the slide back part way (ODE's law: at 0.5 x the impact rate); the pair's momentum kept; separation and "
             "separationRate report the relative slide",
-            (Settings(0.6, 1 / 240, None),), expect,
+            (Settings(0.8, 1 / 240, None),), expect,
             exercises=("SliderJoint.stopBounce", "SliderJoint.stopErrorCorrection", "SliderJoint.axis",
-                       "SliderJoint.maxSeparation", "SliderJoint.forceOutput"),
+                       "SliderJoint.minSeparation", "SliderJoint.maxSeparation", "SliderJoint.forceOutput"),
             mutations=(
                 (" stopBounce='0.5'", ""),
+                (" minSeparation='-0.2'", ""),  # the slide turns at 0
                 # ERP 1: a step's depth corrected at once, faster than the bounce (ODE's law then fails)
                 Mutation(" stopErrorCorrection='0.2'", "", spec=False),
                 (" axis='0.8 0 0.6'", ""),  # along y, across the Shuttle's velocity: nothing slides
