@@ -1,0 +1,100 @@
+"""The suite kills the mutant engines it should, and the wrapping alone changes nothing.
+
+Each mutant (conformance/mutants/table.py) runs, as a plug-in backend in its own child process,
+on the cases its row says kill it; its base runs on them too, live (its pins may be in flux),
+and so does the identity mutant, which must give the base's verdict on every one of them. The
+full score, over every case, is `python -m conformance.mutants` (README.md, Mutation score).
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+
+import pytest
+
+from backends import base
+from conformance import cases as C
+from conformance.results import BLEW_UP, CONVENTIONS, FAIL, PASS, UNSUPPORTED
+from conformance.runner import verdicts
+
+from conformance.mutants import site
+from conformance.mutants.score import worse
+from conformance.mutants.table import BASES, BY_NAME, CONTROLS, MUTANTS
+
+try:
+    for b in BASES:
+        base.load(b)
+    MISSING = ""
+except ImportError as e:
+    MISSING = str(e)
+needs_bases = pytest.mark.skipif(bool(MISSING), reason=f"a base backend is unavailable: {MISSING}")
+KILLERS = sorted({c for m in MUTANTS for c in m.kills})
+
+
+@pytest.fixture(scope="module")
+def installed(tmp_path_factory):
+    """The mutants' site, first on the PYTHONPATH the runner's children inherit."""
+    folder = site.install(str(tmp_path_factory.mktemp("mutants")))
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("PYTHONPATH", site.on_path(folder))
+        mp.syspath_prepend(folder)
+        base._registry.cache_clear()
+        yield folder
+    base._registry.cache_clear()
+
+
+@pytest.fixture(scope="module")
+def verdict(installed) -> dict[tuple[str, str], str]:
+    """(case, backend) -> verdict: each base and identity mutant on every killing case, each
+    mutant on its own; run together, in parallel."""
+    pairs = [(c, b) for c in KILLERS for b in (*BASES, *(m.backend for m in CONTROLS))]
+    pairs += [(c, m.backend) for m in MUTANTS for c in m.kills]
+    results = verdicts.run_many([(lambda c=c, b=b: verdicts.run_pair(C.BY_NAME[c], b)) for c, b in pairs], 2)
+    return {(r.case, r.backend): r.verdict for r in results}
+
+
+def test_a_verdict_worse_than_the_base_kills():
+    assert worse(FAIL, PASS) and worse(CONVENTIONS, PASS) and worse(FAIL, CONVENTIONS)
+    assert worse(BLEW_UP, PASS) and worse(UNSUPPORTED, CONVENTIONS)  # the base ran: a refusal is a change
+    assert not worse(PASS, PASS) and not worse(CONVENTIONS, CONVENTIONS) and not worse(PASS, CONVENTIONS)
+    assert not worse(BLEW_UP, FAIL) and not worse(FAIL, UNSUPPORTED)  # where the base fails or never ran: nothing
+
+
+def test_every_mutant_is_killed_by_its_cases_or_names_its_gap():
+    assert len(MUTANTS) >= 30 and len(BY_NAME) == len(MUTANTS) + len(CONTROLS)
+    for m in MUTANTS:
+        assert bool(m.kills) != bool(m.gap), m.name
+        assert set(m.kills) <= set(C.BY_NAME), m.name
+        assert m.world is not None or m.relay is not None, m.name
+        assert m.bug and m.models and m.base in base.IN_TREE, m.name
+
+
+def test_the_site_declares_every_mutant_as_a_backend(installed):
+    assert site.GROUP == base.GROUP
+    found = {ep.name: ep.value for ep in importlib.metadata.entry_points(group=base.GROUP)
+             if ep.dist is not None and ep.dist.name == "x3drbp-mutants"}
+    assert found == {m.backend: f"conformance.mutants.plugin:{m.attribute}" for m in BY_NAME.values()}
+    assert set(found) <= set(base.engines())
+
+
+@needs_bases
+def test_a_mutant_backend_declares_what_its_base_does(installed):
+    identity, real = base.load(CONTROLS[0].backend), base.load(CONTROLS[0].base)
+    assert identity.table() == real.table() and identity.name == CONTROLS[0].backend
+    assert identity.version().startswith(f"{CONTROLS[0].base} {real.version()}")
+
+
+@needs_bases
+@pytest.mark.parametrize("control", CONTROLS, ids=lambda m: m.name)
+def test_the_identity_mutant_changes_no_verdict(verdict, control):
+    changed = {c: (verdict[(c, control.base)], verdict[(c, control.backend)]) for c in KILLERS
+               if verdict[(c, control.backend)] != verdict[(c, control.base)]}
+    assert not changed
+
+
+@needs_bases
+@pytest.mark.parametrize("mutant", [m for m in MUTANTS if m.kills], ids=lambda m: m.name)
+def test_the_mutant_is_killed(verdict, mutant):
+    spared = {c: (verdict[(c, mutant.base)], verdict[(c, mutant.backend)]) for c in mutant.kills
+              if not worse(verdict[(c, mutant.backend)], verdict[(c, mutant.base)])}
+    assert not spared, f"{mutant.name} ({mutant.bug}) survives (base, mutant verdicts): {spared}"
