@@ -111,9 +111,9 @@ UNCOVERED: dict[str, str] = {
     **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's stop bounce and softness, and the suspension"
        for f in ("stop1Bounce", "stop1ConstantForceMix", "stop1ErrorCorrection", "suspensionErrorCorrection",
                  "suspensionForce")},
-    "UniversalJoint.anchorPoint": "universal_joint sets it, but no mutation moves it",
-    "UniversalJoint.body1": "no mutation drops it",
-    "UniversalJoint.body2": "no mutation drops it",
+    "UniversalJoint.body2": "universal_joint's body2 is Lower: dropping it joins Upper, already pinned by the "
+                            "shoulder, to the world, a loop the reference backend (MuJoCo) refuses; a scene with a "
+                            "free Upper would show it",
 }
 
 

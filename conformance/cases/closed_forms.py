@@ -276,6 +276,21 @@ def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
 KEPT_START, GHOST_START, BALL_MASS = np.array([-0.5, 0.1, 0.0]), np.array([0.5, 0.1, 0.0]), 1.0
 
 
+def anchor_gap(tr: TraceView, body1: str, body2: str, anchor: Sequence[float], start1: Sequence[float],
+               start2: Sequence[float]) -> np.ndarray:
+    """Per frame, how far apart the joint's anchor point is as each body carries it, from the
+    bodies' own poses (not the joint's outputs): both bodies start unturned at start1 and start2,
+    the anchor where the scene puts it (a body that is not in the trace stays put)."""
+    def carried(body: str, start: Sequence[float]) -> np.ndarray:
+        local = np.asarray(anchor, dtype=np.float64) - np.asarray(start, dtype=np.float64)
+        if (body, "position") not in tr.keys():
+            return np.asarray(anchor, dtype=np.float64)[None, :]
+        _, p = tr.series(body, "position")
+        _, q = tr.series(body, "orientation")
+        return p + R.rotate(R.from_axis_angle(q), local)
+    return np.linalg.norm(carried(body1, start1) - carried(body2, start2), axis=1)
+
+
 def held(tr: TraceView, body: str, position: Sequence[float], orientation: Sequence[float],
          basis: Basis) -> list[Measure]:
     """A body no physics runs on: whatever it reports against its file state, with no tolerance
