@@ -101,11 +101,6 @@ UNCOVERED: dict[str, str] = {
     "RigidBody.disableAngularSpeed": "auto_disable sets it on every body, but under the clause's any-one reading "
                                      "no body's disabling hangs on it alone (Drifting spins faster than it, and "
                                      "its linear speed is under its own threshold)",
-    "BallJoint.anchorPoint": "ball_chain and erp_cfm_spring set it, but no mutation moves it: anchors elsewhere "
-                             "still coincide, so the anchor gap alone would not show it",
-    "BallJoint.body1": "no mutation drops it; where body2 is fixed the joint would then hold nothing",
-    "BallJoint.body2": "no mutation drops it; ball_chain's links would then hang from fixed points, their anchor "
-                       "gap still small",
     "SingleAxisHingeJoint.maxAngle": "hinge_limits and hinge_bounce set it, but ODE's sign never reaches it and no "
                                      "mutation resets it",
     **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's stop bounce and softness, and the suspension"
