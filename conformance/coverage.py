@@ -81,16 +81,10 @@ REASONS: dict[str, str] = {
 _CONTACT = ("a CollisionSensor's Contacts carry the collection's value (37.4.4: default values \"assigned to all "
             "Contact nodes generated from the CollisionSensor node\"), and no case reads it there; an author's own "
             "value reaches the physics only through set_contacts from a Script, which x3drbp does not run")
-_UNREAD = "an output no case reads (forceOutput would select it)"
 UNCOVERED: dict[str, str] = {
     **{f"Contact.{f}": _CONTACT for f in ("appliedParameters", "bounce", "frictionCoefficients", "frictionDirection",
                                           "minBounceSpeed", "slipCoefficients", "softnessConstantForceMix",
                                           "softnessErrorCorrection", "surfaceSpeed")},
-    **{f"{n}.{f}": _UNREAD for n, fs in (
-        ("DoubleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint", "body1Axis", "body2Axis", "hinge2Angle")),
-        ("MotorJoint", ("motor2AngleRate", "motor3AngleRate")),
-        ("SingleAxisHingeJoint", ("body1AnchorPoint", "body2AnchorPoint")),
-        ("UniversalJoint", ("body1AnchorPoint", "body2AnchorPoint"))) for f in fs},
     "CollisionCollection.softnessConstantForceMix": "acts only with CONSTANT_FORCE in appliedParameters, which no "
                                                     "scene sets",
     "CollisionCollection.softnessErrorCorrection": "acts only with ERROR_REDUCTION in appliedParameters, which no "

@@ -276,19 +276,42 @@ def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
 KEPT_START, GHOST_START, BALL_MASS = np.array([-0.5, 0.1, 0.0]), np.array([0.5, 0.1, 0.0]), 1.0
 
 
+def carried(tr: TraceView, body: str, point: Sequence[float], start: Sequence[float]) -> np.ndarray:
+    """Per frame, where a point fixed in a body is, from the body's pose (the body starts unturned
+    at start, the point where the scene puts it; a body not in the trace stays put)."""
+    local = np.asarray(point, dtype=np.float64) - np.asarray(start, dtype=np.float64)
+    if (body, "position") not in tr.keys():
+        return np.asarray(point, dtype=np.float64)[None, :]
+    _, p = tr.series(body, "position")
+    _, q = tr.series(body, "orientation")
+    return p + R.rotate(R.from_axis_angle(q), local)
+
+
 def anchor_gap(tr: TraceView, body1: str, body2: str, anchor: Sequence[float], start1: Sequence[float],
                start2: Sequence[float]) -> np.ndarray:
     """Per frame, how far apart the joint's anchor point is as each body carries it, from the
-    bodies' own poses (not the joint's outputs): both bodies start unturned at start1 and start2,
-    the anchor where the scene puts it (a body that is not in the trace stays put)."""
-    def carried(body: str, start: Sequence[float]) -> np.ndarray:
-        local = np.asarray(anchor, dtype=np.float64) - np.asarray(start, dtype=np.float64)
-        if (body, "position") not in tr.keys():
-            return np.asarray(anchor, dtype=np.float64)[None, :]
-        _, p = tr.series(body, "position")
-        _, q = tr.series(body, "orientation")
-        return p + R.rotate(R.from_axis_angle(q), local)
-    return np.linalg.norm(carried(body1, start1) - carried(body2, start2), axis=1)
+    bodies' own poses (not the joint's outputs)."""
+    return np.linalg.norm(carried(tr, body1, anchor, start1) - carried(tr, body2, anchor, start2), axis=1)
+
+
+ANCHOR_OUTPUTS = convention(
+    "body1AnchorPoint and body2AnchorPoint are the anchor point as each body carries it, in world coordinates (x3drbp's "
+    "and ODE's dJointGetBallAnchor/dJointGetBallAnchor2: comparable, as 37.4.1 uses them to show a separation); "
+    "alternative: in each body's own frame, as the UOM's \"relative to local coordinate reference frame\" reads")
+
+
+def anchor_outputs(tr: TraceView, joint: str, body1: str, body2: str, anchor: Sequence[float],
+                   start1: Sequence[float], start2: Sequence[float]) -> Measure:
+    """The joint's reported anchor points against the anchor as each body carries it (from the
+    bodies' poses, both starting unturned), to rounding; the tolerance half the error of the other
+    reading (each body's own frame: at the start off by the body's distance from the world origin)."""
+    _, a1 = tr.series(joint, "body1AnchorPoint")
+    _, a2 = tr.series(joint, "body2AnchorPoint")
+    bound = ROUNDING * (1 + float(np.linalg.norm(anchor)))
+    error = max(max_norm(a1 - carried(tr, body1, anchor, start1)), max_norm(a2 - carried(tr, body2, anchor, start2)))
+    apart = max(float(np.linalg.norm(start1)), float(np.linalg.norm(start2)))
+    return Measure(f"{joint}.body1AnchorPoint, body2AnchorPoint - the anchor as each body carries it", error,
+                   honoured(bound, apart), "m", ANCHOR_OUTPUTS, bound)
 
 
 def held(tr: TraceView, body: str, position: Sequence[float], orientation: Sequence[float],

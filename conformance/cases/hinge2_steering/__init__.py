@@ -11,8 +11,8 @@ from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import (HINGE2_OUTPUTS as OUTPUTS, ROUNDING, ROUNDING_ANGLE, STEP_SLACK, honoured,
-                                            max_norm, steps, stop_overshoot)
+from conformance.cases.closed_forms import (HINGE2_OUTPUTS as OUTPUTS, ROUNDING, ROUNDING_ANGLE, STEP_SLACK,
+                                            anchor_outputs, honoured, max_norm, steps, stop_overshoot)
 from conformance.results import Measure, Settings, accuracy, convention, spec
 
 # hinge2_steering.x3d: two pairs of free bodies on their joint's anchor, no gravity
@@ -21,6 +21,8 @@ H2_ERP = 0.8  # stop1ErrorCorrection default
 # pair -> (axis1, the sign of desiredAngularVelocity1, the stop it heads for, the other stop)
 H2_PAIRS = {"Up": (np.array([0.0, 0.6, 0.8]), 1.0, 0.5, -0.6),
             "Down": (np.array([0.0, 1.0, 0.0]), -1.0, -0.7, 0.4)}
+H2_AXIS2 = {"Up": np.array([0.0, 0.8, -0.6]), "Down": np.array([0.0, 0.0, 1.0])}
+H2_ANCHOR = {"Up": (-1.0, 0.0, 0.0), "Down": (1.0, 0.0, 0.0)}  # both bodies of a pair start on it, unturned
 JOINT = spec("37.4.8 DoubleAxisHingeJoint: The DoubleAxisHingeJoint node represents a joint that has two independent "
              "axes that are located around a common anchor point. Axis 1 is specified relative to the first body "
              "(specified by the body1 field) and axis 2 is specified relative to the second body (specified by the "
@@ -48,6 +50,9 @@ def _pair(tr: TraceView, s: Settings, name: str) -> list[Measure]:
     _, o2 = tr.series(f"{name}Knuckle", "orientation")
     _, angle = tr.series(f"{name}Hinge", "hinge1Angle")
     _, rate = tr.series(f"{name}Hinge", "hinge1AngleRate")
+    _, angle2 = tr.series(f"{name}Hinge", "hinge2Angle")
+    _, axis1_out = tr.series(f"{name}Hinge", "body1Axis")
+    _, axis2_out = tr.series(f"{name}Hinge", "body2Axis")
     n = steps(t, h)
     alpha = H2_MAX_TORQUE * (1 / H2_I1 + 1 / H2_I2)
     t_star = H2_TARGET / alpha
@@ -67,6 +72,9 @@ def _pair(tr: TraceView, s: Settings, name: str) -> list[Measure]:
     travel = honoured(bound, abs(stop) - math.radians(abs(stop)), free - abs(stop))
     grown = toward * turn
     momentum = H2_I1 * w1 + H2_I2 * w2
+    axis2 = H2_AXIS2[name]
+    # the knuckle's own turn at the stop (the pair's turn shared by inertia): axis 2 moves that far
+    swung = 2 * math.sin(0.5 * abs(stop) * H2_I1 / (H2_I1 + H2_I2))
     bound_l = ROUNDING * (1 + H2_MAX_TORQUE * T)
     return [
         Measure(f"{name}: axis1 . (w1 - w2), torque-limited ramp (t < t*), either sense",
@@ -87,7 +95,17 @@ def _pair(tr: TraceView, s: Settings, name: str) -> list[Measure]:
                 honoured(rounding, H2_TARGET), "rad/s", OUTPUTS, rounding),
         Measure(f"{name}: axis1 . (w1 - w2) at the target = {sign * H2_TARGET:g}",
                 max_norm(r[hold] - sign * H2_TARGET) if hold.any() else math.inf,
-                honoured(held, 2 * H2_TARGET), "rad/s", ODE_SENSE, held)]
+                honoured(held, 2 * H2_TARGET), "rad/s", ODE_SENSE, held),
+        Measure(f"{name}Hinge |hinge2Angle| (nothing turns about axis 2)", max_norm(angle2[:, 0]),
+                honoured(ROUNDING_ANGLE, abs(stop)), "rad", OUTPUTS, ROUNDING_ANGLE),
+        Measure(f"{name}Hinge.body1Axis - axis1 as {name}Carrier carries it",
+                max_norm(axis1_out - R.rotate(R.from_axis_angle(o1), axis)), honoured(ROUNDING, 1.0), "", JOINT,
+                ROUNDING),
+        Measure(f"{name}Hinge.body2Axis - axis2 as {name}Knuckle carries it",
+                max_norm(axis2_out - R.rotate(R.from_axis_angle(o2), axis2)), honoured(ROUNDING, swung), "", JOINT,
+                ROUNDING),
+        anchor_outputs(tr, f"{name}Hinge", f"{name}Carrier", f"{name}Knuckle", H2_ANCHOR[name], H2_ANCHOR[name],
+                       H2_ANCHOR[name])]
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
@@ -108,7 +126,11 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     ignored (the target at once: w - alpha h into the ramp), desiredAngularVelocity1 ignored (no
     drive: w off at the hold), the stops ignored (the turn goes on to 1.275 rad by 1 s) or read
     in degrees (stopped within 0.01 rad of the start), the motor acting on body2 only (the pair
-    keeps Knuckle's I2 w); an output not reported (0 where the turn is the stop's, the rate w).
+    keeps Knuckle's I2 w); an output not reported (0 where the turn is the stop's, the rate w;
+    hinge2Angle, 0 throughout, as hinge1Angle's stop); body1Axis and body2Axis are axis1 and axis2
+    as body1 and body2 carry them (the clause's "relative to"), to rounding, against an axis not
+    reported (0) or fixed in the world (the knuckle turns axis 2 with it, by its share of the
+    stop's turn); the anchor points (closed_forms.anchor_outputs) a convention.
     Which way the bodies turn is the sense the implementation measures the angle in: the spec
     measures take either (the drive's), the convention holds it to ODE's (body1 relative to
     body2), with twice the target for the other sense."""

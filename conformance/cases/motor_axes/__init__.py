@@ -23,6 +23,11 @@ AXES = spec("37.4.9 MotorJoint: The motorAxis fields define the axis vector of t
             "that axis.", "V3.3")
 ODE_TORQUE = convention("body1 gets +axisNTorque about motorNAxis and body2 its opposite (ODE's "
                         "dJointAddAMotorTorques, Xj3D, FreeWRL); alternative: the other way round")
+RATE = spec("37.4.9 MotorJoint: The motor angle output fields provide the calculated angle for this motor joint "
+            "from the last frame. The motor angle rate output fields describe the rate, in radians, that the motor "
+            "is turning.", "V3.3")
+# autoCalc TRUE, no torque: spinner -> its angular velocity; motor axes 2 and 3 are the defaults (0 1 0), (0 0 1)
+MA_SPINS = {"SpinY": np.array([0.0, 1.5, 0.0]), "SpinZ": np.array([0.0, 0.0, -2.0])}
 USER_ANGLES = convention("in user-calculated mode (autoCalc FALSE) motorNAngle reports the axisNAngle given (ODE's "
                          "AMotor in user mode: dJointGetAMotorAngle returns the angle set); the clause's axis angles "
                          "are 'for this frame ... when in user-calculated mode', its motor angles 'the calculated "
@@ -42,12 +47,27 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     (enabledAxes or the torque ignored: the rotor still, |tau| T / I1 off; the axis ignored: the
     default axis, as far again). Conventions: ODE's sense (body1 gets +tau: twice the closed form
     for the other), and motorNAngle echoing axisNAngle in user mode (to rounding; not reported,
-    or computed: the value's own size off)."""
+    or computed: the value's own size off).
+
+    AutoY and AutoZ (autoCalc TRUE, no torque) join the fixed Base to a spinner turning at a
+    constant rate about axis 2 (y) or axis 3 (z): |motor2AngleRate| and |motor3AngleRate| are
+    |axis . (w1 - w2)| (the spec's "rate ... that the motor is turning"), to rounding, against not
+    being reported (0, as in user mode). With the default axes 1 (x) and 3 (z) ODE's Euler frame
+    has the same axis 2 (y), and a spinner about y or z keeps the other rate 0 in either frame."""
     tr, s = traces[0], settings[0]
+    rates = {"AutoY": (tr.series("AutoY", "motor2AngleRate")[1], tr.series("AutoY", "motor3AngleRate")[1]),
+             "AutoZ": (tr.series("AutoZ", "motor2AngleRate")[1], tr.series("AutoZ", "motor3AngleRate")[1])}
     echoed = {("Two", 2): tr.series("TwoMotor", "motor2Angle")[1],
               ("Three", 1): tr.series("ThreeMotor", "motor1Angle")[1],
               ("Three", 3): tr.series("ThreeMotor", "motor3Angle")[1]}
     out = []
+    for (motor, spinner), (rate2, rate3) in zip((("AutoY", "SpinY"), ("AutoZ", "SpinZ")), rates.values()):
+        _, w2 = tr.series(spinner, "angularVelocity")
+        spin = float(np.linalg.norm(MA_SPINS[spinner]))
+        for k, reported, axis in ((2, rate2, np.array([0.0, 1.0, 0.0])), (3, rate3, np.array([0.0, 0.0, 1.0]))):
+            out.append(Measure(f"|{motor}.motor{k}AngleRate| - |motor{k}Axis . (w1 - w2)|",
+                               max_norm(np.abs(reported[:, 0]) - np.abs(-w2 @ axis)),
+                               honoured(ROUNDING * (1 + spin), spin), "rad/s", RATE, ROUNDING * (1 + spin)))
     for name, (axis, tau, angles) in MA_PAIRS.items():
         t, w1 = tr.series(f"{name}Rotor", "angularVelocity")
         _, w2 = tr.series(f"{name}Stator", "angularVelocity")
@@ -84,7 +104,7 @@ CASE = Case("motor_axes", "motor_axes.x3d",
                 (" enabledAxes='2'", ""),  # axis 2 not used: TwoRotor still
                 (" motor2Axis='0 0 1'", ""),  # TwoRotor spins about y
                 (" axis2Torque='0.4'", ""),
-                (" enabledAxes='3'", ""),
+                ("DEF='ThreeMotor' enabledAxes='3'", "DEF='ThreeMotor'"),
                 (" motor3Axis='0.6 0.8 0'", ""),  # ThreeRotor spins about z
                 (" axis3Torque='-0.3'", ""),
                 *(Mutation(old, "", spec=False) for old in (" axis2Angle='0.7'", " axis1Angle='0.2'",

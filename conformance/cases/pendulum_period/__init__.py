@@ -10,12 +10,13 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import G, ellipk, honoured, physics_time
+from conformance.cases.closed_forms import G, anchor_outputs, ellipk, honoured, physics_time
 from conformance.results import Measure, Settings, spec
 
 
 # pendulum_period.x3d: a compound pendulum released 30 degrees from the vertical
 PEND_M, PEND_L, PEND_I, PEND_THETA0 = 1.0, 1.0, 0.001, math.radians(30.0)
+PEND_BOB = (0.5, -0.8660254037844386, 0.0)  # Bob's start, unturned; the pivot and Anchor at the origin
 # the period and the vertical crossings do not depend on the sign or the zero of the hinge's angle
 HINGE = spec("37.4.12 SingleAxisHingeJoint: The axis of the hinge is defined to be along the unit vector described "
              "in the axis field and centered on the anchorPoint described in world coordinates.", "V3.3")
@@ -53,7 +54,8 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     change under the nearest misreading of the scene: the inertia ignored (X3D's default
     0.4 kg m^2 in its place: T x sqrt(1.4 / 1.001)) or the mass ignored (1 kg is the default
     and the scene's, so no misreading there); a soft joint or an unconverged iterative solve
-    (ODE's quick-step at the scene's 10 iterations: 3.0 ms) is graded, not accused."""
+    (ODE's quick-step at the scene's 10 iterations: 3.0 ms) is graded, not accused. The joint's
+    anchor outputs: closed_forms.anchor_outputs (a convention)."""
     tr, s = traces[0], settings[0]
     t, p = tr.series("Bob", "position")
     tp = physics_time(t, s.dt)
@@ -66,10 +68,11 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     drift = w0 ** 2 * s.dt * t_c * (1 - math.cos(PEND_THETA0)) / math.sin(PEND_THETA0)
     bound = T * (w0 * s.dt) ** 2 / 3.0 + dT * drift
     tol = honoured(bound, pendulum_period(inertia=0.4) - T)
+    anchors = anchor_outputs(tr, "Pivot", "Bob", "Anchor", (0.0, 0.0, 0.0), PEND_BOB, (0.0, 0.0, 0.0))
     if c.size < 2:
-        return [Measure("Bob.period", math.inf, tol, "s", HINGE, bound)]
+        return [Measure("Bob.period", math.inf, tol, "s", HINGE, bound), anchors]
     measured = 2.0 * (c[-1] - c[0]) / (c.size - 1)
-    return [Measure("Bob.period", abs(measured - T), tol, "s", HINGE, bound)]
+    return [Measure("Bob.period", abs(measured - T), tol, "s", HINGE, bound), anchors]
 
 
 CASE = Case("pendulum_period", "pendulum_period.x3d",

@@ -10,7 +10,7 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import ROUNDING, G, ERROR_CORRECTION, anchor_gap, honoured, omega
+from conformance.cases.closed_forms import ROUNDING, G, ERROR_CORRECTION, anchor_gap, anchor_outputs, honoured, omega
 from conformance.results import Measure, Settings, spec
 
 
@@ -40,7 +40,8 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     anchor gap, as ball_chain argues it: dt^2/(2 ERP) (|w1|^2 + |w2|^2) r, r = 0.5 m each arm's
     lever; its tolerance (closed_forms.honoured) half the lever, the gap where the joint pivots
     about a body's origin or another point (the anchorPoint ignored), or holds one arm only
-    (body1 ignored: Upper swings away)."""
+    (body1 ignored: Upper swings away). The joint's anchor outputs: closed_forms.anchor_outputs
+    (a convention)."""
     tr, s = traces[0], settings[0]
     _, a1 = tr.series("Cross", "body1Axis")
     _, a2 = tr.series("Cross", "body2Axis")
@@ -54,7 +55,8 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     return [Measure("Cross |body1Axis . body2Axis|", float(np.max(cos)), bound + ROUNDING, "", PERPENDICULAR,
                     bound + ROUNDING),
             Measure("Cross anchor point as Upper and as Lower carry it: gap", float(np.max(gap)),
-                    honoured(gap_bound, UJ_ARM), "m", LIKE_BALL, gap_bound)]
+                    honoured(gap_bound, UJ_ARM), "m", LIKE_BALL, gap_bound),
+            anchor_outputs(tr, "Cross", "Upper", "Lower", UJ_ANCHOR, UJ_UPPER, UJ_LOWER)]
 
 
 CASE = Case("universal_joint", "universal_joint.x3d",
