@@ -95,8 +95,6 @@ UNCOVERED: dict[str, str] = {
     "RigidBody.disableAngularSpeed": "auto_disable sets it on every body, but under the clause's any-one reading "
                                      "no body's disabling hangs on it alone (Drifting spins faster than it, and "
                                      "its linear speed is under its own threshold)",
-    "SingleAxisHingeJoint.maxAngle": "hinge_limits and hinge_bounce set it, but ODE's sign never reaches it and no "
-                                     "mutation resets it",
     **{f"DoubleAxisHingeJoint.{f}": "no scene sets it: axis 1's stop bounce and softness, and the suspension"
        for f in ("stop1Bounce", "stop1ConstantForceMix", "stop1ErrorCorrection", "suspensionErrorCorrection",
                  "suspensionForce")},
