@@ -115,3 +115,56 @@ def test_a_changed_environment_gets_a_server_started_in_it(tmp_path, monkeypatch
     assert children.run_child(PENDULUM, backend, Settings(0.1, 1 / 240), str(tmp_path / "b.npz")).verdict is None
     with open(f"/proc/{fork_server._server.proc.pid}/environ", "rb") as f:
         assert b"X3DRBP_TEST_MARK=two\0" in f.read()
+
+
+@pytest.fixture
+def quick_to_give_up(monkeypatch):
+    """A server given up on within a second (a stuck one costs that), a fresh failure count,
+    and whatever server a test stopped killed after it."""
+    monkeypatch.setattr(fork_server, "ANSWER_WAIT", 1.0)
+    monkeypatch.setattr(fork_server, "STATUS_WAIT", 1.0)
+    monkeypatch.setattr(fork_server, "_failures", 0)
+    stopped: list[int] = []
+    yield stopped
+    for pid in stopped:
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+
+
+def _stop_server(tmp_path, stopped: list[int]) -> fork_server.Server:
+    backend = INSTALLED[0]
+    assert children.run_child(PENDULUM, backend, Settings(0.1, 1 / 240), str(tmp_path / "warmup.npz")).verdict is None
+    server = fork_server._server
+    stopped.append(server.proc.pid)
+    return server
+
+
+def test_a_stopped_server_is_given_up_and_the_run_is_done_afresh(tmp_path, quick_to_give_up):
+    server = _stop_server(tmp_path, quick_to_give_up)
+    os.kill(server.proc.pid, signal.SIGSTOP)
+    thread, out = _in_thread(lambda: children.run_child(PENDULUM, INSTALLED[0], Settings(0.1, 1 / 240),
+                                                        str(tmp_path / "t.npz"), timeout=60))
+    thread.join(60)  # a bound for a test that fails: it hung without one
+    assert out and out[0].verdict is None, out
+    assert (tmp_path / "t.npz").exists()
+    assert server.proc.wait(10) == -signal.SIGKILL  # killed, not left stopped
+    assert children.run_child(PENDULUM, INSTALLED[0], Settings(0.1, 1 / 240), str(tmp_path / "u.npz")).verdict is None
+    assert fork_server._server is not server and fork_server._server.alive()  # a new one serves
+
+
+def test_a_run_that_ends_while_its_server_is_stopped_is_redone_not_timed_out(tmp_path, quick_to_give_up):
+    server = _stop_server(tmp_path, quick_to_give_up)
+    trace = tmp_path / "t.npz"
+    # 30,000 steps: the run is still going when found, whatever the machine
+    thread, out = _in_thread(lambda: children.run_child(PENDULUM, INSTALLED[0], Settings(3.0, 1e-4), str(trace),
+                                                        timeout=20))
+    run = _the_run()
+    os.kill(run, signal.SIGSTOP)  # held while its server is stopped, then let end: its end goes unreported
+    os.kill(server.proc.pid, signal.SIGSTOP)
+    os.kill(run, signal.SIGCONT)
+    thread.join(120)
+    assert out and out[0].verdict is None, out  # not "timed out": the server's silence is no verdict
+    assert trace.exists()
+    assert server.proc.wait(10) == -signal.SIGKILL

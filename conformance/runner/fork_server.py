@@ -13,7 +13,12 @@ its own, so a crash or a hang is still one verdict:
   status the server reaped, so a signal death reads as Popen's negative return code;
 - a command that goes away (its connection closed before the run ended, or the server's
   stdin at EOF: the command is gone) has that run's group, or every group, SIGKILLed;
-  SIGTERM to the server ends its runs as children._end does (SIGTERM, GRACE s, SIGKILL).
+  SIGTERM to the server ends its runs as children._end does (SIGTERM, GRACE s, SIGKILL);
+- every wait on the server is bounded: it names a run within ANSWER_WAIT s, and says how a
+  run ended within STATUS_WAIT s of its end (which the command sees itself, on a pidfd of
+  the run). A server past either (stopped, say) is stuck: the command SIGKILLs it, its runs
+  in flight end as Gone and are run again in fresh children, and the next run starts a new
+  server; none comes back as "timed out" for the server's silence.
 
 This module is the command's side (conformance/cli/run_server.py is the server's), used by
 children.run_child where the server can serve: on Linux (pidfd), when the children would
@@ -46,6 +51,8 @@ READY = b"x3drbp-fork-server ready\n"
 NO_FORK = -1  # the status answered where fork() failed
 SLICE = 0.2  # s: the longest wait for the server's start without looking at the clock
 READY_WAIT = 60.0  # s for a server to import what it preloads (a loaded 2-core machine: a few s)
+ANSWER_WAIT = 10.0  # s for a server to fork a run and name it (milliseconds when it is well)
+STATUS_WAIT = 10.0  # s for a server to say how a run that has ended ended (it reaps at once when well)
 MAX_FAILURES = 2  # servers that could not start or died unasked, after which a command runs fresh children
 
 
@@ -86,34 +93,53 @@ class WarmChild:
     """A run forked by the server, with what children.call needs of a subprocess.Popen: pid
     (its group's), communicate(timeout) raising TimeoutExpired, returncode, wait()."""
 
-    def __init__(self, conn: socket.socket, err: int, pid: int, status: bytes = b""):
+    def __init__(self, server: Server, conn: socket.socket, err: int, pid: int, status: bytes = b""):
         self.pid, self.returncode = pid, None
-        self._conn, self._err, self._said, self._status = conn, err, bytearray(), bytearray(status)
+        self._server, self._conn, self._err = server, conn, err
+        self._said, self._status = bytearray(), bytearray(status)
+        try:  # readable once the run has ended, whoever reaps it (the command is not its parent)
+            self._pidfd = os.pidfd_open(pid)
+        except ProcessLookupError:  # ended and reaped already: its status is on its way
+            self._pidfd = -1
+        self._ended: float | None = None if self._pidfd >= 0 else time.monotonic()
 
     def running(self) -> bool:
-        """Not reaped by the server and not a zombie (asked of /proc: the command is not its parent)."""
-        if self.returncode is not None:
-            return False
-        try:
-            with open(f"/proc/{self.pid}/stat", "rb") as f:
-                stat = f.read()
-        except OSError:
-            return False
-        return stat[stat.rindex(b")") + 2:stat.rindex(b")") + 3] != b"Z"
+        """Not ended (a zombie counts as ended: the server may not have reaped it yet)."""
+        if self._ended is None and _readable([self._pidfd], 0):
+            self._end_seen()
+        return self.returncode is None and self._ended is None
+
+    def _end_seen(self) -> None:
+        self._ended = time.monotonic()
+        os.close(self._pidfd)
+        self._pidfd = -1
 
     def communicate(self, timeout: float | None = None) -> tuple[None, str]:
-        """(None, its stderr) once it has ended and closed it; TimeoutExpired past timeout s,
-        Gone where the server ended before saying how the run did."""
+        """(None, its stderr) once it has ended and closed it; TimeoutExpired past timeout s
+        (not where it ended in time and only the server's word is awaited), Gone where the
+        server ended, or gave no word STATUS_WAIT s after the run's end (it is then killed)."""
         deadline = None if timeout is None else time.monotonic() + timeout
         while self.returncode is None:
             told = self._status.endswith(b"\n")
             if told and self._err < 0:
                 self.returncode = os.waitstatus_to_exitcode(int(self._status))
                 break
-            left = None if deadline is None else deadline - time.monotonic()
-            if left is not None and left <= 0:
-                raise subprocess.TimeoutExpired("x3drbp run", timeout or 0.0)
-            ready = _readable(([self._err] if self._err >= 0 else []) + ([] if told else [self._conn.fileno()]), left)
+            now = time.monotonic()
+            waits = []
+            if self._ended is None or self._err >= 0:  # the run itself is still at it
+                if deadline is not None and now >= deadline:
+                    raise subprocess.TimeoutExpired("x3drbp run", timeout or 0.0)
+                waits.append(None if deadline is None else deadline - now)
+            if self._ended is not None and not told:
+                if now >= self._ended + STATUS_WAIT:
+                    self._server.give_up()
+                    raise Gone(f"the fork server gave no word of a run {STATUS_WAIT:g} s after it ended: stuck")
+                waits.append(self._ended + STATUS_WAIT - now)
+            fds = ([self._err] if self._err >= 0 else []) + ([] if told else [self._conn.fileno()])
+            ready = _readable(fds + ([self._pidfd] if self._pidfd >= 0 else []),
+                              None if None in waits else min(waits))
+            if self._pidfd in ready:
+                self._end_seen()
             if self._err in ready:
                 data = os.read(self._err, 1 << 16)
                 self._said += data
@@ -128,7 +154,7 @@ class WarmChild:
         return None, self._said.decode("utf-8", errors="replace")
 
     def wait(self) -> int | None:
-        """Its exit status once it has ended (None: the server ended first)."""
+        """Its exit status once it has ended (None: the server ended first, or is stuck)."""
         try:
             self.communicate()
         except Gone:
@@ -137,9 +163,11 @@ class WarmChild:
         return self.returncode
 
     def close(self) -> None:
-        if self._err >= 0:
-            os.close(self._err)
-            self._err = -1
+        for fd in (self._err, self._pidfd):
+            if fd >= 0:
+                os.close(fd)
+        self._err = self._pidfd = -1
+        self._ended = self._ended or time.monotonic()  # no longer watched: not to be waited on
         self._conn.close()
 
 
@@ -160,10 +188,13 @@ class Server:
     def __init__(self, proc: subprocess.Popen, folder: str, env: dict[str, str], live: set):
         self.proc, self.folder, self.env, self.live = proc, folder, env, live
         self.path = os.path.join(folder, "socket")
+        self.stuck = False
 
     def start(self, argv: list[str], backend: str) -> WarmChild:
-        """A run of `x3drbp ARGV` forked and in its own session; Gone where the server cannot take it."""
+        """A run of `x3drbp ARGV` forked and in its own session; Gone where the server cannot
+        take it (given up as stuck where it does not name the run within ANSWER_WAIT s)."""
         conn = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+        conn.settimeout(ANSWER_WAIT)  # connect, send and the answer: a stopped server takes them and says nothing
         r, w = os.pipe()
         try:
             try:
@@ -183,11 +214,23 @@ class Server:
         except (OSError, ValueError, Gone) as e:
             os.close(r)
             conn.close()
+            if isinstance(e, TimeoutError):
+                self.give_up()
+                e = Gone(f"the fork server named no run within {ANSWER_WAIT:g} s: stuck")
             raise Gone(str(e)) from None
-        return WarmChild(conn, r, int(first), rest)
+        return WarmChild(self, conn, r, int(first), rest)
 
     def alive(self) -> bool:
         return self.proc.poll() is None
+
+    def give_up(self) -> None:
+        """Stuck (stopped, say): SIGKILLed now, so that every run waiting on it ends as Gone
+        and is run afresh; server() starts the next one."""
+        self.stuck = True
+        try:
+            self.proc.kill()
+        except OSError:
+            pass
 
     def close(self) -> None:
         """Its stdin closed: it ends its runs (none is left: each command waits for its own) and
@@ -233,12 +276,12 @@ def _start(env: dict[str, str], root: str, live: set) -> Server | None:
 
 def server(root: str, live: set, interrupted: bool) -> Server | None:
     """This process's server for the present environment, started (or replaced) as needed to
-    run in `root`, its process kept in `live`; None once MAX_FAILURES servers failed to start
-    or died unasked (not `interrupted`: an interrupt's stop ends it)."""
+    run in `root`, its process kept in `live`; None once MAX_FAILURES servers failed to start,
+    died unasked (not `interrupted`: an interrupt's stop ends it) or were given up as stuck."""
     global _server, _failures
     with _lock:
         env = dict(os.environ)
-        if _server is not None and not _server.alive():
+        if _server is not None and (_server.stuck or not _server.alive()):
             if not interrupted:
                 _failures += 1
             _server.close()
