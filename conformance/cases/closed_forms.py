@@ -65,6 +65,13 @@ GRAVITY = spec("37.4.11 RigidBodyCollection: The gravity field indicates directi
 FORCES = spec("37.4.10 RigidBody: The torques and forces fields define zero or more sets of torque and force "
               "values that are applied to the object every frame. These are continuously applied until reset to "
               "zero by the user.", "V3.3")
+HINGE2 = spec("37.4.8 DoubleAxisHingeJoint: The DoubleAxisHingeJoint node represents a joint that has two independent "
+              "axes that are located around a common anchor point. Axis 1 is specified relative to the first body "
+              "(specified by the body1 field) and axis 2 is specified relative to the second body (specified by the "
+              "body2 field). Axis 1 can have limits and a motor, axis 2 can only have a motor.", "V3.3")
+HINGE2_LIMITS = spec("37.4.8 DoubleAxisHingeJoint: The minAngle1 and maxAngle1 fields are used to control the maximum "
+                     "angles through which the hinge is allowed to travel. A hinge may not travel more than π radians "
+                     "(or the equivalent angle base units) in either direction from its initial position.", "V3.3")
 HINGE2_OUTPUTS = spec("37.4.8 DoubleAxisHingeJoint: The hingeXAngle output fields report the current relative angle "
                       "between the two bodies in radians and the hingeXAngleRate field describes the rate at which "
                       "that angle is currently changing in radians per second.", "V3.3")
@@ -227,10 +234,33 @@ def hinge_limit(tr: TraceView, s: Settings, joint: str, lo: float, hi: float, od
     return [Measure(f"{joint}.angle farthest - the limit the fall reaches", abs(extreme - limit), travel, "rad",
                     HINGE_LIMITS, bound),
             Measure(f"{joint}.angle beyond limits", beyond, bound, "rad", HINGE_TRAVEL),
-            Measure(f"{joint}.angle at the end - the limit the fall reaches", abs(end - (lo if end <= 0 else hi)), bound,
-                    "rad", HINGE_TRAVEL),
+            Measure(f"{joint}.angle at the end - the limit the fall reaches", abs(end - (lo if end <= 0 else hi)),
+                    bound, "rad", HINGE_TRAVEL),
             Measure(f"{joint}.angle farthest - {named}", abs(extreme - ode_limit), honoured(bound, hi - lo), "rad",
                     ode_sign)]
+
+
+def stop_rebound(r: np.ndarray, bounce: float, pop: float, softness: float, unit: str, what: str, bounces: Basis,
+                 law: Basis) -> list[Measure]:
+    """A joint's relative rate r (one sample a step), nothing acting on it but its stops: the first
+    step after which r changes sign is the first impact; before = |r| before it, after = |r| after.
+    Spec (`bounces`, the stop bounce sentence): the stop sends the motion back part way, faster
+    than its error correction alone could (`pop`: a step's depth corrected at the stop's error
+    correction, with the row's softness) and slower than it came (by the softness), to ROUNDING.
+    Convention (`law`, ODE's): after = bounce x before, within the softness (the row yields by
+    CFM times its force), held to half the distance to no bounce or a full one."""
+    turned = np.flatnonzero(r[:-1] * r[1:] < 0)
+    names = (f"{what}'s rebound from the first stop, part way back (shortfall)",
+             "rebound rate - stop bounce x impact rate")
+    bound = softness + ROUNDING * (1 + float(np.max(np.abs(r))))
+    if not turned.size:  # no stop turned it back
+        return [Measure(names[0], math.inf, ROUNDING, unit, bounces),
+                Measure(names[1], math.inf, bound, unit, law, bound)]
+    k = int(turned[0])
+    before, after = abs(float(r[k])), abs(float(r[k + 1]))
+    return [Measure(names[0], max(pop - after, after - (before - softness), 0.0), ROUNDING, unit, bounces),
+            Measure(names[1], abs(after - bounce * before), honoured(bound, bounce * before, (1 - bounce) * before),
+                    unit, law, bound)]
 
 
 def stop_overshoot(speed: float, accel: float, dt: float, error_correction: float) -> float:
@@ -350,9 +380,10 @@ def anchor_gap(tr: TraceView, body1: str, body2: str, anchor: Sequence[float], s
 
 
 ANCHOR_OUTPUTS = convention(
-    "body1AnchorPoint and body2AnchorPoint are the anchor point as each body carries it, in world coordinates (x3drbp's "
-    "and ODE's dJointGetBallAnchor/dJointGetBallAnchor2: comparable, as 37.4.1 uses them to show a separation); "
-    "alternative: in each body's own frame, as the UOM's \"relative to local coordinate reference frame\" reads")
+    "body1AnchorPoint and body2AnchorPoint are the anchor point as each body carries it, in world coordinates "
+    "(x3drbp's and ODE's dJointGetBallAnchor/dJointGetBallAnchor2: comparable, as 37.4.1 uses them to show a "
+    "separation); alternative: in each body's own frame, as the UOM's \"relative to local coordinate reference "
+    "frame\" reads")
 
 
 def anchor_outputs(tr: TraceView, joint: str, body1: str, body2: str, anchor: Sequence[float],

@@ -11,8 +11,9 @@ from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import (HINGE2_OUTPUTS as OUTPUTS, ROUNDING, ROUNDING_ANGLE, STEP_SLACK,
-                                            anchor_outputs, honoured, max_norm, steps, stop_overshoot)
+from conformance.cases.closed_forms import (HINGE2 as JOINT, HINGE2_LIMITS as LIMITS, HINGE2_OUTPUTS as OUTPUTS,
+                                            ROUNDING, ROUNDING_ANGLE, STEP_SLACK, anchor_outputs, honoured, max_norm,
+                                            steps, stop_overshoot)
 from conformance.results import Measure, Settings, accuracy, convention, spec
 
 # hinge2_steering.x3d: two pairs of free bodies on their joint's anchor, no gravity
@@ -23,15 +24,8 @@ H2_PAIRS = {"Up": (np.array([0.0, 0.6, 0.8]), 1.0, 0.5, -0.6),
             "Down": (np.array([0.0, 1.0, 0.0]), -1.0, -0.7, 0.4)}
 H2_AXIS2 = {"Up": np.array([0.0, 0.8, -0.6]), "Down": np.array([0.0, 0.0, 1.0])}
 H2_ANCHOR = {"Up": (-1.0, 0.0, 0.0), "Down": (1.0, 0.0, 0.0)}  # both bodies of a pair start on it, unturned
-JOINT = spec("37.4.8 DoubleAxisHingeJoint: The DoubleAxisHingeJoint node represents a joint that has two independent "
-             "axes that are located around a common anchor point. Axis 1 is specified relative to the first body "
-             "(specified by the body1 field) and axis 2 is specified relative to the second body (specified by the "
-             "body2 field). Axis 1 can have limits and a motor, axis 2 can only have a motor.", "V3.3")
 MOTOR = spec("37.4.8 DoubleAxisHingeJoint: The maxTorque1 field defines the maximum amount of torque that the motor "
              "can apply on axis 1 in order to achieve the desired desiredAngularVelocity1 value.", "V3.3")
-LIMITS = spec("37.4.8 DoubleAxisHingeJoint: The minAngle1 and maxAngle1 fields are used to control the maximum "
-              "angles through which the hinge is allowed to travel. A hinge may not travel more than π radians (or "
-              "the equivalent angle base units) in either direction from its initial position.", "V3.3")
 TRAVEL = accuracy("a rigid stop acting on the step after the one that crosses it, the motor still pushing: the turn "
                   "past the stop by one step's travel and the error correction's steady state "
                   "(closed_forms.stop_overshoot), and resting there")
