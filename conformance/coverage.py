@@ -90,11 +90,6 @@ UNCOVERED: dict[str, str] = {
     "CollisionCollection.softnessErrorCorrection": "acts only with ERROR_REDUCTION in appliedParameters, which no "
                                                    "scene sets",
     "RigidBodyCollection.maxCorrectionSpeed": "no scene sets it: a cap on how fast penetration is corrected",
-    **{f"RigidBodyCollection.{f}": "no scene sets the collection's own: auto_disable sets each body's"
-       for f in ("autoDisable", "disableAngularSpeed", "disableLinearSpeed", "disableTime")},
-    "RigidBody.disableAngularSpeed": "auto_disable sets it on every body, but under the clause's any-one reading "
-                                     "no body's disabling hangs on it alone (Drifting spins faster than it, and "
-                                     "its linear speed is under its own threshold)",
     "DoubleAxisHingeJoint.stop1ConstantForceMix": "hinge2_stop_bounce leaves it at 0.001, where the stop's row "
                                                   "yields 0.025 rad/s of the 0.6 rebound: only a far softer stop "
                                                   "would turn a verdict, against ODE's law",

@@ -400,6 +400,25 @@ def anchor_outputs(tr: TraceView, joint: str, body1: str, body2: str, anchor: Se
                    honoured(bound, apart), "m", ANCHOR_OUTPUTS, bound)
 
 
+def stops_at(tr: TraceView, s: Settings, body: str, p0: Sequence[float], v0: Sequence[float], w0: Sequence[float],
+             time: float, basis: Basis) -> list[Measure]:
+    """A free body drifting at v0 and turning at w0 (nothing acting) until it is disabled after
+    ceil(time/h) steps, then still: p = p0 + v0 h min(n, N), v = v0 and w = w0 while n < N, 0
+    after. Exact but for ROUNDING (the evaluator zeroes a disabled body's velocities)."""
+    h = s.dt
+    p0, v0, w0 = (np.asarray(x, dtype=np.float64) for x in (p0, v0, w0))
+    t, p = tr.series(body, "position")
+    _, v = tr.series(body, "linearVelocity")
+    _, w = tr.series(body, "angularVelocity")
+    n = steps(t, h)[:, None]
+    stop = np.ceil(time / h - 1e-9)
+    moving = n < stop
+    return [Measure(f"{body}.position (stops at disableTime)", max_norm(p - (p0 + v0 * h * np.minimum(n, stop))),
+                    ROUNDING * (1.0 + np.linalg.norm(p0)), "m", basis),
+            Measure(f"{body}.linearVelocity", max_norm(v - np.where(moving, v0, 0.0)), ROUNDING, "m/s", basis),
+            Measure(f"{body}.angularVelocity", max_norm(w - np.where(moving, w0, 0.0)), ROUNDING, "rad/s", basis)]
+
+
 def held(tr: TraceView, body: str, position: Sequence[float], orientation: Sequence[float],
          basis: Basis) -> list[Measure]:
     """A body no physics runs on: whatever it reports against its file state, with no tolerance

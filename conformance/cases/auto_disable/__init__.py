@@ -23,7 +23,7 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
 from conformance.cases.closed_forms import (ROUNDING, ROUNDING_ANGLE, G, CFM_DEFAULT, ERP_DEFAULT, ballistic,
-                                            max_norm, steps)
+                                            max_norm, steps, stops_at)
 from conformance.results import Measure, Settings, convention, spec
 
 
@@ -108,20 +108,7 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     pushed = ballistic("Pushed", (0.0, 1.0, 0.0), (0.0, 0.0, 0.0), AD_PUSH, rest)(traces, settings)
     out += [dataclasses.replace(m, quantity=f"{m.quantity} (pushed, never disabled)") for m in pushed]
     # Drifting: the moment it stops (convention)
-    t, p = tr.series("Drifting", "position")
-    _, v = tr.series("Drifting", "linearVelocity")
-    _, w = tr.series("Drifting", "angularVelocity")
-    n = steps(t, h)[:, None]
-    stop = np.ceil(AD_TIME / h - 1e-9)
-    moving = n < stop
-    out += [Measure("Drifting.position (stops at disableTime)",
-                    max_norm(p - (AD_DRIFT_P0 + AD_DRIFT_V0 * h * np.minimum(n, stop))),
-                    ROUNDING * (1.0 + np.linalg.norm(AD_DRIFT_P0)), "m", convention(ANY_ONE)),
-            Measure("Drifting.linearVelocity", max_norm(v - np.where(moving, AD_DRIFT_V0, 0.0)),
-                    ROUNDING, "m/s", convention(ANY_ONE)),
-            Measure("Drifting.angularVelocity", max_norm(w - np.where(moving, AD_DRIFT_W0, 0.0)),
-                    ROUNDING, "rad/s", convention(ANY_ONE))]
-    return out
+    return out + stops_at(tr, s, "Drifting", AD_DRIFT_P0, AD_DRIFT_V0, AD_DRIFT_W0, AD_TIME, convention(ANY_ONE))
 
 
 # the scene's text just before Drifting's disable fields (the other bodies' read alike)
