@@ -78,17 +78,7 @@ REASONS: dict[str, str] = {
 
 # Observable fields no mutation shows a verdict turn on, and no case is being written for: what
 # a case (or a mutation of one) would have to show.
-_CONTACT = ("a CollisionSensor's Contacts carry the collection's value (37.4.4: default values \"assigned to all "
-            "Contact nodes generated from the CollisionSensor node\"), and no case reads it there; an author's own "
-            "value reaches the physics only through set_contacts from a Script, which x3drbp does not run")
 UNCOVERED: dict[str, str] = {
-    **{f"Contact.{f}": _CONTACT for f in ("appliedParameters", "bounce", "frictionCoefficients", "frictionDirection",
-                                          "minBounceSpeed", "slipCoefficients", "softnessConstantForceMix",
-                                          "softnessErrorCorrection", "surfaceSpeed")},
-    "CollisionCollection.softnessConstantForceMix": "acts only with CONSTANT_FORCE in appliedParameters, which no "
-                                                    "scene sets",
-    "CollisionCollection.softnessErrorCorrection": "acts only with ERROR_REDUCTION in appliedParameters, which no "
-                                                   "scene sets",
     "RigidBodyCollection.maxCorrectionSpeed": "no scene sets it: a cap on how fast penetration is corrected",
     "DoubleAxisHingeJoint.stop1ConstantForceMix": "hinge2_stop_bounce leaves it at 0.001, where the stop's row "
                                                   "yields 0.025 rad/s of the 0.6 rebound: only a far softer stop "

@@ -336,9 +336,11 @@ def friction_fit(tr: TraceView, s: Settings, name: str, mu: float, v0: float, ta
             2 * mu * G * s.dt + ROUNDING * (1 + abs(v0) + abs(target)))
 
 
-def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
+def sensor_contacts(tr: TraceView, sensor: str, values: Sequence[str] = (),
+                    texts: Sequence[str] = ()) -> dict[float, list[dict]]:
     """A CollisionSensor's contacts per frame time: position, contactNormal, depth (arrays) and
-    body1, body2, geometry1, geometry2 (names), from its contacts[i].FIELD rows."""
+    body1, body2, geometry1, geometry2 (names), from its contacts[i].FIELD rows; and the Contact
+    fields named in `values` (arrays; None where a contact lacks the row) and `texts` (as written)."""
     out: dict[float, list[dict]] = {}
     for i in range(10_000):
         try:
@@ -349,9 +351,20 @@ def sensor_contacts(tr: TraceView, sensor: str) -> dict[float, list[dict]]:
         _, depth = tr.series(sensor, f"contacts[{i}].depth")
         names = {f: dict(zip(*tr.text(sensor, f"contacts[{i}].{f}")))
                  for f in ("body1", "body2", "geometry1", "geometry2")}
+        more: dict[str, dict] = {}
+        for f in (*values, *texts):
+            key = f"contacts[{i}].{f}"
+            if (sensor, key) in tr.keys():
+                at, got = tr.series(sensor, key)
+                more[f] = dict(zip(at.tolist(), got))
+            elif (sensor, key) in tr.text_keys():
+                more[f] = dict(zip(*tr.text(sensor, key)))
+            else:
+                more[f] = {}
         for k, t in enumerate(times.tolist()):
             c = {"position": pos[k], "contactNormal": normal[k], "depth": float(depth[k, 0])}
             c.update({f: names[f].get(t) for f in names})
+            c.update({f: more[f].get(t) for f in more})
             out.setdefault(t, []).append(c)
     return out
 
