@@ -191,3 +191,53 @@ def test_the_plugin_refuses_an_unknown_backend(pytester):
     result = pytester.runpytest("--x3drbp-backend", "nope")
     assert result.ret == pytest.ExitCode.USAGE_ERROR
     result.stderr.fnmatch_lines(["*--x3drbp-backend: unknown backend(s) nope; known: bullet, mujoco, dart, ode, pymunk*"])
+
+
+# -- plug-ins that crash, hang or cannot say their version ------------------------------------
+
+NO_VERSION = """from backends import base
+class Backend(base.Backend):
+    name, declared = "noversion", {}
+    def version(self):
+        raise RuntimeError("no licence server")
+    def build(self, world, dt):
+        raise NotImplementedError
+BACKEND = Backend()
+"""
+
+
+@pytest.fixture
+def faulty(tmp_path, monkeypatch):
+    """Three plug-ins: `segv` crashes the interpreter on import, `hang` sleeps on import (having
+    left the file tmp_path/hang-imported), `noversion` imports but its version() raises."""
+    sources = {"x3drbp_segv": "import ctypes\nctypes.string_at(0)\n",
+               "x3drbp_hang": f"import time\nopen({str(tmp_path / 'hang-imported')!r}, 'w').close()\ntime.sleep(600)\n",
+               "x3drbp_noversion": NO_VERSION}
+    for module, source in sources.items():
+        (tmp_path / f"{module}.py").write_text(source)
+    site = tmp_path / "site"
+    install(site, "x3drbp-faulty", {m: str(tmp_path / f"{m}.py") for m in sources},
+            {m.split("_")[1]: f"{m}:BACKEND" for m in sources})
+    on_path(monkeypatch, site)
+    monkeypatch.syspath_prepend(str(site))  # for this process's registry too (fresh_registry)
+    return tmp_path / "hang-imported"
+
+
+def test_backends_lists_a_plug_in_that_crashes_hangs_or_cannot_say_its_version(faulty):
+    listed = cli("backends", "--timeout", "5")
+    assert listed.returncode == 0 and "Traceback" not in listed.stderr, listed
+    lines = listed.stdout.splitlines()
+    assert [ln.split()[0].rstrip(":") for ln in lines][:len(base.IN_TREE)] == list(base.IN_TREE)
+    assert "hang: unavailable: the backend probe gave no answer within 5 s (importing it or asking its version)" in lines
+    assert "noversion: unavailable: version() failed: RuntimeError: no licence server" in lines
+    assert any(ln.startswith("segv: unavailable: killed by SIGSEGV") for ln in lines), lines
+    if MUJOCO:
+        assert any(ln.startswith("mujoco ") and "unavailable" not in ln for ln in lines)
+
+
+def test_a_command_whose_backends_leave_a_hanging_plug_in_out_never_imports_it(faulty, tmp_path, fresh_registry):
+    ran = cli("conformance", "--cases", "free_fall", "--backends", "pymunk", "--out", str(tmp_path / "out"), "-q")
+    assert ran.returncode == 0, ran.stderr
+    assert not faulty.exists()  # its import never ran: it cost the command nothing
+    info = probe.backend_table(5, ["hang", "pymunk"])  # named, it costs one probe of at most 5 s
+    assert faulty.exists() and not info["hang"].usable and info["pymunk"].usable

@@ -148,10 +148,9 @@ def backend_plans(names: Sequence[str], timeout: float = children.DEFAULT_TIMEOU
     process (importing an engine can crash) once probe.backend_table has said which engines
     load; and why the others cannot run (all of them, where that child gave no answer).
     ValueError naming unknown backends."""
-    info = probe.backend_table(timeout)
-    named = probe.named_backends(names, info) if names else list(info)  # unusable ones listed as skipped
-    usable = [n for n in named if info[n].usable]
-    skipped = {n: info[n].unavailable or "" for n in named if not info[n].usable}
+    info = probe.backend_table(timeout, names)  # unusable ones listed as skipped
+    usable = [n for n, i in info.items() if i.usable]
+    skipped = {n: i.unavailable or "" for n, i in info.items() if not i.usable}
     if not usable:
         return {}, skipped
     declared, why = _declarations(usable, timeout)

@@ -63,9 +63,8 @@ def cmd_compare(args: argparse.Namespace) -> int:
     if loaded is None:
         return EXIT_NOTHING_COMPARED
     scene = loaded[0]
-    info = probe.backend_table(args.timeout)
     try:
-        backends = probe.named_backends(options.names(args.backends), info)
+        info, backends = probe.chosen(options.names(args.backends), args.timeout)
     except ValueError as e:
         return _usage(str(e))
     if len(backends) < 2:

@@ -167,8 +167,7 @@ def chosen(args: argparse.Namespace, select: Callable[[Sequence[str]], list[Any]
     except KeyError as e:
         raise ValueError(e.args[0]) from None
     from conformance.runner import probe
-    info = probe.backend_table(args.timeout)
-    return cases, info, probe.named_backends(names(args.backends), info)
+    return cases, *probe.chosen(names(args.backends), args.timeout)
 
 
 def publish(out: str, name: str, text: str, data: dict) -> None:

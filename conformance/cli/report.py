@@ -133,9 +133,8 @@ def features(matrix: dict, tables: dict) -> dict:
 @children.interruptible
 def cmd_report(args: argparse.Namespace) -> int:
     from reports.report_page import dead_links, write_report  # reports read results; imported when there are some
-    info = probe.backend_table()
     try:
-        named = probe.named_backends(options.names(args.backends), info)
+        info, named = probe.chosen(options.names(args.backends))
     except ValueError as e:
         print(f"x3drbp report: {e}", file=sys.stderr)
         return EXIT_USAGE

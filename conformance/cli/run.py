@@ -188,15 +188,24 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def cmd_backends(args: argparse.Namespace) -> int:
+    """Each backend as the probe finds it, in a child with a time limit (conformance/runner/probe.py):
+    a plug-in that crashes or hangs on import, or cannot say its version, is listed as unavailable
+    with why. The feature tables are read here, of the backends that imported well there."""
+    from conformance.runner import children, probe  # not in every `x3drbp run` child
     for note in base.registry_notes():  # two entry points of one name
         print(f"x3drbp backends: note: {note}", file=sys.stderr)
-    for name, b in base.available().items():
-        if isinstance(b, str):
-            print(f"{name}: {b}")
+    for name, info in probe.backend_table(args.timeout or children.DEFAULT_TIMEOUT).items():
+        if not info.usable:
+            print(f"{name}: unavailable: {info.unavailable}")
             continue
-        print(f"{name} {b.version()}")
+        print(f"{name} {info.version}")
         if args.features:
-            for feature, d in sorted(b.table().items()):
+            try:
+                table = base.load(name).table()
+            except Exception as e:  # the plug-in's own code: one line, never a traceback
+                print(f"  (no feature table: {type(e).__name__}: {e})")
+                continue
+            for feature, d in sorted(table.items()):
                 print(f"  {feature}: {d.support.value}{' (' + d.note + ')' if d.note else ''}")
     return EXIT_OK
 
@@ -227,4 +236,7 @@ def add_command(sub) -> None:
     b = sub.add_parser("backends", help="list the registered backends (entry point group x3drbp.backends), their "
                       "engine versions and declared features")
     b.add_argument("--features", action="store_true", help="print each backend's feature table")
+    b.add_argument("--timeout", type=options.positive, metavar="S",
+                   help="time limit in seconds for the probe to import a backend and ask its version (each "
+                        "one that crashes or hangs costs one probe, at most S; default 60)")
     b.set_defaults(func=cmd_backends)

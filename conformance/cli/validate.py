@@ -95,9 +95,8 @@ def cmd_validate(args: argparse.Namespace) -> int:
         result = check_case(case, [TraceView(r) for r in traces], args.dt)
         if result.verdict == results.ERROR:
             return _unreadable([f"{', '.join(args.trace)}: case {case.name}: {result.reason}"])
-    info = probe.backend_table(args.timeout)
     try:
-        backends = probe.named_backends(options.names(args.against), info)
+        info, backends = probe.chosen(options.names(args.against), args.timeout)
     except ValueError as e:
         return _usage(str(e))
     dt = args.dt or 1.0 / 240.0

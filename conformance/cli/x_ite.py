@@ -54,8 +54,8 @@ def cmd_cases(args: argparse.Namespace) -> int:
     from reports.x_ite_text import render  # reports render results: imported when there are some
     try:
         chosen = C.select(options.names(args.cases) or None)
-        info = probe.backend_table()
-        backends = [b for b in probe.named_backends(options.names(args.against), info) if info[b].usable]
+        info, named = probe.chosen(options.names(args.against))
+        backends = [b for b in named if info[b].usable]
         thresholds = options.thresholds(args.threshold)
     except (KeyError, ValueError) as e:  # an unknown case, backend or threshold
         _say(str(e.args[0]))

@@ -1,6 +1,7 @@
-"""Which backends are here: the registry asked in a child process.
+"""Which backends are here: the registry asked in a child process with a time limit.
 
-Importing an engine can crash the interpreter; the suite must survive that too.
+Importing an engine can crash the interpreter or hang it; the suite must survive that too,
+and a command pays only for the engines it names.
 """
 
 from __future__ import annotations
@@ -17,64 +18,53 @@ from conformance.runner.children import DEFAULT_TIMEOUT
 _PROBE = """
 import json, sys
 from backends import base
-only = sys.argv[1:]
-if only:  # one engine alone (after a probe of all of them died)
-    found = {}
-    for name in only:
-        try:
-            found[name] = base.load(name)
-        except Exception as e:
-            found[name] = f"{type(e).__name__}: {e}"
-else:
+names = sys.argv[1:] or list(base.engines())
+print("\\nx3drbp-answer " + json.dumps(names), flush=True)  # what it asks, in order
+for name in names:  # one answer line each, as soon as it is known: a crash or hang names its engine
     try:
-        found = base.available()
-    except Exception:  # base.available() catches ImportError only: go engine by engine
-        found = {}
-        for name in base.engines():
-            try:
-                found[name] = base.load(name)
-            except Exception as e:
-                found[name] = f"{type(e).__name__}: {e}"
-out = {}
-for name, b in found.items():
-    if isinstance(b, str):
-        out[name] = {"unavailable": b}
+        b = base.load(name)
+    except Exception as e:
+        answer = {"unavailable": str(e)}
     else:
         try:
-            out[name] = {"version": str(b.version()), "integration": getattr(b, "integration", None),
-                         "accurate_integration": getattr(b, "accurate_integration", None)}
+            answer = {"version": str(b.version()), "integration": getattr(b, "integration", None),
+                      "accurate_integration": getattr(b, "accurate_integration", None)}
         except Exception as e:  # a backend whose engine imports but cannot say its version
-            out[name] = {"unavailable": f"version() failed: {type(e).__name__}: {e}"}
-print("\\nx3drbp-answer " + json.dumps(out))
+            answer = {"unavailable": f"version() failed: {type(e).__name__}: {e}"}
+    print("\\nx3drbp-answer " + json.dumps({name: answer}), flush=True)
 """
 
 
 ANSWER = "x3drbp-answer "  # the line an asking script prints its JSON answer on
 
 
-def ask(script: str, args: Sequence[str], timeout: float, what: str) -> tuple[Any, str]:
+def answers(script: str, args: Sequence[str], timeout: float, what: str) -> tuple[list[Any], str]:
     """Run a Python script that imports engines in a child (importing one can crash) and read
-    the JSON it prints after ANSWER (engines may print on import: pybullet does): (the answer,
-    or None and why there is none, naming `what` was asked)."""
+    the JSON answers it printed, each after ANSWER (engines may print on import: pybullet
+    does), those before a crash or a hang included; and why it ended before its end ("" when
+    it exited 0), naming `what` was asked."""
     try:
         done = children.call([sys.executable, "-c", script, *args], timeout)
     except OSError as e:
-        return None, f"{what} could not start: {e}"
+        return [], f"{what} could not start: {e}"
+    found = []
+    for line in done.stdout.splitlines():
+        if line.startswith(ANSWER):
+            try:
+                found.append(json.loads(line[len(ANSWER):]))
+            except json.JSONDecodeError:  # cut off by the crash
+                pass
     if done.returncode is None:
-        return None, f"{what} gave no answer within {timeout:g} s"
-    found = [ln for ln in done.stdout.splitlines() if ln.startswith(ANSWER)]
-    if done.returncode == 0 and found:
-        try:
-            return json.loads(found[-1][len(ANSWER):]), ""
-        except json.JSONDecodeError:
-            pass
-    return None, children.classify(done.returncode, done.stderr).reason or f"{what} printed nothing"
+        return found, f"{what} gave no answer within {timeout:g} s"
+    if done.returncode != 0:
+        return found, children.classify(done.returncode, done.stderr).reason or f"{what} printed nothing"
+    return found, "" if found else f"{what} printed nothing"
 
 
-def _probe(names: Sequence[str], timeout: float) -> tuple[dict, str]:
-    """Run the probe in a child: (what it reported, why it reported nothing)."""
-    found, why = ask(_PROBE, names, timeout, "the backend probe")
-    return found or {}, why
+def ask(script: str, args: Sequence[str], timeout: float, what: str) -> tuple[Any, str]:
+    """One answer (answers()'s last) of a script that ran to its end: (the answer, or None and why there is none)."""
+    found, why = answers(script, args, timeout, what)
+    return (found[-1], "") if found and not why else (None, why)
 
 
 class Unprobed(BackendInfo):
@@ -92,29 +82,45 @@ def named_backends(names: Sequence[str], info: dict[str, BackendInfo]) -> list[s
     return list(names) or [n for n, i in info.items() if i.usable or isinstance(i, Unprobed)]
 
 
-def backend_table(timeout: float = DEFAULT_TIMEOUT) -> dict[str, BackendInfo]:
-    """backends.base.available(), asked in a child process: importing an engine can crash,
-    and the suite must survive that too. Should the probe of all engines die, each engine
-    is probed alone, so that one broken engine does not hide the others. Every registered
-    name (base.engines(): the entry point group x3drbp.backends) gets an entry."""
+def backend_table(timeout: float = DEFAULT_TIMEOUT, names: Sequence[str] = ()) -> dict[str, BackendInfo]:
+    """The backends `names` (default: every one registered, base.engines(): the entry point
+    group x3drbp.backends, as the child finds it) as found here, each asked in a child with a
+    time limit: importing an engine can crash or hang, and the suite must survive that too.
+    The child says what it asks, then answers engine by engine, so one that crashes or hangs it
+    is the first unanswered: it is listed Unprobed with why, and a new child asks the rest, each
+    such engine costing one child and at most one `timeout`; an engine left out of `names` is
+    never imported. ValueError naming any name the registry does not know, before any child."""
     from backends import base  # the registry itself imports no engine
-    data, why = _probe([], timeout)
-    if not data:
-        whys = {}
-        for name in base.engines():
-            one, whys[name] = _probe([name], timeout)
-            data.update(one)
-    else:
-        whys = {}
-    out = {}
-    for name in dict.fromkeys([*base.engines(), *data]):
-        d = data.get(name)
-        if d is None:
-            out[name] = Unprobed(name, unavailable=whys.get(name) or why or "not reported by base.available()")
-        else:
-            why_not = d.get("unavailable")
-            if why_not and why_not.startswith("unavailable: "):  # base.available()'s own wording
-                why_not = why_not[len("unavailable: "):]
-            out[name] = BackendInfo(name, d.get("version"), why_not, d.get("integration"),
-                                    d.get("accurate_integration"))
-    return out
+    known = base.engines()
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        raise ValueError(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(known)}")
+    found: dict[str, dict] = {}
+    out: dict[str, BackendInfo] = {}
+    asked: list[str] = list(dict.fromkeys(names))
+    todo = asked
+    while True:
+        said, why = answers(_PROBE, todo, timeout, "the backend probe")
+        listed = said[0] if said and isinstance(said[0], list) else todo or list(known)
+        asked = asked or listed
+        for one in said[1:]:
+            found.update(one)
+        left = [n for n in listed if n not in found]
+        if left:  # the engine it was asking about when it ended
+            why = why or "the backend probe ended"
+            out[left[0]] = Unprobed(left[0], unavailable=f"{why} (importing it or asking its version)")
+        todo = left[1:]
+        if not todo:
+            break
+    for name, d in found.items():
+        out[name] = BackendInfo(name, d.get("version"), d.get("unavailable"), d.get("integration"),
+                                d.get("accurate_integration"))
+    return {n: out[n] for n in asked}
+
+
+def chosen(names: Sequence[str], timeout: float = DEFAULT_TIMEOUT) -> tuple[dict[str, BackendInfo], list[str]]:
+    """What a command's --backends names (default: every registered backend) is here, probed
+    alone (backend_table), and the backends to run or report (named_backends); ValueError
+    naming unknown ones."""
+    info = backend_table(timeout, names)
+    return info, named_backends(names, info)
