@@ -83,4 +83,6 @@ CASE = Case("contact_slip", "contact_slip.x3d",
                        "CollisionCollection.appliedParameters.SLIP-2", "CollisionCollection.frictionCoefficients",
                        "CollidableShape.geometry.Sphere"),
             # without the flags the factors are not applied (the collection's default, "BOUNCE", with bounce 0)
-            mutations=(Mutation(" appliedParameters='\"SLIP-1\" \"SLIP-2\"'", "", spec=False),))
+            mutations=(Mutation(" appliedParameters='\"SLIP-1\" \"SLIP-2\"'", "", spec=False),
+                       # no slip: Coulomb's cone (mu 2) holds both balls, pushed at 5 N
+                       Mutation(" slipFactors='0.1 0.05'", "", spec=False)))
