@@ -83,9 +83,6 @@ UNCOVERED: dict[str, str] = {
     "DoubleAxisHingeJoint.stop1ConstantForceMix": "hinge2_stop_bounce leaves it at 0.001, where the stop's row "
                                                   "yields 0.025 rad/s of the 0.6 rebound: only a far softer stop "
                                                   "would turn a verdict, against ODE's law",
-    "UniversalJoint.body2": "universal_joint's body2 is Lower: dropping it joins Upper, already pinned by the "
-                            "shoulder, to the world, a loop the reference backend (MuJoCo) refuses; a scene with a "
-                            "free Upper would show it",
 }
 
 
