@@ -258,16 +258,22 @@ def engines() -> tuple[str, ...]:
     return tuple(_registry()[0])
 
 
-def load(name: str) -> Backend:
-    """The backend of that name, importing its module alone; ImportError (with the reason)
-    if its engine is missing or its module fails to import in any other way."""
+def entry(name: str) -> str:
+    """Where the backend of that name is, "module:ATTRIBUTE", found without importing it;
+    KeyError naming the known ones where no backend has the name."""
     if name in IN_TREE:  # x3drbp's own wins its name (_registry's order): no entry point need be read
-        value = f"backends.{name}:BACKEND"
-    else:
-        found = _registry()[0]
-        if name not in found:
-            raise KeyError(f"no backend {name!r}; known: {', '.join(found)}")
-        value = found[name].value
+        return f"backends.{name}:BACKEND"
+    found = _registry()[0]
+    if name not in found:
+        raise KeyError(f"no backend {name!r}; known: {', '.join(found)}")
+    return found[name].value
+
+
+def load(name: str) -> Backend:
+    """The backend of that name, importing its module alone; KeyError where none has the name
+    (entry), ImportError (with the reason) if its engine is missing or its module fails to
+    import in any other way."""
+    value = entry(name)
     module, _, attr = value.partition(":")
     try:
         backend = importlib.import_module(module)

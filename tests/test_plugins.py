@@ -241,3 +241,43 @@ def test_a_command_whose_backends_leave_a_hanging_plug_in_out_never_imports_it(f
     assert not faulty.exists()  # its import never ran: it cost the command nothing
     info = probe.backend_table(5, ["hang", "pymunk"])  # named, it costs one probe of at most 5 s
     assert faulty.exists() and not info["hang"].usable and info["pymunk"].usable
+
+
+WANDER = """import os
+from backends.pymunk import BACKEND as _REAL
+AWAY = {away!r}
+os.chdir(AWAY)
+
+
+class Wander:
+    \"\"\"pymunk, changing directory on import and at every build.\"\"\"
+
+    def __getattr__(self, name):
+        return getattr(_REAL, name)
+
+    def build(self, world, dt):
+        os.chdir(AWAY)
+        return _REAL.build(world, dt)
+
+
+BACKEND = Wander()
+"""
+
+
+def test_outputs_go_where_the_command_was_run_whatever_directory_a_plug_in_moves_to(tmp_path, monkeypatch):
+    pytest.importorskip("pymunk")
+    away, here = tmp_path / "away", tmp_path / "here"
+    away.mkdir()
+    here.mkdir()
+    (tmp_path / "x3drbp_wander.py").write_text(WANDER.format(away=str(away)))
+    site = tmp_path / "site"
+    install(site, "x3drbp-wander", {"x3drbp_wander": str(tmp_path / "x3drbp_wander.py")},
+            {"wander": "x3drbp_wander:BACKEND"})
+    on_path(monkeypatch, site, ROOT)
+    (here / "fall.x3d").write_bytes(open(C.BY_NAME["free_fall"].path, "rb").read())
+    ran = subprocess.run([sys.executable, "-m", "conformance.cli", "run", "fall.x3d", "--backend", "wander",
+                          "--trace", "t.csv", "--timing", "timing.json", "--rerun", "r.rrd"],
+                         cwd=here, capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
+    assert ran.returncode == 0, ran.stderr
+    assert sorted(os.listdir(here)) == ["fall.x3d", "r.rrd", "t.csv", "timing.json"]
+    assert os.listdir(away) == []

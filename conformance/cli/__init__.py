@@ -100,6 +100,7 @@ def main(argv: list[str] | None = None) -> int:
         importlib.import_module(f"conformance.cli.{module}").add_command(sub)
     parser.set_defaults(main=main)  # `x3drbp report` runs the other commands through it
     args = parser.parse_args(argv)
+    given = _resolve_outputs(args)
     try:
         status = args.func(args)
         if sys.stdout is not None:
@@ -108,16 +109,16 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         return EXIT_INTERRUPTED
     except CannotWrite as e:  # an output file: its path, as given, and why
-        _say(f"x3drbp {args.command}: {e}")
+        _say(f"x3drbp {args.command}: cannot write {_as_given(e.path, given) or e.path}: {e.reason}")
         return EXIT_CANNOT_WRITE
     except BrokenPipeError as e:
         if _stdout_gone():
             _quiet_stdout()
             return EXIT_BROKEN_PIPE
-        _say(f"x3drbp {args.command}: {_oserror(e, _outputs(args))}")
+        _say(f"x3drbp {args.command}: {_oserror(e, given)}")
         return EXIT_CANNOT_WRITE
     except OSError as e:  # the last resort: one line, never a traceback
-        _say(f"x3drbp {args.command}: {_oserror(e, _outputs(args))}")
+        _say(f"x3drbp {args.command}: {_oserror(e, given)}")
         return EXIT_CANNOT_WRITE
 
 
@@ -127,24 +128,41 @@ def _modules(argv: list[str]) -> list[str]:
     return [COMMANDS[asked]] if asked in COMMANDS else list(dict.fromkeys(COMMANDS.values()))
 
 
-# the options that name an output, file or folder (and run's --trace; validate's reads one)
-OUTPUT_OPTIONS = ("out", "json", "rerun", "timing")
+# the options that name an output, file or folder (and the trace run and x-ite run write;
+# validate's are read); expectations' --pins is read and written
+OUTPUT_OPTIONS = ("out", "json", "rerun", "timing", "pins")
 
 
-def _outputs(args: argparse.Namespace) -> list[str]:
-    names = OUTPUT_OPTIONS + (("trace",) if args.command == "run" else ())
-    return [os.path.abspath(v) for v in (getattr(args, n, None) for n in names) if isinstance(v, str) and v]
+def _resolve_outputs(args: argparse.Namespace) -> dict[str, str]:
+    """Every output path the command was given made absolute against the folder it was run
+    in, before anything runs: a plug-in that changes directory (on import, in a build) moves
+    no output. {absolute: as given}, for the messages that name one."""
+    given = {}
+    for name in OUTPUT_OPTIONS + (("trace",) if args.command in ("run", "x-ite") else ()):
+        value = getattr(args, name, None)
+        if isinstance(value, str) and value:
+            setattr(args, name, os.path.abspath(value))
+            given[getattr(args, name)] = value
+    return given
 
 
-def _oserror(e: OSError, outputs: list[str] = ()) -> str:
+def _as_given(path: str, given: dict[str, str]) -> str | None:
+    """An output's absolute path as the command line named it (or a file within a folder it
+    named); None where it is none of them."""
+    for full, value in given.items():
+        if path == full:
+            return value
+        if path.startswith(os.path.join(full, "")):
+            return os.path.join(value, path[len(os.path.join(full, "")):])
+    return None
+
+
+def _oserror(e: OSError, given: dict[str, str]) -> str:
     """One line for an OSError: `cannot write PATH: REASON` where PATH is an output the
-    command was given (an --out folder that cannot be made, say), else `PATH: REASON`."""
+    command was given (an --out folder that cannot be made, say), as given, else `PATH: REASON`."""
     reason = e.strerror or str(e) or type(e).__name__
     if not e.filename:
         return reason
     path = os.fsdecode(e.filename) if isinstance(e.filename, (str, bytes)) else str(e.filename)
-    full = os.path.abspath(path)
-    if any(full == o or full.startswith(o + os.sep) for o in outputs):
-        return f"cannot write {path}: {reason}"
-    return f"{path}: {reason}"
-
+    shown = _as_given(os.path.abspath(path), given)
+    return f"{path}: {reason}" if shown is None else f"cannot write {shown}: {reason}"

@@ -118,17 +118,19 @@ def cmd_run(args: argparse.Namespace) -> int:
         print(f"x3drbp run: {problem}", file=sys.stderr)
         return EXIT_USAGE
     try:
-        backend = base.load(args.backend)
+        base.entry(args.backend)
     except KeyError as e:  # a name no backend registers: bad usage
         print(f"x3drbp run: {e.args[0]}", file=sys.stderr)
         return EXIT_USAGE
-    except ImportError as e:
-        print(f"x3drbp run: backend {args.backend}: {e}", file=sys.stderr)
-        return EXIT_ERROR
-    loaded = scene_to_run(args.scene)
+    loaded = scene_to_run(args.scene)  # before the backend's import: a plug-in that changes directory moves no input
     if loaded is None:
         return EXIT_ERROR
     scene, ws = loaded
+    try:
+        backend = base.load(args.backend)
+    except ImportError as e:
+        print(f"x3drbp run: backend {args.backend}: {e}", file=sys.stderr)
+        return EXIT_ERROR
     refused, approximated = [], {}
     for use, d in base.judged(backend, scene, ws):  # each named with its value
         if d.support is base.Support.UNSUPPORTED:
