@@ -79,9 +79,6 @@ REASONS: dict[str, str] = {
 # Observable fields no mutation shows a verdict turn on, and no case is being written for: what
 # a case (or a mutation of one) would have to show.
 UNCOVERED: dict[str, str] = {
-    "DoubleAxisHingeJoint.stop1ConstantForceMix": "hinge2_stop_bounce leaves it at 0.001, where the stop's row "
-                                                  "yields 0.025 rad/s of the 0.6 rebound: only a far softer stop "
-                                                  "would turn a verdict, against ODE's law",
 }
 
 

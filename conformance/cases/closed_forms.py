@@ -246,7 +246,8 @@ def stop_rebound(r: np.ndarray, bounce: float, pop: float, softness: float, unit
     step after which r changes sign is the first impact; before = |r| before it, after = |r| after.
     Spec (`bounces`, the stop bounce sentence): the stop sends the motion back part way, faster
     than its error correction alone could (`pop`: a step's depth corrected at the stop's error
-    correction, with the row's softness) and slower than it came (by the softness), to ROUNDING.
+    correction; the row's softness only slows that) and slower than it came (by the softness), to
+    ROUNDING.
     Convention (`law`, ODE's): after = bounce x before, within the softness (the row yields by
     CFM times its force), held to half the distance to no bounce or a full one."""
     turned = np.flatnonzero(r[:-1] * r[1:] < 0)

@@ -67,7 +67,7 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     moved = ((p1 - p2) - (p1[0] - p2[0])) @ SB_AXIS
     reduced = SB_M1 * SB_M2 / (SB_M1 + SB_M2)
     softness = CFM_DEFAULT * reduced * (1 + SB_BOUNCE) * SB_V0 / h
-    pop = SB_ERP * SB_V0 + softness
+    pop = SB_ERP * SB_V0
     rounding = ROUNDING * (1 + SB_V0)
     travel = SB_V0 * h + ROUNDING
     momentum = SB_M1 * v1 + SB_M2 * v2 - SB_M1 * SB_V0 * SB_AXIS
