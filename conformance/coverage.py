@@ -72,8 +72,6 @@ REASONS: dict[str, str] = {
     **{f"MotorJoint.stop{i}{f}": _NO_STOPS.format("MotorJoint") for i in (1, 2, 3)
        for f in ("Bounce", "ErrorCorrection")},
     "RigidBodyCollection.bodies": "ignoring it moves no body: free_fall's Ball stays at y = 10 m" + _UNRUN,
-    "RigidBodyCollection.collider": "ignoring it, a browser collides nothing (collision_filtering's Kept falls "
-                                    "through the floor) or everything (Ghost rests on it): both fail" + _UNRUN,
 }
 
 # Observable fields no mutation shows a verdict turn on, and no case is being written for: what

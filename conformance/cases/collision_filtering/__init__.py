@@ -26,4 +26,11 @@ CASE = Case("collision_filtering", "collision_filtering.x3d",
                 ("<CollidableShape DEF='KeptShape' containerField='geometry'>\n"
                  "          <Shape containerField='shape'><Sphere radius='0.1'/></Shape>",
                  "<CollidableShape DEF='KeptShape' containerField='geometry'>"),
+                # no collider: nothing collides, and Kept falls too
+                ("      <CollisionCollection DEF='Contacts'>\n"
+                 "        <CollidableShape containerField='collidables' USE='KeptShape'/>\n"
+                 "        <CollidableShape containerField='collidables' DEF='Floor' translation='0 -0.1 0'>\n"
+                 "          <Shape containerField='shape'><Box size='4 0.2 2'/></Shape>\n"
+                 "        </CollidableShape>\n"
+                 "      </CollisionCollection>\n", ""),
             ))
