@@ -4,6 +4,7 @@ command, and the same numbers from a Dask cluster as from the local pool."""
 from __future__ import annotations
 
 import json
+import socket
 
 import numpy as np
 import pytest
@@ -185,3 +186,27 @@ def test_every_backend_is_measured_against_one_reference(tmp_path):
         assert p.wall_low <= p.wall_per_sim_s <= p.wall_high
     assert any(p.pareto_scene for p in sweep.points)
     assert set(sweep.positions) == {("double_pendulum_energy", b, dt) for b in plans for dt in (1 / 60, 1 / 240)}
+
+
+@pytest.mark.parametrize("address", ["garbage", "tcp://host", "tcp://host:http", "ftp://host:21", "tcp://:8786",
+                                     "tcp://host:70000"])
+def test_a_scheduler_address_that_is_none_is_a_usage_error(address, tmp_path, capsys):
+    assert cli_main(["sweep", "--scheduler", address, "--out", str(tmp_path), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith(f"x3drbp sweep: --scheduler {address!r} is not") and \
+        "SCHEME://HOST:PORT" in err, err
+    assert not list(tmp_path.iterdir())
+
+
+def test_an_unreachable_scheduler_fails_within_the_connect_timeout(tmp_path, monkeypatch, capsys):
+    pytest.importorskip("distributed")
+    from conformance.analyses import distribute
+    monkeypatch.setattr(distribute, "CONNECT_TIMEOUT", 1.0)
+    with socket.socket() as s:  # bound, never listening: every connection is refused
+        s.bind(("127.0.0.1", 0))
+        address = f"tcp://127.0.0.1:{s.getsockname()[1]}"
+        code = cli_main(["sweep", "--scheduler", address, "--scenes", "projectile", "--backends", BACKEND,
+                         "--dts", "1/60", "--iterations", "10", "--accuracy", "false", "--out", str(tmp_path), "-q"])
+    assert code == 1
+    last = capsys.readouterr().err.strip().splitlines()[-1]
+    assert last.startswith(f"x3drbp sweep: cannot reach the Dask scheduler at {address} within 1 s"), last

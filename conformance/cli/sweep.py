@@ -9,10 +9,11 @@ Writes DIR/sweep.json (every point), DIR/sweep.md (the Pareto fronts, ties merge
 DIR/sweep_SCENE.png (error against the scene's one reference, closed form or the most
 accurate run, over the median wall time per simulated second with its spread, one line per
 backend and variation); DIR
-defaults to out/sweep. Runs on local threads (each waits on its run), or on a Dask cluster with --scheduler.
+defaults to out/sweep. Runs on local threads (each waits on its run), or on a Dask cluster with
+--scheduler SCHEME://HOST:PORT (tcp://host:8786), given up on where it does not answer in time.
 Exit status 0 whatever the verdicts (where no run gave a result, the files and one line on
-stderr say "no results"); 2 on bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM
-(every run stopped).
+stderr say "no results"); 1 where the scheduler cannot be reached; 2 on bad usage; 130 or 143
+when interrupted by SIGINT or SIGTERM (every run stopped).
 
 The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, every
 installed backend: 288 points, each timed 3 times in its child, and 20 fine-step runs) takes
@@ -34,9 +35,10 @@ from x3d_core import atomic
 
 from conformance.cli import options
 from conformance.runner import children
+from conformance.analyses import distribute
 from conformance.analyses import sweep as S
 
-EXIT_OK, EXIT_USAGE = 0, 2
+EXIT_OK, EXIT_UNREACHABLE, EXIT_USAGE = 0, 1, 2
 ACCURACY = {"both": (False, True), "false": (False,), "true": (True,)}
 
 
@@ -105,6 +107,7 @@ def _reference(ref: S.Reference | str | None) -> dict:
 @children.interruptible
 def cmd_sweep(args: argparse.Namespace) -> int:
     try:
+        scheduler = distribute.address(args.scheduler) if args.scheduler else None
         dts = steps(args.dts)
         iterations = sorted({int(v) for v in options.names(args.iterations)} or set(S.DEFAULT_ITERATIONS))
         chosen = S.targets(options.names(args.scenes) or list(S.DEFAULT_SCENES), dts, args.window)
@@ -115,8 +118,12 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     if not planned:
         return EXIT_OK
     started = time.perf_counter()
-    sweep = S.run_sweep(chosen, planned, dts, iterations, ACCURACY[args.accuracy], args.timeout, args.scheduler,
-                        args.workers, progress=options.progress(args), repeats=args.repeats)
+    try:
+        sweep = S.run_sweep(chosen, planned, dts, iterations, ACCURACY[args.accuracy], args.timeout, scheduler,
+                            args.workers, progress=options.progress(args), repeats=args.repeats)
+    except distribute.Unreachable as e:
+        print(f"x3drbp sweep: {e}", file=sys.stderr)
+        return EXIT_UNREACHABLE
     settings = {"dts": dts, "iterations": iterations, "accuracy": args.accuracy, "window": args.window,
                 "repeats": args.repeats, "scheduler": args.scheduler, "workers": args.workers,
                 "timeout": args.timeout}
@@ -158,7 +165,8 @@ def add_command(sub) -> None:
     p.add_argument("--out", default=os.path.join("out", "sweep"), metavar="DIR",
                    help="folder for sweep.json, sweep.md and the plots (default out/sweep)")
     p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="a Dask scheduler (tcp://host:8786) to run on; default: local processes")
+                   help="a Dask scheduler to run on, SCHEME://HOST:PORT (tcp://host:8786), given up on (exit 1) "
+                        f"where it is not reached within {distribute.CONNECT_TIMEOUT:g} s; default: local threads")
     p.add_argument("--workers", type=int, default=None, metavar="N",
                    help="local processes (default: the number of CPUs; ignored with --scheduler)")
     p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
