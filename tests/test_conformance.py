@@ -153,7 +153,9 @@ def test_joint_expectations_fail_on_a_broken_joint():
     broken = apart(0.06)  # 6 cm: more than half an anchor's lever arm, the joint came apart
     assert broken.verdict == results.FAIL and "Joint3" in broken.reason
     uj = C.BY_NAME["universal_joint"]
-    rows = _rows("Cross", {"body1Axis": ["0.8 0.6 0"] * 3, "body2Axis": ["-0.6 0.8 0", "-0.6 0.81 0", "-0.6 0.8 0"]},
+    anchor = ["0.6 -0.8 0"] * 3  # the arms report no pose: each carries the anchor where the scene puts it
+    rows = _rows("Cross", {"body1Axis": ["0.8 0.6 0"] * 3, "body2Axis": ["-0.6 0.8 0", "-0.6 0.81 0", "-0.6 0.8 0"],
+                           "body1AnchorPoint": anchor, "body2AnchorPoint": anchor},
                  times) + _rows("Upper", zero, times) + _rows("Lower", zero, times)
     assert verdicts.evaluate(uj, "fake", [TraceView(rows)], uj.runs).verdict == results.FAIL
 
@@ -416,7 +418,7 @@ def _case_folder(root, name: str, module: str | None = CASE_MODULE) -> None:
 
 def test_cases_are_the_folders_found_sorted():
     names = [c.name for c in C.CASES]
-    assert names == sorted(names) and len(names) == 38 and set(C.BY_NAME) == set(names)
+    assert names == sorted(names) and len(names) == 51 and set(C.BY_NAME) == set(names)
     assert all(c.path == os.path.join(os.path.dirname(C.__file__), c.name, f"{c.name}.x3d") for c in C.CASES)
     assert C.discover() == C.CASES
     assert [c.name for c in C.select(["projectile", "free_fall"])] == ["projectile", "free_fall"]
