@@ -18,10 +18,10 @@ from . import rotation as R
 from . import fields as F
 from .collision import ContactPoints, friction_directions
 from . import engine as _engine
-from .engine import BlewUp, Engine, Simulation, Stopped
+from .engine import BlewUp, Engine, Simulation, Stopped, Unsupported
 from .joint_outputs import JointOutputs
 from .trace import Column, Trace
-from .world import STATIC, State, World
+from .world import STATIC, State, World, undirected
 
 # A frame end that lands within this fraction of a step of a step boundary counts as
 # on it: frame times are sums of decimal fractions and carry rounding of ~1e-16 s.
@@ -225,7 +225,12 @@ class _StepInputs:
 
 
 def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times: np.ndarray | None = None) -> Trace:
-    """Simulate every world and return the event trace."""
+    """Simulate every world and return the event trace. Unsupported, before any engine sees
+    it, where a joint needs an axis that is zero (world.undirected): one answer on every backend."""
+    zero = [axis for w in worlds for axis in undirected(w)]
+    if zero:
+        raise Unsupported("; ".join(f"{a} = 0 0 0: a joint axis of no direction (the spec gives none in its place)"
+                                    for a in zero))
     dt = settings.dt
     sims = [engine.build(w, dt) for w in worlds]
     inputs = [_StepInputs(w, dt) for w in worlds]

@@ -203,6 +203,21 @@ _AXES = {"SingleAxisHingeJoint": ("axis",), "SliderJoint": ("axis",),
          "MotorJoint": ("motor1Axis", "motor2Axis", "motor3Axis")}
 
 
+def undirected(w: World) -> list[str]:
+    """The axes the world's joints need that are 0 0 0, each named as JointType NAME.field: a
+    zero axis defines no direction and the spec gives none in its place (it is X3D 3.3's
+    default for most joint axes), so every backend refuses it rather than each failing its
+    own way. A joint needs the axes of its type (a MotorJoint: its enabledAxes first ones)
+    where it joins two ends an engine builds it between (not a body to itself, or static to static)."""
+    out = []
+    for j in w.joints:
+        if j.body1 == j.body2:
+            continue
+        fields = _AXES.get(j.type, ())[:int(j.params["enabledAxes"]) if j.type == "MotorJoint" else None]
+        out += [f"{j.type} {j.name}.{f}" for k, f in enumerate(fields) if not np.any(j.axes[k])]
+    return out
+
+
 def _unit(v: np.ndarray) -> np.ndarray:
     n = np.linalg.norm(v)
     return v / n if n > 0 else np.zeros(3)
