@@ -6,7 +6,9 @@ run in an environment with x3drbp installed can check the engine's adapter. With
 
     --x3drbp-backend NAME     a registered backend (repeatable)
     --x3drbp-cases NAMES      comma-separated cases (default: all)
-    --x3drbp-expectations DIR the BACKEND.toml pins (default: conformance/expectations/)
+    --x3drbp-expectations DIR the BACKEND.toml pins (default: conformance/expectations/);
+                              a DIR that is no folder, or a pin file that does not read
+                              (FILE:LINE: why), is a usage error before any run
 
 Each (case, backend) is one test item, `x3drbp::CASE[BACKEND]`; the items left after
 selection (-k, deselection) run together in parallel at the first one's turn

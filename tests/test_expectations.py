@@ -70,7 +70,7 @@ def test_files_round_trip_and_bad_files_are_named(tmp_path):
     assert E.load("engine", str(tmp_path)) == table
     assert E.load("absent", str(tmp_path)) == {}
     (tmp_path / "bad.toml").write_text('[c]\nverdict = "pass"\n')
-    with pytest.raises(ValueError, match=r"bad.toml: \[c\]: verdict must be one of"):
+    with pytest.raises(ValueError, match=r"bad.toml:2: \[c\]: verdict must be one of"):
         E.load("bad", str(tmp_path))
 
 

@@ -1,8 +1,9 @@
 """Reading an input file whole: a regular file of bounded size, or a one-line reason.
 
 A named pipe would block a reader forever, /dev/zero would fill its memory, a folder or a
-socket cannot be read as text: every file x3drbp reads (scenes, traces) comes through here,
-which looks at what the path is before reading a byte of it.
+socket cannot be read as text: every file x3drbp reads (scenes, traces, the data files of
+x3d_core.documents) comes through here, which looks at what the path is before reading a
+byte of it; a folder of inputs, through require_folder.
 """
 
 from __future__ import annotations
@@ -63,3 +64,14 @@ def read_regular(path: str, limit: int) -> bytes:
     if len(data) > limit:
         raise InputRefused(f"file grew past {limit} bytes while read; x3drbp reads at most {limit}")
     return data
+
+
+def require_folder(path: str) -> None:
+    """InputRefused unless path is a folder (a symbolic link to one is): a folder of inputs
+    that is missing must be said, not read as one holding nothing."""
+    try:
+        st = os.stat(path)
+    except OSError as e:
+        raise InputRefused(f"cannot read folder: {e.strerror}") from None
+    if not stat.S_ISDIR(st.st_mode):
+        raise InputRefused(f"{'a regular file' if stat.S_ISREG(st.st_mode) else kind(st.st_mode)}, not a folder")

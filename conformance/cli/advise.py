@@ -24,13 +24,13 @@ from __future__ import annotations
 
 import argparse
 import datetime
-import json
 import sys
 import time
 from collections.abc import Callable
 
 from reports.advice_text import render
 from x3d_core import atomic
+from x3d_core.documents import BadDocument, read_json
 from x3d_core.paths import scene_files
 
 from conformance import expectations
@@ -56,10 +56,12 @@ def _matrix(path: str | None) -> dict[tuple[str, str], A.Said] | None:
     if path is None:
         return None
     try:
-        with open(path, encoding="utf-8") as f:
-            return {(r["case"], r["backend"]): A.Said(r["verdict"], _beyond(r.get("accuracy")))
-                    for r in json.load(f)["results"]}
-    except (OSError, ValueError, KeyError, TypeError) as e:
+        doc = read_json(path)
+    except BadDocument as e:  # not a regular file, too large, too deep, not JSON: its path and line
+        raise ValueError(f"--verdicts {e}") from None
+    try:
+        return {(r["case"], r["backend"]): A.Said(r["verdict"], _beyond(r.get("accuracy"))) for r in doc["results"]}
+    except (ValueError, KeyError, TypeError) as e:
         raise ValueError(f"--verdicts {path}: not a conformance matrix.json ({type(e).__name__}: {e})") from None
 
 

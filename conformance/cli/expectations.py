@@ -7,7 +7,8 @@ Runs the cases on the backends and rewrites conformance/expectations/BACKEND.tom
 each backend that ran (a `why` is kept while its verdict holds; cases not run keep their
 pins), then README's matrix from every file. Prints each pin that changed. With --check
 it writes nothing and exits 1 when any verdict differs from its pin: what CI of an
-engine's adapter runs. Exit 2 on bad usage.
+engine's adapter runs. Exit 2 on bad usage: a --pins DIR that is no folder, a pin file that
+does not read (one line, FILE:LINE: why, before any run), a --readme that is not one.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import sys
 from backends import base
 from reports.expectations_table import markdown, replace_section
 from x3d_core import atomic
+from x3d_core.documents import read_text
 
 from conformance import cases as C
 from conformance import expectations as E
@@ -31,11 +33,14 @@ README = os.path.join(C.ROOT, "README.md")
 
 
 def write_readme(path: str) -> None:
-    """README's matrix from the pinned verdicts of every backend x3drbp ships."""
-    with open(path, encoding="utf-8") as f:
-        text = f.read()
+    """README's matrix from the pinned verdicts of every backend x3drbp ships; ValueError naming
+    the file (and line) where README or a pin file does not read, or README has no markers."""
+    text = read_text(path)
     table = markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.IN_TREE})
-    new = replace_section(text, table)
+    try:
+        new = replace_section(text, table)
+    except ValueError as e:
+        raise ValueError(f"{path}: {e}") from None
     if new != text:
         atomic.write_text(path, new)
 
@@ -51,10 +56,15 @@ def cmd_expectations(args: argparse.Namespace) -> int:
         if not info[b].usable:
             print(f"skipped {b}, its pins kept: unavailable: {info[b].unavailable}")
     backends = [b for b in named if info[b].usable]
+    try:  # before any run: a pin file that is not one is said at once
+        pins = {b: E.load(b, args.pins) for b in backends}
+    except ValueError as e:
+        print(f"x3drbp expectations: {e}", file=sys.stderr)
+        return EXIT_USAGE
     outcomes = verdicts.run_matrix(cases, backends, args.timeout, args.jobs)
     changed = 0
     for b in backends:
-        old = E.load(b, args.pins)
+        old = pins[b]
         mine = [r for r in outcomes if r.backend == b]
         for r in mine:
             why = E.mismatch(r, old.get(r.case, Expected(PASS)))
@@ -69,7 +79,11 @@ def cmd_expectations(args: argparse.Namespace) -> int:
     if args.check:
         return EXIT_CHANGED if changed else EXIT_OK
     if args.readme and args.pins is None:  # README shows x3drbp's own pins
-        write_readme(args.readme)
+        try:
+            write_readme(args.readme)
+        except ValueError as e:  # not a regular file, not UTF-8, or without the matrix's markers
+            print(f"x3drbp expectations: --readme {e}", file=sys.stderr)
+            return EXIT_USAGE
     return EXIT_OK
 
 

@@ -24,8 +24,10 @@ from __future__ import annotations
 
 import json
 import os
-import tomllib
 from collections.abc import Iterable, Mapping
+
+from x3d_core.documents import read_toml
+from x3d_core.inputs import InputRefused, require_folder
 
 from conformance.results import CONVENTIONS, FAIL, PASS, UNSUPPORTED, VERDICTS, Expected, Result
 
@@ -47,32 +49,42 @@ def path(backend: str, folder: str | None = None) -> str:
     return os.path.join(folder or FOLDER, f"{backend}.toml")
 
 
+PINS_LIMIT = 1 << 20  # bytes of one BACKEND.toml (x3drbp's own are under 6 KB)
+_KEYS = ("verdict", "failing", "reason", "why", "over_bound")
+
+
 def load(backend: str, folder: str | None = None) -> dict[str, Expected]:
-    """The pinned non-passes of one backend (no file: every case must pass); ValueError
-    naming the file and entry where it is malformed."""
-    file = path(backend, folder)
-    if not os.path.exists(file):
-        return {}
-    with open(file, "rb") as f:
+    """The pinned non-passes of one backend (a folder without its file: every case must pass);
+    ValueError naming the file and line (x3d_core.documents.BadDocument) where it is malformed,
+    or the folder where it is none."""
+    if folder is not None:
         try:
-            data = tomllib.load(f)
-        except tomllib.TOMLDecodeError as e:
-            raise ValueError(f"{file}: {e}") from None
+            require_folder(folder)
+        except InputRefused as e:
+            raise ValueError(f"{folder}: {e}") from None
+    file = path(backend, folder)
+    if not os.path.lexists(file):
+        return {}
+    doc = read_toml(file, PINS_LIMIT)
     out = {}
-    for case, entry in data.items():
-        if not isinstance(entry, dict) or entry.get("verdict") not in VERDICTS or (
-                entry["verdict"] == PASS and not entry.get("over_bound")):
-            raise ValueError(f"{file}: [{case}]: verdict must be one of {', '.join(VERDICTS[1:])} "
-                             f"(or {PASS} with over_bound)")
-        unknown = set(entry) - {"verdict", "failing", "reason", "why", "over_bound"}
+    for case, entry in doc.data.items():
+        if not isinstance(entry, dict):
+            raise doc.error(case, None, f"[{case}] must be a table")
+        if entry.get("verdict") not in VERDICTS or (entry["verdict"] == PASS and not entry.get("over_bound")):
+            raise doc.error(case, "verdict", f"[{case}]: verdict must be one of {', '.join(VERDICTS[1:])} "
+                                             f"(or {PASS} with over_bound)")
+        unknown = set(entry) - set(_KEYS)
         if unknown:
-            raise ValueError(f"{file}: [{case}]: unknown key(s) {', '.join(sorted(unknown))}")
-        lists = {k: entry.get(k, []) for k in ("failing", "over_bound")}
-        for k, v in lists.items():
+            raise doc.error(case, min(unknown), f"[{case}]: unknown key(s) {', '.join(sorted(unknown))}")
+        for k in ("failing", "over_bound"):
+            v = entry.get(k, [])
             if not isinstance(v, list) or not all(isinstance(q, str) for q in v):
-                raise ValueError(f"{file}: [{case}]: {k} must be a list of measure names")
-        out[case] = Expected(entry["verdict"], tuple(sorted(lists["failing"])), entry.get("reason", ""),
-                             entry.get("why", ""), tuple(sorted(lists["over_bound"])))
+                raise doc.error(case, k, f"[{case}]: {k} must be a list of measure names (strings)")
+        for k in ("reason", "why"):
+            if not isinstance(entry.get(k, ""), str):
+                raise doc.error(case, k, f"[{case}]: {k} must be a string")
+        out[case] = Expected(entry["verdict"], tuple(sorted(entry.get("failing", []))), entry.get("reason", ""),
+                             entry.get("why", ""), tuple(sorted(entry.get("over_bound", []))))
     return out
 
 
