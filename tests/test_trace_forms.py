@@ -155,5 +155,5 @@ def test_an_npz_with_object_arrays_is_refused_not_unpickled(tmp_path):
     a["text_v"] = np.array([object()], dtype=object)
     bad = tmp_path / "pickled.npz"
     np.savez(bad, **a)
-    with pytest.raises(ValueError, match="pickled.npz: not an x3drbp trace: Object arrays cannot be loaded"):
+    with pytest.raises(ValueError, match="pickled.npz: text_v: object values; a trace holds text there"):
         read_npz(str(bad))

@@ -17,18 +17,34 @@ Layout (format FORMAT, every array plain: np.load reads it with allow_pickle=Fal
 
 from __future__ import annotations
 
+import math
+import os
 import zipfile
+from typing import BinaryIO
 
 import numpy as np
+from numpy.lib import format as npy
 
 from . import atomic
-from .inputs import open_regular
+from .inputs import InputRefused, open_regular
 from .trace_view import TRACE_LIMIT, TraceView
 
 FORMAT = "x3drbp-trace-npz-1"
 ZIP_MAGIC = b"PK\x03\x04"
 _NAMES = ("format", "keys", "lengths", "widths", "t", "v", "text_keys", "text_lengths", "text_t", "text_v",
           "times", "count")
+# each array's kind of values (numpy's dtype.kind: f floats, i and u integers, U text) and dimensions
+_SPEC = {"format": ("U", 0), "keys": ("U", 2), "lengths": ("iu", 1), "widths": ("iu", 1), "t": ("f", 1),
+         "v": ("f", 1), "text_keys": ("U", 2), "text_lengths": ("iu", 1), "text_t": ("f", 1), "text_v": ("U", 1),
+         "times": ("f", 1), "count": ("iu", 0)}
+_WORDS = {"U": "text", "iu": "integers", "f": "real numbers"}
+_HEADERS = {(1, 0): npy.read_array_header_1_0, (2, 0): npy.read_array_header_2_0}
+# outputs (each held as a few Python objects, ~450 bytes: 10^6 of them ~0.5 GB); a run of
+# 10^5 bodies records 4 x 10^5
+MAX_OUTPUTS = 10**6
+MAX_DIRECTORY = 1 << 16  # bytes of the zip's directory: write_npz's 12 members take under 1 KB
+_END_MAGIC, _END_SIZE, _END_SPAN = b"PK\x05\x06", 22, 22 + 0xFFFF  # the end record, after it a comment of < 64 KiB
+_ZIP64_MAGIC, _LOCATOR_SIZE = b"PK\x06\x07", 20  # a Zip64 locator, just before the end record
 
 
 def _keys(keys: list[tuple[str, str]]) -> np.ndarray:
@@ -66,43 +82,111 @@ class _NotTrace(Exception):
     """What makes a file no trace of this format, in words."""
 
 
+class NotTrace(ValueError):
+    """A file read_npz does not read as a trace: its path, and the reason in words."""
+
+    def __init__(self, path: str, reason: str):
+        super().__init__(f"{path}: {reason}")
+        self.path, self.reason = path, reason
+
+
 def read_npz(path: str) -> TraceView:
-    """A trace written by write_npz; ValueError naming the file where it is not one."""
+    """A trace written by write_npz; NotTrace naming the file where it is not one."""
     try:
         return _view(_arrays(path))
-    except _NotTrace as e:
-        raise ValueError(f"{path}: {e}") from None
+    except (_NotTrace, InputRefused) as e:
+        raise NotTrace(path, str(e)) from None
     except (zipfile.BadZipFile, EOFError, ValueError) as e:  # numpy's and the zip module's words
-        raise ValueError(f"{path}: not an x3drbp trace: {e}") from None
+        raise NotTrace(path, f"not an x3drbp trace: {e}") from None
 
 
 def _arrays(path: str) -> dict[str, np.ndarray]:
+    """The arrays, each checked from the zip's directory and its .npy header before a byte of
+    it is unpacked: the sizes they declare (a zip bomb unpacks as much as it declares, zipfile
+    reads no further), their kind of numbers (never objects or complex numbers), and that their
+    shape fills exactly what they declare (a shape of 10^15 is refused, not allocated)."""
     with open_regular(path, TRACE_LIMIT) as f:
         if f.read(4) != ZIP_MAGIC:  # np.load would take anything else for a pickle or an .npy
             raise _NotTrace("not an x3drbp trace: not an .npz (zip) file")
-        f.seek(0)
-        with np.load(f, allow_pickle=False) as npz:
-            missing = [n for n in _NAMES if n not in npz.files]
-            if missing or str(npz["format"]) != FORMAT:
-                raise _NotTrace(f"not an x3drbp trace ({FORMAT}): "
-                                + (f"no {', '.join(missing)}" if missing else f"format {str(npz['format'])!r}"))
-            return {n: npz[n] for n in _NAMES}
+        _check_directory(f)
+        with zipfile.ZipFile(f) as z:
+            held = set(z.namelist())
+            missing = [n for n in _NAMES if f"{n}.npy" not in held]
+            if missing:
+                raise _NotTrace(f"not an x3drbp trace ({FORMAT}): no {', '.join(missing)}")
+            members = {n: z.getinfo(f"{n}.npy") for n in _NAMES}
+            unpacked = sum(m.file_size for m in members.values())
+            if unpacked > TRACE_LIMIT:
+                raise _NotTrace(f"its arrays unpack to {unpacked} bytes; x3drbp reads at most {TRACE_LIMIT}")
+            a = {}
+            for n, member in members.items():
+                a[n] = _array(z, member, n)
+                if n == "format" and str(a[n]) != FORMAT:
+                    raise _NotTrace(f"not an x3drbp trace ({FORMAT}): format {str(a[n])!r}")
+    for n in ("t", "text_t", "times"):
+        if not np.isfinite(a[n]).all():
+            raise _NotTrace(f"{n} holds a time that is not a finite number")
+    return a
+
+
+def _check_directory(f: BinaryIO) -> None:
+    """Refuses a zip whose directory is larger than MAX_DIRECTORY bytes (zipfile holds an object
+    of ~500 bytes per member it lists: a 1 GiB directory would be 10 GB) or is a Zip64 one
+    (whose sizes zipfile takes from another record; write_npz never needs one)."""
+    f.seek(0, os.SEEK_END)
+    size = f.tell()
+    f.seek(max(0, size - _END_SPAN))
+    tail = f.read()
+    end = tail.rfind(_END_MAGIC)
+    if end < 0 or len(tail) - end < _END_SIZE:
+        raise _NotTrace("not an x3drbp trace: the zip file has no end record")
+    if end >= _LOCATOR_SIZE and tail[end - _LOCATOR_SIZE:end - _LOCATOR_SIZE + 4] == _ZIP64_MAGIC:
+        raise _NotTrace("not an x3drbp trace: a Zip64 file (write_npz writes none)")
+    listed = int.from_bytes(tail[end + 12:end + 16], "little")
+    if listed > MAX_DIRECTORY:
+        raise _NotTrace(f"its zip directory is {listed} bytes; x3drbp reads at most {MAX_DIRECTORY}")
+    f.seek(0)
+
+
+def _array(z: zipfile.ZipFile, member: zipfile.ZipInfo, name: str) -> np.ndarray:
+    """One array, once its .npy header agrees with _SPEC and with the member's declared size."""
+    kinds, ndim = _SPEC[name]
+    with z.open(member) as m:
+        header = _HEADERS.get(npy.read_magic(m))
+        if header is None:
+            raise _NotTrace(f"{name}: not a .npy array of format 1.0 or 2.0")
+        shape, _, dtype = header(m)
+        data = member.file_size - m.tell()
+    if dtype.hasobject or dtype.kind not in kinds:
+        raise _NotTrace(f"{name}: {dtype} values; a trace holds {_WORDS[kinds]} there")
+    if len(shape) != ndim or (name.endswith("keys") and shape[1] != 2):
+        raise _NotTrace(f"{name}: an array of shape {shape}")
+    if name.endswith("keys") and shape[0] > MAX_OUTPUTS:
+        raise _NotTrace(f"{name}: {shape[0]} outputs; x3drbp reads at most {MAX_OUTPUTS} of a kind")
+    if math.prod(shape) * dtype.itemsize != data:
+        raise _NotTrace(f"{name}: its shape {shape} of {dtype} needs {math.prod(shape) * dtype.itemsize} bytes; "
+                        f"it holds {data}")
+    with z.open(member) as m:
+        return npy.read_array(m, allow_pickle=False)
 
 
 def _view(a: dict[str, np.ndarray]) -> TraceView:
-    lengths, widths = a["lengths"], a["widths"]
-    if len(lengths) != len(a["keys"]) or len(widths) != len(lengths) or lengths.sum() != len(a["t"]) \
-            or (lengths * widths).sum() != len(a["v"]) or a["text_lengths"].sum() != len(a["text_t"]) \
-            or len(a["text_t"]) != len(a["text_v"]) or len(a["text_lengths"]) != len(a["text_keys"]):
+    """The view of the arrays, once they agree (in Python's integers, which do not wrap)."""
+    lengths, widths, text_lengths = a["lengths"].tolist(), a["widths"].tolist(), a["text_lengths"].tolist()
+    if min(lengths + text_lengths, default=0) < 0 or min(widths, default=1) < 1:
+        raise _NotTrace("the trace's arrays give a length below 0 or a width below 1")
+    if len(lengths) != len(a["keys"]) or len(widths) != len(lengths) or sum(lengths) != len(a["t"]) \
+            or sum(n * w for n, w in zip(lengths, widths)) != len(a["v"]) or sum(text_lengths) != len(a["text_t"]) \
+            or len(a["text_t"]) != len(a["text_v"]) or len(text_lengths) != len(a["text_keys"]):
         raise _NotTrace("the trace's arrays disagree on their lengths")
     series = {}
-    t_ends, v_ends = np.cumsum(lengths), np.cumsum(lengths * widths)
-    for (node, fld), n, w, t_end, v_end in zip(a["keys"].tolist(), lengths.tolist(), widths.tolist(),
-                                               t_ends.tolist(), v_ends.tolist()):
-        series[(node, fld)] = (a["t"][t_end - n:t_end], a["v"][v_end - n * w:v_end].reshape(n, w))
+    t_end = v_end = 0
+    for (node, fld), n, w in zip(a["keys"].tolist(), lengths, widths):
+        series[(node, fld)] = (a["t"][t_end:t_end + n], a["v"][v_end:v_end + n * w].reshape(n, w))
+        t_end, v_end = t_end + n, v_end + n * w
     texts = {}
     end = 0
-    for (node, fld), n in zip(a["text_keys"].tolist(), a["text_lengths"].tolist()):
+    for (node, fld), n in zip(a["text_keys"].tolist(), text_lengths):
         texts[(node, fld)] = (a["text_t"][end:end + n], a["text_v"][end:end + n].tolist())
         end += n
     return TraceView.of(series, texts, a["times"], int(a["count"]))
