@@ -5,7 +5,8 @@
 physics', so it is reported with its line and stops the validation (exit 2). Checked:
 
 - the header `time,node,field,value`, and four columns on every row;
-- time: a finite number, never less than the row before's;
+- time: a finite number, never less than the row before's, the first 0 (within
+  START_TOLERANCE: the initial state is a frame);
 - node: a name of the scene (its DEF, else x3drbp's TYPE_k: x3d_core.world.node_names);
 - field: an output of that node's type (outputOnly or inputOutput), or `F[i]` / `F[i].SUB`
   for an MFNode output F (a CollisionSensor's intersections[i], contacts[i].depth), SUB a
@@ -23,6 +24,11 @@ bulk, one output at a time; any chunk where that finds something, or cannot deci
 checked again row by row, which says what is wrong and where. So a trace of 10^7 rows
 holds its numbers, not an object per row, and its problems read as they always did. After
 MAX_PROBLEMS problems the reading stops.
+
+x3drbp's own .npz (a name ending .npz, as read_view tells the forms apart) is read by
+x3d_core.trace_npz, which bounds what it unpacks and refuses times that are not finite; the
+same checks then run on each output's arrays, a problem naming the output (the file has no
+lines), and its times each never decrease.
 """
 
 from __future__ import annotations
@@ -44,6 +50,7 @@ from x3d_core import schema
 from x3d_core.model import Scene
 from x3d_core.inputs import InputRefused, open_regular
 from x3d_core.trace import HEADER, TRACE_LIMIT, TraceView, ViewBuilder, chunks, header_problem, read_header
+from x3d_core.trace_npz import NotTrace, read_npz
 from x3d_core.world import node_names, worlds
 
 # |axis| - 1: a browser writing single-precision floats with 6 digits is within 1e-6;
@@ -53,6 +60,8 @@ BODY_FIELDS = ("position", "orientation", "linearVelocity", "angularVelocity")
 _INDEXED = re.compile(r"^(\w+)\[(\d+)\](?:\.(\w+))?$")
 _NULL = ("", "NULL")  # an SFNode output holding no node
 MAX_PROBLEMS = 1000  # then the reading stops, saying so
+# the first row's time, from 0: the initial state is a frame (a browser's float32 clock starts at 0 exactly)
+START_TOLERANCE = 1e-6  # s
 # a plain decimal number, as the bulk check takes it (anything else goes row by row)
 _NUMBER = r"[0-9.eE+\-]+"
 
@@ -98,6 +107,21 @@ class _Fields:
         return sub.type
 
 
+def _bad_axis(rotations: np.ndarray) -> tuple[int, float] | None:
+    """The rotation (of rows of 4 numbers) whose axis length is furthest from 1, and that
+    length, where any is further than AXIS_TOLERANCE; else None."""
+    lengths = np.linalg.norm(rotations.reshape(-1, 4)[:, :3], axis=1)
+    bad = np.abs(lengths - 1.0)
+    if not bad.size or np.all(bad <= AXIS_TOLERANCE):
+        return None
+    worst = int(np.argmax(bad))
+    return worst, float(lengths[worst])
+
+
+def _axis_problem(value: str, length: float) -> str:
+    return f"rotation {value}: the axis has length {length:.6g}, not 1 (within {AXIS_TOLERANCE:g})"
+
+
 def _value_problem(ftype: F.FieldType, value: str, names: set[str]) -> str | None:
     if ftype.kind == "node":
         return None if value in names or value in _NULL else f"value {value!r} names no node of the scene"
@@ -105,24 +129,27 @@ def _value_problem(ftype: F.FieldType, value: str, names: set[str]) -> str | Non
         parsed = F.parse_xml(ftype, value)
     except ValueError as e:
         return f"value {value!r} is not {ftype.describe()}: {e}"
-    if ftype.rotation:
-        axes = np.asarray(parsed, dtype=np.float64).reshape(-1, 4)[:, :3]
-        lengths = np.linalg.norm(axes, axis=1)
-        bad = np.abs(lengths - 1.0)
-        if bad.size and not np.all(bad <= AXIS_TOLERANCE):
-            length = float(lengths[np.argmax(bad)])
-            return f"rotation {value!r}: the axis has length {length:.6g}, not 1 (within {AXIS_TOLERANCE:g})"
-    return None
+    bad = _bad_axis(np.asarray(parsed, dtype=np.float64)) if ftype.rotation else None
+    return None if bad is None else _axis_problem(repr(value), bad[1])
 
 
 def check_trace(path: str, scene: Scene) -> tuple[TraceView, list[Problem]]:
-    """The trace, as a TraceView of its good rows (len() its row count; empty when the
-    header is wrong or the file cannot be read), and every problem found."""
+    """The trace (a CSV, or x3drbp's .npz where the name ends so, as read_view tells them), as
+    a TraceView of its good rows (len() its row count; empty when the header is wrong or the
+    file cannot be read), and every problem found."""
     fields = _Fields(scene)
-    names = set(fields.types)
+    view, problems = (_check_npz if path.endswith(".npz") else _check_csv)(path, fields)
+    if not len(view) and not problems:
+        problems.append(Problem(path, 0, "no rows after the header"))
+    if not problems:
+        problems += _missing(path, set(view.keys()) | set(view.text_keys()), scene)
+    return view, problems
+
+
+def _check_csv(path: str, fields: _Fields) -> tuple[TraceView, list[Problem]]:
     problems: list[Problem] = []
     b = ViewBuilder()
-    state = _State(fields, names)
+    state = _State(fields, set(fields.types))
     try:
         with open_regular(path, TRACE_LIMIT) as f:
             header, lines = read_header(f)
@@ -141,14 +168,56 @@ def check_trace(path: str, scene: Scene) -> tuple[TraceView, list[Problem]]:
     except ValueError as e:  # an output whose good rows hold different counts of numbers (an MF output)
         return TraceView(), [Problem(path, 0, f"cannot read as arrays: {e}")]
     try:
-        view = b.view()
+        return b.view(), problems
     except ValueError as e:
         return TraceView(), [Problem(path, 0, f"cannot read: {e}")]
-    if not len(view) and not problems:
-        problems.append(Problem(path, 0, "no rows after the header"))
-    if not problems:
-        problems += _missing(path, set(view.keys()) | set(view.text_keys()), scene)
-    return view, problems
+
+
+def _check_npz(path: str, fields: _Fields) -> tuple[TraceView, list[Problem]]:
+    """x3drbp's own trace as arrays (trace_npz): the CSV's checks, each output's rows at once,
+    each problem naming its output (the file has no lines)."""
+    try:
+        view = read_npz(path)
+    except NotTrace as e:
+        return TraceView(), [Problem(path, 0, e.reason)]
+    names = set(fields.types)
+    times = view.times()
+    problems = [Problem(path, 0, _start_problem(float(times[0])))] if times.size and not _starts(times[0]) else []
+    outputs = [(k, *view.series(*k)) for k in view.keys()] + [(k, *view.text(*k)) for k in view.text_keys()]
+    for (node, fld), t, values in outputs:
+        problem = _output_problem(fields, names, node, fld, t, values)
+        if problem is not None:
+            problems.append(Problem(path, 0, f"{node}.{fld}: {problem}"))
+    return view, problems[:MAX_PROBLEMS]
+
+
+def _output_problem(fields: _Fields, names: set[str], node: str, fld: str, t: np.ndarray,
+                    values: np.ndarray | list[str]) -> str | None:
+    """What is wrong with one output of an .npz trace: its name, its times, its values."""
+    ftype = _output_type(fields, names, node, fld)
+    if isinstance(ftype, str):
+        return ftype
+    if t.size > 1 and np.any(np.diff(t) < 0):
+        return "its times decrease (times never decrease)"
+    if isinstance(values, np.ndarray) and ftype.kind == "float" and not ftype.multi:
+        if values.shape[1] != ftype.width:
+            return f"rows of {values.shape[1]} numbers, not {ftype.describe()}"
+        if not np.isfinite(values).all():
+            return "a value that is not a finite number"
+        bad = _bad_axis(values) if ftype.rotation else None
+        return None if bad is None else _axis_problem(f"at t = {t[bad[0]]:g}", bad[1])
+    texts = values if isinstance(values, list) else (" ".join(map(F._num, row)) for row in values.tolist())
+    return next((p for p in (_value_problem(ftype, v, names) for v in texts) if p is not None), None)
+
+
+def _starts(t: float) -> bool:
+    """Whether a trace whose first time is t starts at 0, within START_TOLERANCE."""
+    return abs(t) <= START_TOLERANCE
+
+
+def _start_problem(t: float) -> str:
+    return (f"the first row is at t = {t:g} s; a trace starts at t = 0, the initial state "
+            f"(within {START_TOLERANCE:g} s)")
 
 
 class _State:
@@ -179,6 +248,8 @@ def _row_by_row(path: str, first: int, text: str, state: _State, b: ViewBuilder,
                 return
             continue
         t = float(cols[0])
+        if state.last == -math.inf and not _starts(t):
+            problems.append(Problem(path, where, _start_problem(t)))
         state.last = t
         b.add_row(t, *cols[1:])
 
@@ -211,7 +282,8 @@ def _bulk_rows(flat: list[str], state: _State, b: ViewBuilder) -> bool:
     except ValueError:
         return False
     t = np.fromiter(map(parsed_times.__getitem__, times), np.float64, len(times))
-    if not np.isfinite(t).all() or t[0] < state.last or (t.size > 1 and np.any(np.diff(t) < 0)):
+    if not np.isfinite(t).all() or t[0] < state.last or (t.size > 1 and np.any(np.diff(t) < 0)) \
+            or (state.last == -math.inf and not _starts(t[0])):
         return False
     keys = list(zip(flat[1::4], flat[2::4]))
     ids = {k: i for i, k in enumerate(dict.fromkeys(keys))}
@@ -266,11 +338,7 @@ def _bulk_values(ftype: F.FieldType, vals: list[str], names: set[str]) -> np.nda
         if arr.size != len(vals) * w or not np.isfinite(arr).all():
             return None
         arr = arr.reshape(len(vals), w)
-        if ftype.rotation:
-            bad = np.abs(np.linalg.norm(arr[:, :3], axis=1) - 1.0)
-            if not np.all(bad <= AXIS_TOLERANCE):
-                return None
-        return arr
+        return None if ftype.rotation and _bad_axis(arr) is not None else arr
     return True if all(_value_problem(ftype, v, names) is None for v in vals) else None
 
 
@@ -286,12 +354,16 @@ def _row_problem(cols: list[str], last: float, fields: _Fields, names: set[str])
         return f"time {text!r} is not finite"
     if t < last:
         return f"time {t:g} is before the previous row's {last:g} (times never decrease)"
+    ftype = _output_type(fields, names, node, fld)
+    return ftype if isinstance(ftype, str) else _value_problem(ftype, value, names)
+
+
+def _output_type(fields: _Fields, names: set[str], node: str, fld: str) -> F.FieldType | str:
+    """The type of an output a row names, or why the scene has no such output."""
     if node not in names:
         return f"node {node!r} is not in the scene (DEF names, or TYPE_k for nodes without one)"
     ftype = fields.of(node, fld)
-    if isinstance(ftype, str):
-        return f"field {fld!r} of {node}: {ftype}"
-    return _value_problem(ftype, value, names)
+    return f"field {fld!r} of {node}: {ftype}" if isinstance(ftype, str) else ftype
 
 
 def _missing(path: str, have: set[tuple[str, str]], scene: Scene) -> list[Problem]:
