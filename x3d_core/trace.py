@@ -173,8 +173,9 @@ class Trace:
             series[key] = (np.concatenate([t for _, t, _ in held])[order],
                            np.concatenate([v for _, _, v in held])[order])
         every = np.sort(np.array(times, dtype=np.float64))  # np.unique would import numpy.ma: 8 ms of a run's start
-        return TraceView.of(series, {k: (np.array(t), s) for k, (t, s) in texts.items()},
-                            every[np.concatenate(([True], every[1:] != every[:-1]))], count)
+        first = np.ones(len(every), dtype=bool)  # each time's first row (none at all: a run that blew up at t = 0)
+        first[1:] = every[1:] != every[:-1]
+        return TraceView.of(series, {k: (np.array(t), s) for k, (t, s) in texts.items()}, every[first], count)
 
     @property
     def rows(self) -> list[Row]:

@@ -83,9 +83,29 @@ class Ended:
     stderr: str
 
 
+# the lines that join two tracebacks of one error
+_CHAINED = ("During handling of the above exception, another exception occurred:",
+            "The above exception was the direct cause of the following exception:")
+
+
+def _said(stderr: str) -> list[str]:
+    """A child's stderr as the lines that say something, stripped: of a traceback (Python's,
+    or faulthandler's after a crash) only its last line, the error and its message, is kept;
+    its header, its frames and their source lines (indented beneath the header: a verdict's
+    reason once read `raise BlewUp(f"...")`), and the lines chaining two, are left out."""
+    out, frames = [], False
+    for line in stderr.splitlines():
+        if line.rstrip().endswith(("(most recent call last):", "(most recent call first):")):
+            frames = True
+        elif not (frames and line[:1].isspace()) and line.strip():
+            frames = False
+            if line.strip() not in _CHAINED:
+                out.append(line.strip())
+    return out
+
+
 def _tail(text: str, lines: int = 3) -> str:
-    kept = [ln.strip() for ln in text.strip().splitlines() if ln.strip()]
-    return " | ".join(kept[-lines:])
+    return " | ".join(_said(text)[-lines:])
 
 
 def classify(returncode: int | None, stderr: str, timed_out: bool = False, timeout: float = DEFAULT_TIMEOUT,
@@ -110,9 +130,9 @@ def classify(returncode: int | None, stderr: str, timed_out: bool = False, timeo
             if marker in line:
                 reasons.append(line.split(marker, 1)[1].strip())
         return Outcome(UNSUPPORTED, "; ".join(reasons) or _tail(stderr) or "the backend refused the scene")
-    if "blew up" in stderr:
-        line = next(ln for ln in stderr.splitlines() if "blew up" in ln)
-        return Outcome(BLEW_UP, line.strip())
+    blew_up = [ln for ln in _said(stderr) if "blew up" in ln]
+    if blew_up:
+        return Outcome(BLEW_UP, blew_up[-1])
     if "Traceback (most recent call last)" in stderr:
         return Outcome(CRASHED, f"uncaught exception: {_tail(stderr, 1)}")
     return Outcome(ERROR, _tail(stderr) or f"exit status {returncode}")
