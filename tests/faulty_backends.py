@@ -61,18 +61,25 @@ class _FaultyBackend:
         return getattr(self._real, name)
 
 
+def _faulty(name: str) -> bool:
+    return name.startswith("faulty-") and name[len("faulty-"):] in FAULTS
+
+
 def register() -> None:
-    """Make base.load answer faulty-KIND names too."""
+    """Make base.entry and base.load answer faulty-KIND names too."""
     from backends import base
-    real_load = base.load
+    real_entry, real_load = base.entry, base.load
+
+    def entry(name: str) -> str:
+        return f"{__name__}:{name}" if _faulty(name) else real_entry(name)
 
     def load(name: str):
-        if name.startswith("faulty-") and name[len("faulty-"):] in FAULTS:
+        if _faulty(name):
             real = next(b for b in base.available().values() if not isinstance(b, str))
             return _FaultyBackend(real, name[len("faulty-"):])
         return real_load(name)
 
-    base.load = load
+    base.entry, base.load = entry, load
 
 
 if __name__ == "__main__":
