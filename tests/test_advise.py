@@ -4,11 +4,13 @@ the command end to end on a folder of scenes with one that does not load."""
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 import shutil
 
 import numpy as np
 import pytest
-from conftest import case_scene
+from conftest import ROOT, case_scene
 
 from conformance.analyses import advice as A
 from conformance.analyses.sweep_metrics import Cost, Positions
@@ -150,3 +152,20 @@ def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_
     text = "\n".join(scene_lines(scene, settings))
     assert "favours" not in text and "exceeds" not in text
     assert "within 1 mm / 1 mrad of ode for all 5 s" in text and "100x real time" in text
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--duration", "1e12"], "free_fall: its reference run: 1e+12 s at a step of 0.00208333 s (the finest of the "
+                             "steps / 8) and 60 frames/s makes 6e+13 frames; a run records at most 1e+06"),
+    (["--duration", "1000", "--dts", "1e-6"], "makes 8e+09 steps; a run takes at most 1e+09"),
+    (["--dts", ","], "--dts names no step"),
+    (["--dts", "1/60", "--dts", " , "], "--dts names no step"),
+    (["--repeats", "1000000000"], "argument --repeats: must be a whole number from 1 to 100, not '1000000000'"),
+])
+def test_settings_past_a_run_s_bounds_are_bad_usage(args, says):
+    # --timeout 1, one backend and one step: code that took the settings stops soon all the same
+    r = subprocess.run([sys.executable, "-m", "conformance.cli", "advise", case_scene("free_fall"), "--backends",
+                        "pymunk", "--timeout", "1", "--dts", "1/60", *args, "-q"], cwd=ROOT, capture_output=True,
+                       text=True, timeout=300)
+    assert r.returncode == 2 and says in r.stderr and "Traceback" not in r.stderr, r.stderr
+    assert r.stdout == ""

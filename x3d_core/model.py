@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Iterator, NamedTuple
 
 from .fields import FieldType
+from .paths import shown
 from .schema import NodeType
 
 
@@ -15,7 +16,7 @@ class Location(NamedTuple):
     col: int = 0  # 0: not yet known (XML), found when a diagnostic needs it
 
     def __str__(self) -> str:
-        return f"{self.file}:{self.line}:{self.col}"
+        return f"{shown(self.file)}:{self.line}:{self.col}"
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,13 @@ import os
 SCENE_EXTENSIONS = (".x3d", ".x3dv", ".x3dj")
 
 
+def shown(path: str) -> str:
+    """A file name as a line of output names it: as it is, or quoted with its escapes (Python's
+    repr) where it holds a character that does not print (a newline would start a line of
+    its own, one that could read `x.x3d: ok`; an undecodable byte would not encode)."""
+    return path if path.isprintable() else repr(path)
+
+
 def scene_files(paths: list[str]) -> list[str]:
     """Files as given, folders searched (sorted, so every run sees the same order).
 

@@ -38,7 +38,6 @@ from __future__ import annotations
 
 import math
 import os
-from collections import Counter
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, replace
 
@@ -110,13 +109,18 @@ def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_
 
 
 def numbered(names: Sequence[str]) -> list[str]:
-    """Each name as given, numbered from its second use on (NAME, NAME-2, NAME-3): results
-    named after scenes that share a file name do not overwrite each other."""
-    seen: Counter = Counter()
-    out = []
+    """Each name as given, numbered from its second use on (NAME, NAME-2, NAME-3), a number
+    taken by a name given (a scene called NAME-2) skipped: results named after scenes that
+    share a file name, or that are named like another's number, do not overwrite each other."""
+    taken, out = set(names), []
     for name in names:
-        seen[name] += 1
-        out.append(name if seen[name] == 1 else f"{name}-{seen[name]}")
+        if name in out:
+            k = 2
+            while f"{name}-{k}" in taken:
+                k += 1
+            name = f"{name}-{k}"
+            taken.add(name)
+        out.append(name)
     return out
 
 

@@ -37,7 +37,7 @@ from conformance import expectations
 from conformance.cli import options
 from conformance.results import PASS
 from conformance.cli.run import scene_to_run
-from conformance.cli.sweep import plans, steps
+from conformance.cli.sweep import plans, steps, targets
 from conformance.runner import children
 from conformance.analyses import advice as A
 from conformance.analyses import sweep as S
@@ -103,7 +103,8 @@ def cmd_advise(args: argparse.Namespace) -> int:
     if not scenes:
         return status
     try:
-        S.targets(list(scenes)[:1], dts, args.window, args.duration)  # the steps' common frames
+        for path in scenes:  # the steps' common frames, each scene's reference run within a run's bounds
+            targets([path], dts, args.window, args.duration)
         planned = plans("advise", args.backends, args.timeout)
     except ValueError as e:
         return _usage(str(e))
@@ -151,7 +152,7 @@ def add_command(sub) -> None:
                    help=f"simulated seconds each run is watched for parting (default {A.DEFAULT_DURATION:g})")
     p.add_argument("--window", type=options.positive, default=S.DEFAULT_WINDOW, metavar="S",
                    help=f"seconds compared with the reference (default {S.DEFAULT_WINDOW:g})")
-    p.add_argument("--repeats", type=options.count, default=S.REPEATS, metavar="N",
+    p.add_argument("--repeats", type=options.repeats, default=S.REPEATS, metavar="N",
                    help=f"timed runs of each, for the median speed and its spread (default {S.REPEATS})")
     p.add_argument("--verdicts", metavar="matrix.json",
                    help="the conformance verdicts of a run (x3drbp conformance --out DIR: DIR/matrix.json) "

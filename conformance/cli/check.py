@@ -9,7 +9,7 @@ from x3d_core.analysis import features, summarize
 from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.outcome import outcome_warnings
-from x3d_core.paths import scene_files
+from x3d_core.paths import scene_files, shown
 
 
 def cmd_check(args: argparse.Namespace) -> int:
@@ -28,7 +28,7 @@ def cmd_check(args: argparse.Namespace) -> int:
             failed += 1
             continue
         except Exception as e:  # a bug of ours, never the file's fault: still one line, no traceback
-            print(f"{path}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it")
+            print(f"{shown(path)}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it")
             failed += 1
             continue
         scene.diagnostics.extend(outcome_warnings(scene))
@@ -39,7 +39,7 @@ def cmd_check(args: argparse.Namespace) -> int:
             failed += 1
             continue
         if not args.quiet:
-            print(f"{path}: ok ({scene.encoding}, X3D {scene.version}, {len(scene.warnings)} warning{'' if len(scene.warnings) == 1 else 's'})")
+            print(f"{shown(path)}: ok ({scene.encoding}, X3D {scene.version}, {len(scene.warnings)} warning{'' if len(scene.warnings) == 1 else 's'})")
             for line in summarize(scene).lines():
                 print(f"  {line}")
             print(f"  features: {' '.join(features(scene)) or 'none'}")

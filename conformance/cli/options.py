@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 import sys
 from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
@@ -29,6 +30,20 @@ def names(values: list[str] | None) -> list[str]:
     for v in values or []:
         out.extend(n for n in v.replace(",", " ").split() if n)
     return list(dict.fromkeys(out))
+
+
+def listed(values: list[str] | None) -> list[str]:
+    """Comma-separated file names or case names, the option possibly given several times: a
+    comma within a name written \\, (escaped()); blanks around a name dropped, those within kept."""
+    out: list[str] = []
+    for v in values or []:
+        out.extend(n.strip().replace("\\,", ",") for n in re.split(r"(?<!\\),", v) if n.strip())
+    return list(dict.fromkeys(out))
+
+
+def escaped(name: str) -> str:
+    """A name as listed() reads it back whole."""
+    return name.replace(",", "\\,")
 
 
 def thresholds(values: list[str] | None) -> dict[str, float]:
@@ -53,6 +68,7 @@ def thresholds(values: list[str] | None) -> dict[str, float]:
 # is a mistake (--frame-rate 1e9 wanted 7.7 GiB; --dt 1e-12 would step for days), said at once.
 MAX_FRAMES = 10**6
 MAX_STEPS = 10**9
+MAX_REPEATS = 100  # timed runs of one point: a median and its spread need a few, 10^9 would run for ever
 
 
 def settings_error(args: argparse.Namespace) -> str | None:
@@ -62,12 +78,18 @@ def settings_error(args: argparse.Namespace) -> str | None:
         value = getattr(args, name, 1.0)
         if value is not None and not (math.isfinite(value) and value > 0):
             return f"--{name.replace('_', '-')} must be a positive number, not {value:g}"
-    frames, steps = args.duration * args.frame_rate, args.duration / args.dt
+    too = too_long(args.duration, args.dt, args.frame_rate)
+    return too and f"--duration {args.duration:g} at --dt {args.dt:g} and --frame-rate {args.frame_rate:g} makes {too}"
+
+
+def too_long(duration: float, dt: float, frame_rate: float) -> str | None:
+    """What a run of `duration` s at step dt, recording frame_rate frames a second, makes past
+    MAX_FRAMES or MAX_STEPS ('N frames; a run records at most M'); None within them."""
+    frames, steps = duration * frame_rate, duration / dt
     if frames > MAX_FRAMES:
-        return (f"--duration {args.duration:g} at --frame-rate {args.frame_rate:g} makes {frames:.3g} frames; "
-                f"a run records at most {MAX_FRAMES:g}")
+        return f"{frames:.3g} frames; a run records at most {MAX_FRAMES:g}"
     if steps > MAX_STEPS:
-        return f"--duration {args.duration:g} at --dt {args.dt:g} makes {steps:.3g} steps; a run takes at most {MAX_STEPS:g}"
+        return f"{steps:.3g} steps; a run takes at most {MAX_STEPS:g}"
     return None
 
 
@@ -90,6 +112,14 @@ def count(text: str) -> int:
         value = 0
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be a whole number of at least 1, not {text!r}")
+    return value
+
+
+def repeats(text: str) -> int:
+    """An argparse type: timed runs of one point, 1 to MAX_REPEATS."""
+    value = count(text) if text.strip().isdigit() else 0
+    if not 1 <= value <= MAX_REPEATS:
+        raise argparse.ArgumentTypeError(f"must be a whole number from 1 to {MAX_REPEATS}, not {text!r}")
     return value
 
 

@@ -64,7 +64,7 @@ def _steps(out: str, backends: list[str], quick: bool, x_ite: bool, yours: list[
     examples = sorted(os.path.join(EXAMPLES, f) for f in os.listdir(EXAMPLES))
     scenes = [os.path.relpath(p) for p in examples + yours]  # as the page names them
     compare = os.path.join(out, "compare")
-    sweep_scenes = ["--scenes", ",".join([*S.DEFAULT_SCENES, *yours])] if yours else []
+    sweep_scenes = ["--scenes", ",".join(map(options.escaped, [*S.DEFAULT_SCENES, *yours]))] if yours else []
     steps = [("conformance", [["conformance", *chosen, "--out", os.path.join(out, "conformance")]]),
              ("compare", [["compare", path, *chosen, "--duration", f"{COMPARE_SECONDS:g}",
                            "--json", os.path.join(compare, stem + ".json"), "--rerun", os.path.join(compare, stem + ".rrd")]

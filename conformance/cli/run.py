@@ -228,7 +228,7 @@ def add_command(sub) -> None:
                    "steps, state readback; not the load or the trace writing) to FILE as JSON "
                    "{\"simulation_wall_s\": S, \"step_wall_s\": T, \"repeats\": {...}}, T the engine's steps "
                    "alone, S and T the medians of the repeats, each listed under repeats")
-    r.add_argument("--repeat", type=options.count, default=1, metavar="N",
+    r.add_argument("--repeat", type=options.repeats, default=1, metavar="N",
                    help="run the simulation N times, for --timing's medians and spread (the trace, recording "
                    "and verdict are the first run's: a run is deterministic; default 1)")
     options.add_verbosity(r, "print no notes of what the backend approximates (errors, refusals and the "

@@ -43,7 +43,11 @@ ACCURACY = {"both": (False, True), "false": (False,), "true": (True,)}
 
 
 def steps(values: list[str] | None, default: tuple[float, ...] = S.DEFAULT_DTS) -> list[float]:
-    """Steps as fractions (1/240) or decimals, finest last; ValueError where one is not positive."""
+    """Steps as fractions (1/240) or decimals, finest last; ValueError where one is not positive,
+    or a --dts names none (`--dts ,` is a mistake, not the default)."""
+    empty = [v for v in values or [] if not options.names([v])]
+    if empty:
+        raise ValueError(f"--dts names no step: {empty[0]!r}")
     try:
         dts = [float(Fraction(v)) for v in options.names(values)] or list(default)
     except ZeroDivisionError:
@@ -51,6 +55,19 @@ def steps(values: list[str] | None, default: tuple[float, ...] = S.DEFAULT_DTS) 
     if any(dt <= 0 for dt in dts):
         raise ValueError("steps must be positive")
     return sorted(set(dts), reverse=True)
+
+
+def targets(names: list[str], dts: list[float], window: float, duration: float | None = None) -> list[S.Target]:
+    """S.targets, each target's finest run (its fine-step reference) within a run's bounds
+    (options.too_long): ValueError saying what it would make otherwise."""
+    chosen = S.targets(names, dts, window, duration)
+    for t in chosen:
+        fine = t.settings.with_dt(min(dts) / S.REFINEMENT)
+        too = options.too_long(fine.duration, fine.dt, fine.rate)
+        if too:
+            raise ValueError(f"{t.name}: its reference run: {fine.duration:g} s at a step of {fine.dt:g} s (the "
+                             f"finest of the steps / {S.REFINEMENT}) and {fine.rate:g} frames/s makes {too}")
+    return chosen
 
 
 def plans(command: str, names: list[str] | None, timeout: float) -> dict[str, S.BackendPlan]:
@@ -110,7 +127,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         scheduler = distribute.address(args.scheduler) if args.scheduler else None
         dts = steps(args.dts)
         iterations = sorted({int(v) for v in options.names(args.iterations)} or set(S.DEFAULT_ITERATIONS))
-        chosen = S.targets(options.names(args.scenes) or list(S.DEFAULT_SCENES), dts, args.window)
+        chosen = targets(options.listed(args.scenes) or list(S.DEFAULT_SCENES), dts, args.window)
         planned = plans("sweep", args.backends, args.timeout)
     except ValueError as e:
         print(f"x3drbp sweep: {e}", file=sys.stderr)
@@ -148,8 +165,8 @@ def add_command(sub) -> None:
     p = sub.add_parser("sweep", help="speed against error per scene and backend over step, iterations, accuracy",
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scenes", "--cases", action="append", metavar="NAMES",
-                   help="case names or scene files, comma-separated (default: "
-                        f"{', '.join(S.DEFAULT_SCENES)})")
+                   help="case names or scene files, comma-separated, or the option repeated; a comma in a "
+                        f"file name written \\, (default: {', '.join(S.DEFAULT_SCENES)})")
     p.add_argument("--backends", action="append", metavar="LIST",
                    help="backends, comma-separated (default: every installed one)")
     p.add_argument("--dts", action="append", metavar="LIST",
@@ -158,18 +175,18 @@ def add_command(sub) -> None:
                    help="RigidBodyCollection.iterations values (default 10,50; where the backend honours it)")
     p.add_argument("--accuracy", choices=tuple(ACCURACY), default="both",
                    help="preferAccuracy values (default both; where the backend honours it)")
-    p.add_argument("--window", type=float, default=S.DEFAULT_WINDOW, metavar="S",
+    p.add_argument("--window", type=options.positive, default=S.DEFAULT_WINDOW, metavar="S",
                    help=f"seconds compared with the reference (default {S.DEFAULT_WINDOW:g})")
-    p.add_argument("--repeats", type=options.count, default=S.REPEATS, metavar="N",
+    p.add_argument("--repeats", type=options.repeats, default=S.REPEATS, metavar="N",
                    help=f"timed runs of each point, for the median speed and its spread (default {S.REPEATS})")
     p.add_argument("--out", default=os.path.join("out", "sweep"), metavar="DIR",
                    help="folder for sweep.json, sweep.md and the plots (default out/sweep)")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="a Dask scheduler to run on, SCHEME://HOST:PORT (tcp://host:8786), given up on (exit 1) "
                         f"where it is not reached within {distribute.CONNECT_TIMEOUT:g} s; default: local threads")
-    p.add_argument("--workers", type=int, default=None, metavar="N",
+    p.add_argument("--workers", type=options.count, default=None, metavar="N",
                    help="local processes (default: the number of CPUs; ignored with --scheduler)")
-    p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
+    p.add_argument("--timeout", type=options.positive, default=children.DEFAULT_TIMEOUT, metavar="S",
                    help=f"time limit per run in seconds (default {children.DEFAULT_TIMEOUT:g})")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar and no markdown on stdout")
     p.set_defaults(func=cmd_sweep)
