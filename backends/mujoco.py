@@ -135,10 +135,25 @@ def bounce_spring(e: float, dt: float, w_max: float = BOUNCE_W) -> tuple[float, 
     return (w / dt) ** 2, 2 * zeta * w / dt
 
 
+def _too_light(world: World) -> str | None:
+    """Why MuJoCo refuses a moving body's mass or inertia, or None: its compiler stops on a mass
+    or a principal moment under mjMINVAL (1e-15), as other engines on what they cannot invert."""
+    b = world.bodies
+    for i in np.flatnonzero(~b.fixed):
+        least = float(np.linalg.eigvalsh(b.inertia[i])[0])
+        if not (b.mass[i] >= mujoco.mjMINVAL and least >= mujoco.mjMINVAL):
+            return (f"RigidBody {b.names[i]}: mass {b.mass[i]:g} kg, least principal moment {least:g} kg m^2: "
+                    f"MuJoCo refuses a moving body's mass or inertia under mjMINVAL ({mujoco.mjMINVAL:g})")
+    return None
+
+
 class MujocoSimulation:
     def __init__(self, world: World, dt: float):
         self.world = world
         b = world.bodies
+        too_light = _too_light(world)
+        if too_light:
+            raise Unsupported(too_light)
         spec = mujoco.MjSpec()
         spec.compiler.degree = False
         spec.option.timestep = dt

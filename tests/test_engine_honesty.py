@@ -142,6 +142,18 @@ def test_an_ode_abort_is_a_blow_up_with_the_frames_before_it(tmp_path):
     assert {row.time for row in read_trace(str(tmp_path / "o.csv"))} == {0.0}
 
 
+# 2b: MuJoCo's compiler stopped on these (exit 1, "mass and inertia of moving bodies must be larger
+# than mjMINVAL", "inertia must have positive eigenvalues"): refused, as the other engines refuse
+@pytest.mark.parametrize("ball,says", [
+    ("mass='1e-300'", "RigidBody Ball: mass 1e-300 kg, least principal moment 1 kg m^2"),
+    ("inertia='1e-300 0 0 0 1e-300 0 0 0 1e-300'", "RigidBody Ball: mass 1 kg, least principal moment 1e-300 kg m^2"),
+])
+def test_mujoco_refuses_a_body_too_light_for_its_compiler(tmp_path, ball, says):
+    needs("mujoco", "mujoco")
+    refused(scene(tmp_path, ball=ball), "mujoco", tmp_path / "o.csv", says + ": MuJoCo refuses a moving body's "
+                                                                           "mass or inertia under mjMINVAL (1e-15)")
+
+
 # 4: values that froze a body, exit 0
 @pytest.mark.parametrize("ball,says", [("mass='1e308'", "its weight overflows"),
                                        ("mass='1e-320'", "RigidBody.mass = 1e-320")])

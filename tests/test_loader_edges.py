@@ -401,3 +401,27 @@ def test_xml_lines_past_65535_are_placed_exactly(tmp_path):
     (e,) = s.errors
     line = text.split("\n").index("<RigidBody DEF='B' mass='-1'/></RigidBodyCollection></Scene></X3D>") + 1
     assert (e.subject, e.loc.line, e.loc.col) == ("RigidBody B.mass", line, len("<RigidBody DEF='B' ") + 1)
+
+
+@pytest.mark.parametrize("attrs, model, says", [
+    ("mass='1e308'", "<Box containerField='massDensityModel' size='2 2 2'/>",
+     "RigidBody A.massDensityModel: a Box of 1e+308 kg makes an inertia past the largest double"),
+    ("mass='1'", "<Sphere containerField='massDensityModel' radius='1e200'/>",  # once an OverflowError traceback
+     "RigidBody A.massDensityModel: a Sphere of 1 kg makes an inertia past the largest double"),
+    ("mass='1e308'", "<Cone containerField='massDensityModel' bottomRadius='4' height='8'/>",
+     "RigidBody A.massDensityModel: a Cone of 1e+308 kg makes an inertia past the largest double"),
+    ("mass='1e308' inertia='1e308 0 0 0 1e308 0 0 0 1e308'", "", None),  # huge, still a rigid body's
+])
+def test_check_of_an_inertia_that_overflows_says_so_in_one_line_without_warnings(tmp_path, attrs, model, says):
+    path = tmp_path / "big.x3d"
+    path.write_text("<X3D profile='Full' version='4.0'><Scene><RigidBodyCollection>"
+                    f"<RigidBody DEF='A' position='0 1 0' {attrs}>{model}</RigidBody></RigidBodyCollection></Scene></X3D>")
+    r = subprocess.run([sys.executable, "-m", "conformance.cli", "check", str(path)], cwd=ROOT,
+                       capture_output=True, text=True, timeout=120)
+    text = r.stdout + r.stderr
+    assert "Warning" not in text and "Traceback" not in text, text
+    errors = [ln for ln in r.stdout.splitlines() if ": error: " in ln]
+    if says is None:
+        assert r.returncode == 0 and not errors, text
+    else:
+        assert r.returncode == 1 and len(errors) == 1 and says in errors[0], text

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 
 from .applied import CANONICAL, canonical
 from .model import Diagnostic, Node, Scene
+from .world import body_inertia
 
 # A pair of axes counts as perpendicular when |cos| is below this: well under the
 # float32 rounding of an axis written with 6-7 digits, far above any intended angle.
@@ -90,6 +93,10 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
     for body in groups.get("RigidBody", []):
         if "inertia" in body.values and body.get("massDensityModel") is None:
             _physical_inertia(body, err)
+        model = body.get("massDensityModel")
+        if model is not None and not np.all(np.isfinite(body_inertia(body))):
+            err(body, "massDensityModel", f"a {model.type_name} of {body.get('mass'):g} kg makes an inertia past the "
+                                          f"largest double ({sys.float_info.max:.3g}): no engine can turn the body")
     for body, colls in body_owners.values():
         distinct = list({id(c): c for c in colls}.values())
         if len(distinct) > 1:
@@ -115,9 +122,11 @@ def _physical_inertia(body: Node, err) -> None:
     if not np.allclose(m, m.T, rtol=1e-6, atol=1e-12):
         err(body, "inertia", "the inertia tensor is not symmetric (I12 = I21, I13 = I31, I23 = I32)")
         return
-    a, b, c = np.linalg.eigvalsh(m)
-    tol = 1e-9 * max(abs(c), 1e-300)
-    if a <= 0 or a + b < c - tol:
+    scale = float(np.max(np.abs(m))) or 1.0  # the moments compared in its units: sums near the largest double overflow
+    a, b, c = np.linalg.eigvalsh(m / scale)
+    if a <= 0 or a + b < c - 1e-9 * max(abs(c), 1e-300):
+        with np.errstate(over="ignore"):
+            a, b, c = np.array([a, b, c]) * scale
         err(body, "inertia", f"not the inertia of a rigid body: principal moments {a:.6g}, {b:.6g}, {c:.6g} "
                              "must be positive, each no more than the sum of the other two")
 

@@ -151,20 +151,25 @@ def worlds(scene: Scene) -> list[World]:
     return out
 
 
-def _inertia(node: Node) -> np.ndarray:
+def body_inertia(node: Node) -> np.ndarray:
+    """A RigidBody's inertia about its centre of mass, body axes: its inertia field, or its
+    massDensityModel's for its mass. Not finite where that overflows (validate says so, one
+    line): never a numpy warning, never an OverflowError."""
     m = node.get("mass")
     model = node.get("massDensityModel")
-    if model is None:
-        i = np.asarray(node.get("inertia"), dtype=np.float64).reshape(3, 3)
-        return 0.5 * (i + i.T)  # the field is symmetric by definition; read it so
-    if model.type_name == "Sphere":
-        return np.eye(3) * 0.4 * m * model.get("radius") ** 2
-    if model.type_name == "Box":
-        x, y, z = model.get("size")
-        return np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * m / 12.0
-    r, h = model.get("bottomRadius"), model.get("height")  # Cone, about its centroid, axis y
-    side = 3.0 / 20.0 * m * r * r + 3.0 / 80.0 * m * h * h
-    return np.diag([side, 0.3 * m * r * r, side])
+    with np.errstate(over="ignore"):
+        if model is None:
+            i = np.asarray(node.get("inertia"), dtype=np.float64).reshape(3, 3)
+            return 0.5 * i + 0.5 * i.T  # the field is symmetric by definition; read it so (halves: no overflow)
+        if model.type_name == "Sphere":
+            r = model.get("radius")
+            return np.diag([0.4 * m * (r * r)] * 3)  # not eye * it: 0 * inf is nan
+        if model.type_name == "Box":
+            x, y, z = model.get("size")
+            return np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) * m / 12.0
+        r, h = model.get("bottomRadius"), model.get("height")  # Cone, about its centroid, axis y
+        side = 3.0 / 20.0 * m * r * r + 3.0 / 80.0 * m * h * h
+        return np.diag([side, 0.3 * m * r * r, side])
 
 
 def _bodies(nodes: list[Node], names: dict[int, str]) -> Bodies:
@@ -185,7 +190,7 @@ def _bodies(nodes: list[Node], names: dict[int, str]) -> Bodies:
     axis = vec("finiteRotationAxis")
     return Bodies(
         names=[names[id(b)] for b in nodes], nodes=nodes, mass=num("mass"),
-        inertia=np.array([_inertia(b) for b in nodes]).reshape(n, 3, 3), com=vec("centerOfMass"),
+        inertia=np.array([body_inertia(b) for b in nodes]).reshape(n, 3, 3), com=vec("centerOfMass"),
         position=vec("position"),
         orientation=R.from_axis_angle(np.array([b.get("orientation") for b in nodes]).reshape(n, 4)),
         linear_velocity=vec("linearVelocity"), angular_velocity=vec("angularVelocity"),
