@@ -83,6 +83,8 @@ EVALUATOR: dict[str, Declared] = native(
     "MotorJoint", "MotorJoint.enabledAxes",
     *(f"MotorJoint.axis{k}{f}" for k in (1, 2, 3) for f in ("Angle", "Torque")),
     *(f"MotorJoint.motor{k}Axis" for k in (1, 2, 3)),
+    # ODE's dJointAddSliderForce, applied by the evaluator through set_loads as the motors' torques
+    "SliderJoint.sliderForce",
     # all three engines turn a body by the exponential map of its angular velocity: ODE's
     # finite rotation mode, whatever the flag says
     "RigidBody.useFiniteRotation") | approximate(

@@ -273,7 +273,7 @@ class BulletSimulation:
             tree.parts.append(_Part(joint_type=p.JOINT_REVOLUTE, axis=axes[0],
                                     limits=_angle_limits(par["minAngle"], par["maxAngle"], sign), **link))
         elif j.type == "SliderJoint":
-            limits = tuple(sorted((sign * par["minSeparation"], sign * par["maxSeparation"])))
+            limits = None if j.stops is None else tuple(sorted(sign * s for s in j.stops))
             tree.parts.append(_Part(joint_type=p.JOINT_PRISMATIC, axis=axes[0], limits=limits, **link))
         elif j.type in ("UniversalJoint", "DoubleAxisHingeJoint"):
             if par.get("suspensionForce", 0.0) > 0:

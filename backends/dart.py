@@ -356,7 +356,8 @@ class DartSimulation:
         elif j.type == "SliderJoint":
             joint, node = skeleton.createPrismaticJointAndBodyNodePair(parent)
             joint.setAxis(axes[0])
-            self._limit(joint, 0, j.params["minSeparation"], j.params["maxSeparation"], sign, angular=False)
+            if j.stops is not None:
+                self._limit(joint, 0, *j.stops, sign, angular=False)
         elif j.type == "UniversalJoint":
             joint, node = skeleton.createUniversalJointAndBodyNodePair(parent)
             first, second = (axes[0], axes[1]) if child == j.body2 else (axes[1], axes[0])

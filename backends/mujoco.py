@@ -254,8 +254,8 @@ class MujocoSimulation:
             self._limit(jt, j.params["minAngle"], j.params["maxAngle"], sign, j.params["stopErrorCorrection"])
         elif j.type == "SliderJoint":
             jt = body.add_joint(type=mujoco.mjtJoint.mjJNT_SLIDE, pos=pos, axis=axes[0])
-            self._limit(jt, j.params["minSeparation"], j.params["maxSeparation"], sign,
-                        j.params["stopErrorCorrection"], angular=False)
+            if j.stops is not None:
+                self._limit(jt, *j.stops, sign, j.params["stopErrorCorrection"], angular=False)
         elif j.type == "UniversalJoint":
             first, second = (axes[0], axes[1]) if child == j.body2 else (axes[1], axes[0])
             body.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, pos=pos, axis=first)

@@ -464,9 +464,9 @@ class OdeSimulation:
                         p["stopErrorCorrection"], angular=True)
         elif j.type == "SliderJoint":
             lib.dJointSetSliderAxis(joint, *axes[0])
-            lo, hi = sorted((p["minSeparation"], p["maxSeparation"]))
-            self._stops(lib.dJointSetSliderParam, joint, 0, lo, hi, p["stopBounce"], p["stopErrorCorrection"],
-                        angular=False)
+            if j.stops is not None:  # else ODE's own: no stops
+                self._stops(lib.dJointSetSliderParam, joint, 0, *j.stops, p["stopBounce"], p["stopErrorCorrection"],
+                            angular=False)
         elif j.type == "UniversalJoint":
             lib.dJointSetUniversalAnchor(joint, *a)
             lib.dJointSetUniversalAxis1(joint, *axes[0])

@@ -70,6 +70,31 @@ def _buffer(values: np.ndarray) -> batch.Buffer:
     return buf
 
 
+class _Track:
+    """An unstopped slider's line (world.slider_stops: none where minSeparation > maxSeparation): a
+    groove of body2 along the axis through body1's point, recentred on that point before every
+    step. Chipmunk's groove has ends that stop the slider, and no fixed length serves every run:
+    it reads the line's offset from the ends' world positions, so their rounding is the line's
+    (2e-4 m for ends at STATE_BOUND's 1e12 m, from the first step), and any shorter groove stops a
+    run that slides farther. Recentred, it reaches 1 m plus twice the step's travel each way (a
+    step moves a body with its velocity at the step's start, module notes): no end is reached, and
+    the rounding stays that of the bodies' own coordinates."""
+
+    def __init__(self, body1: pymunk.Body, body2: pymunk.Body, point: pymunk.Vec2d, axis: pymunk.Vec2d):
+        self.body1, self.body2 = body1, body2
+        self.origin = body2.world_to_local(point)  # separation 0, in body2's frame
+        self.along = axis.rotated(-body2.angle)
+        self.groove = pymunk.GrooveJoint(body2, body1, tuple(self.origin - self.along), tuple(self.origin + self.along),
+                                         (0.0, 0.0))
+
+    def recentre(self, dt: float) -> None:
+        here = self.body1.position  # body1's point: its origin (the static body's is the world's)
+        travel = (self.body1.velocity_at_world_point(here) - self.body2.velocity_at_world_point(here)).length * dt
+        centre = self.origin + self.along * self.along.dot(self.body2.world_to_local(here) - self.origin)
+        reach = self.along * (1.0 + 2.0 * travel)
+        self.groove.groove_a, self.groove.groove_b = centre - reach, centre + reach
+
+
 class _Contacts:
     """The shapes of world.collisions and the callbacks that give each contact x3d_core's
     parameters and filtering."""
@@ -172,6 +197,7 @@ class PymunkSimulation:
         self.start.angular_velocity[b.fixed] = 0.0
         self.z = self.start.position[self.rows, 2]
         self.constraints: list[pymunk.Constraint] = []
+        self.tracks: list[_Track] = []
         for j in world.joints:
             self._joint(j)
         space.add(*self.constraints)
@@ -247,25 +273,30 @@ class PymunkSimulation:
             self.constraints.append(constraint)
 
     def _slider(self, j: Joint, body1: pymunk.Body, body2: pymunk.Body) -> list[tuple[pymunk.Constraint, float]]:
-        """body1's origin on a groove of body2 from minSeparation to maxSeparation along the
-        axis (its ends are the stops), and the two turning together."""
-        p = j.params
-        lo, hi = sorted((p["minSeparation"], p["maxSeparation"]))
+        """body1's origin on a groove of body2 along the axis, from minSeparation to maxSeparation
+        (its ends are the stops, corrected at stopErrorCorrection), or a _Track where the slider
+        has no stops (its line corrected at errorCorrection, as ODE's); the two turning together."""
         start = body1.position  # a static body1 is at the origin: its point is too
         axis = pymunk.Vec2d(*j.axes[0, :2])
-        stop_bias = _bias(p["stopErrorCorrection"], self.dt)
-        if hi - lo <= 0:  # no groove to slide in: a pivot at the one separation allowed
+        joint_bias = _bias(self.world.error_correction, self.dt)
+        lock = (pymunk.GearJoint(body2, body1, body1.angle - body2.angle, 1.0), joint_bias)
+        if j.stops is None:
+            self.tracks.append(_Track(body1, body2, start, axis))
+            return [(self.tracks[-1].groove, joint_bias), lock]
+        lo, hi = j.stops
+        if hi == lo:  # no groove to slide in: a pivot at the one separation allowed
             held = pymunk.PivotJoint(body2, body1, tuple(start + axis * lo))
         else:
             ends = [body2.world_to_local(tuple(start + axis * s)) for s in (lo, hi)]
             held = pymunk.GrooveJoint(body2, body1, tuple(ends[0]), tuple(ends[1]), (0.0, 0.0))
-        lock = pymunk.GearJoint(body2, body1, body1.angle - body2.angle, 1.0)
-        return [(held, stop_bias), (lock, _bias(self.world.error_correction, self.dt))]
+        return [(held, _bias(j.params["stopErrorCorrection"], self.dt)), lock]
 
     # -- running ------------------------------------------------------------
     def step(self, n: int = 1) -> None:
         space, dt = self.space, self.dt
         for _ in range(n):
+            for track in self.tracks:
+                track.recentre(dt)
             if self.loaded:  # Chipmunk clears forces and torques after every step
                 batch.set_space_bodies(space, _LOADS, self.loads)
             space.step(dt)

@@ -50,6 +50,19 @@ def test_hinge_limit_holds_a_rod(tmp_path):
     assert angle[-1] == pytest.approx(-0.6, abs=1e-3)
 
 
+def test_an_unstopped_slider_slides_on_at_any_speed(tmp_path):
+    """minSeparation > maxSeparation: no stops (37.4.13). Chipmunk's groove has ends; the groove
+    that follows body1 (backends/pymunk.py, _Track) never lets it reach one, even at 5 km/s
+    (20.8 m a step, past the groove's 1 m reach at rest), and holds it on the line."""
+    s = simulate(tmp_path, "<RigidBodyCollection gravity='0 0 0'><RigidBody DEF='Rail' fixed='true'/>"
+                 "<RigidBody DEF='Block' linearVelocity='3000 -4000 0' inertia='0.01 0 0 0 0.01 0 0 0 0.01'/>"
+                 "<SliderJoint axis='0.6 -0.8 0' minSeparation='0.3' maxSeparation='0'>"
+                 "<RigidBody USE='Block' containerField='body1'/><RigidBody USE='Rail' containerField='body2'/>"
+                 "</SliderJoint></RigidBodyCollection>")
+    assert values(s, "Block", "position")[-1] == pytest.approx([3000, -4000, 0], abs=1e-9)
+    assert values(s, "Block", "linearVelocity")[-1] == pytest.approx([3000, -4000, 0], abs=1e-9)
+
+
 def test_sensor_contact_normal_and_depth(tmp_path):
     """A ball dropped 0.1 m lands deeper than the slop (v dt = 5.8 mm) and is pushed back to it:
     one contact, normal from geometry1 to geometry2 along y, at the floor's top under the

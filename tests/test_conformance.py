@@ -418,7 +418,7 @@ def _case_folder(root, name: str, module: str | None = CASE_MODULE) -> None:
 
 def test_cases_are_the_folders_found_sorted():
     names = [c.name for c in C.CASES]
-    assert names == sorted(names) and len(names) == 51 and set(C.BY_NAME) == set(names)
+    assert names == sorted(names) and len(names) == 52 and set(C.BY_NAME) == set(names)
     assert all(c.path == os.path.join(os.path.dirname(C.__file__), c.name, f"{c.name}.x3d") for c in C.CASES)
     assert C.discover() == C.CASES
     assert [c.name for c in C.select(["projectile", "free_fall"])] == ["projectile", "free_fall"]

@@ -296,3 +296,49 @@ def test_a_rotation_axis_of_huge_components_is_normalised_without_overflow():
         q = R.from_axis_angle(np.array([[1e308, 1e308, 0.0, 1.0], [1e-320, 0.0, 0.0, 1.0]]))
     expected = R.from_axis_angle(np.array([[1.0, 1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0]]))
     assert np.allclose(q, expected, rtol=0, atol=1e-15)
+
+
+class _Turned:
+    """An engine that stands still with body row 0 turned a quarter about z, keeping every load it is given."""
+    name = "turned"
+
+    def __init__(self):
+        self.loads: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def build(self, world, dt):
+        loads = self.loads
+
+        class Sim:
+            def step(self, n=1):
+                pass
+
+            def state(self):
+                s = State.initial(world.bodies)
+                s.orientation[0] = R.from_axis_angle(np.array([[0.0, 0.0, 1.0, math.pi / 2]]))[0]
+                return s
+
+            def set_loads(self, forces, torques):
+                loads.append((forces.copy(), torques.copy()))
+        return Sim()
+
+
+def test_slider_force_pushes_body1_along_the_axis_it_carries_and_turns_neither(tmp_path):
+    """sliderForce as ODE's dJointAddSliderForce: +F along the axis as body1 carries it (turned
+    from 1 0 0 to 0 1 0) on body1, -F on body2, and the decoupling torque that puts the two
+    forces on one line: the pair gets no net force and no net torque, though their centres of
+    mass (body1's off its origin) are not on the axis."""
+    from x3d_core.evaluator import run
+    s = scene(tmp_path, """
+<RigidBodyCollection gravity='0 0 0'>
+  <RigidBody DEF='Block' position='0 0 1' centerOfMass='0.3 0 0'/><RigidBody DEF='Carriage'/>
+  <SliderJoint axis='1 0 0' minSeparation='-1' maxSeparation='1' sliderForce='2'>
+    <RigidBody USE='Block' containerField='body1'/><RigidBody USE='Carriage' containerField='body2'/></SliderJoint>
+</RigidBodyCollection>""")
+    engine = _Turned()
+    run(worlds(s), engine, RunSettings(2 / 240, 1 / 240, 240))
+    assert len(engine.loads) == 2  # before every step
+    forces, torques = engine.loads[-1]
+    assert np.allclose(forces, [[0, 2, 0], [0, -2, 0]], rtol=0, atol=1e-15)
+    centres = np.array([[0.0, 0.3, 1.0], [0.0, 0.0, 0.0]])  # Block's centre of mass turned with it
+    assert np.allclose(np.cross(centres, forces).sum(axis=0) + torques.sum(axis=0), 0, rtol=0, atol=1e-15)
+    assert not np.allclose(torques, 0)

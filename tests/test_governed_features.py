@@ -17,6 +17,7 @@ from x3d_core.analysis import Use, run_features, run_uses
 from x3d_core.load import load
 from x3d_core.schema import node_type
 from x3d_core.trace import read_trace
+from x3d_core.world import worlds
 
 CFM = "RigidBodyCollection.constantForceMix"
 MIN_BOUNCE = "CollisionCollection.minBounceSpeed"
@@ -129,6 +130,22 @@ def test_one_feature_at_two_values_is_two_uses(tmp_path):
                       collection("<RigidBody DEF='Free'/>", "constantForceMix='0.5'"))
     # the third collection has no joint (its CFM softens nothing): it asks for nothing
     assert [str(u) for u in run_uses(load(path)) if u.feature == CFM] == [f"{CFM} = 0", f"{CFM} = 0.001"]
+
+
+@pytest.mark.parametrize("low, high, stops", [(0.3, 0, False), (0, 0.3, True), (0.3, 0.3, True)],
+                         ids=["min above max", "min below max", "equal"])
+def test_a_slider_has_stops_only_where_min_is_not_above_max(tmp_path, low, high, stops):
+    """37.4.13: "If minSeparation is greater than maxSeparation, the stops become ineffective as if the
+    object has no stops at all": no stops to build (Joint.stops, the limits feature), nothing for a
+    stop's bounce or correction to act on. The backends once swapped the two into stops."""
+    slide = (f"<SliderJoint minSeparation='{low}' maxSeparation='{high}' stopBounce='0.5' "
+             "stopErrorCorrection='0.2'><RigidBody USE='Ball' containerField='body1'/>"
+             "<RigidBody USE='Anchor' containerField='body2'/></SliderJoint>")
+    found = uses(tmp_path, BALL + ANCHOR + slide)
+    needed = ("SliderJoint.limits", "SliderJoint.stopBounce", "SliderJoint.stopErrorCorrection")
+    assert [f in found for f in needed] == [stops] * 3
+    joint = worlds(load(scene_file(tmp_path, collection(BALL + ANCHOR + slide))))[0].joints[0]
+    assert joint.stops == ((low, high) if stops else None)
 
 
 # -- a value the engine holds anyway --------------------------------------------------------

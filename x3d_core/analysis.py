@@ -30,7 +30,7 @@ from . import fields as F
 from .applied import applied
 from .collision import STATIC, collider, foreign_contacts
 from .model import Node, Scene
-from .world import World, worlds
+from .world import World, slider_stops, worlds
 
 RBP_TYPES = ("RigidBodyCollection", "RigidBody", "BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint",
              "SliderJoint", "UniversalJoint", "MotorJoint", "CollisionCollection", "CollisionSpace",
@@ -133,7 +133,7 @@ def _derived(n: Node) -> Iterator[str]:
         lo, hi = (n.get(f) for f in _ANGLE_LIMITS[t])
         if lo > -math.pi + 1e-6 or hi < math.pi - 1e-6:
             yield f"{t}.limits"
-    elif t == "SliderJoint":
+    elif t == "SliderJoint" and slider_stops(n) is not None:  # min > max: no stops at all (37.4.13)
         yield "SliderJoint.limits"
     elif t == "CollidableShape":
         shape = n.get("shape")
@@ -239,6 +239,8 @@ def _acts(node: Node, use: Use, r: _Reach) -> bool:
     field_name = rest.partition(".")[0]
     if kind == "Contact":  # only set_contacts gives a Contact an effect, and its route counts
         return False
+    if kind == "SliderJoint" and field_name.startswith("stop") and not use.feature.endswith(".routed"):
+        return slider_stops(node) is not None  # a stop's bounce or correction: nothing where there are no stops
     if kind == "RigidBodyCollection" and field_name in JOINT_SOFTNESS:
         return id(node) in r.jointed or id(node) in r.touching
     if (kind, field_name) in CONTACT_FIELDS:
@@ -253,8 +255,10 @@ def run_uses(scene: Scene, ws: list[World] | None = None) -> list[Use]:
     contact parameters (its collider's, and its contactSurfaceThickness and
     maxCorrectionSpeed) only where that collider holds two collidables that can touch, one
     on a moving body; errorCorrection and constantForceMix only where the collection has
-    such contacts or a joint between two bodies; a Contact node never by itself. ws: the
-    scene's worlds where the caller has built them already (a run builds them once)."""
+    such contacts or a joint between two bodies; a SliderJoint's stopBounce and
+    stopErrorCorrection only where it has stops (world.slider_stops); a Contact node never by
+    itself. ws: the scene's worlds where the caller has built them already (a run builds them
+    once)."""
     r = _reach(scene, worlds(scene) if ws is None else ws)
     out = {str(u): u for n, u in _uses(scene) if _acts(n, u, r)}
     return [out[k] for k in sorted(out)]

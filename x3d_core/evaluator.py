@@ -21,7 +21,7 @@ from . import engine as _engine
 from .engine import BlewUp, Engine, Simulation, Stopped, Unsupported
 from .joint_outputs import JointOutputs
 from .trace import Column, Trace
-from .world import STATIC, State, World, undirected
+from .world import STATIC, State, World, parallel, undirected
 
 # A frame end that lands within this fraction of a step of a step boundary counts as
 # on it: frame times are sums of decimal fractions and carry rounding of ~1e-16 s.
@@ -92,6 +92,39 @@ class _Motors:
                 torques[j.body1] += tau
             if j.body2 != STATIC:
                 torques[j.body2] -= tau
+
+
+class _SliderForces:
+    """SliderJoint.sliderForce as ODE's dJointAddSliderForce: +F along the axis (carried by body1,
+    or fixed in the world where body1 is the static environment) on body1 and -F on body2, at
+    every step. Between two bodies each also gets the torque c x F, c half the vector from body1's
+    centre of mass to body2's: the pair's forces then act along one line, so the joint's force
+    turns neither body about the other (ODE's linear torque decoupling)."""
+
+    def __init__(self, world: World):
+        b = world.bodies
+        self.sliders = []
+        for j in world.joints:
+            force = j.params.get("sliderForce", 0.0) if j.type == "SliderJoint" and j.body1 != j.body2 else 0.0
+            if force:
+                q1 = R.IDENTITY if j.body1 == STATIC else b.orientation[j.body1]
+                self.sliders.append((j, R.rotate(R.conjugate(q1), j.axes[0]), force))
+        self.com = b.com
+        self.active = bool(self.sliders)
+
+    def add_loads(self, forces: np.ndarray, torques: np.ndarray, s: State) -> None:
+        for j, local_axis, amount in self.sliders:
+            q1 = R.IDENTITY if j.body1 == STATIC else s.orientation[j.body1]
+            f = amount * R.rotate(q1, local_axis)
+            if j.body1 != STATIC:
+                forces[j.body1] += f
+            if j.body2 != STATIC:
+                forces[j.body2] -= f
+            if STATIC not in (j.body1, j.body2):
+                ends = [s.position[k] + R.rotate(s.orientation[k], self.com[k]) for k in (j.body1, j.body2)]
+                tau = np.cross(0.5 * (ends[1] - ends[0]), f)
+                torques[j.body1] += tau
+                torques[j.body2] += tau
 
 
 class _AutoDisable:
@@ -184,15 +217,17 @@ class _AutoDisable:
 
 
 class _StepInputs:
-    """What changes at every step and must be done between engine steps: motor torques,
-    damping, auto-disable. Inactive (and free) for scenes that use none of them."""
+    """What changes at every step and must be done between engine steps: motor torques, slider
+    forces, damping, auto-disable. Inactive (and free) for scenes that use none of them."""
 
     def __init__(self, world: World, dt: float):
         self.world = world
         self.damping = _Damping(world)
         self.motors = _Motors(world)
+        self.sliders = _SliderForces(world)
         self.disable = _AutoDisable(world, dt)
-        self.active = self.damping.active or self.motors.active or self.disable.active
+        self.pushing = self.motors.active or self.sliders.active  # loads that follow the bodies
+        self.active = self.damping.active or self.pushing or self.disable.active
         b = world.bodies
         with np.errstate(over="ignore", invalid="ignore"):  # an overflowing weight blows up as a non-finite state
             self.weight = b.mass[:, None] * world.gravity * b.use_gravity[:, None]
@@ -200,12 +235,14 @@ class _StepInputs:
 
     def before(self, sim: Simulation) -> None:
         held = bool(self.disable.disabled.any())
-        if not (self.motors.active or held or self.held):  # self.held: a body woke, its loads come back
+        if not (self.pushing or held or self.held):  # self.held: a body woke, its loads come back
             return
         self.held = held
         b = self.world.bodies
         forces, torques = b.forces.copy(), b.torques.copy()
-        self.motors.add_torques(torques, sim.state())
+        s = sim.state()
+        self.motors.add_torques(torques, s)
+        self.sliders.add_loads(forces, torques, s)
         off = self.disable.disabled
         forces[off] = -self.weight[off]  # a disabled body feels nothing: its loads cancel gravity
         torques[off] = 0.0
@@ -226,11 +263,16 @@ class _StepInputs:
 
 def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times: np.ndarray | None = None) -> Trace:
     """Simulate every world and return the event trace. Unsupported, before any engine sees
-    it, where a joint needs an axis that is zero (world.undirected): one answer on every backend."""
+    it, where a joint needs an axis that is zero (world.undirected) or a joint's two axes are one
+    line (world.parallel): one answer on every backend."""
     zero = [axis for w in worlds for axis in undirected(w)]
     if zero:
         raise Unsupported("; ".join(f"{a} = 0 0 0: a joint axis of no direction (the spec gives none in its place)"
                                     for a in zero))
+    one_line = [joint for w in worlds for joint in parallel(w)]
+    if one_line:
+        raise Unsupported("; ".join(f"{j}: one line, not the two independent axes the joint turns about"
+                                    for j in one_line))
     dt = settings.dt
     sims = [engine.build(w, dt) for w in worlds]
     inputs = [_StepInputs(w, dt) for w in worlds]

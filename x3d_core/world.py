@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from . import fields as F
 from . import rotation as R
 from .collision import STATIC, plan
 from .model import Node, Scene
@@ -76,6 +77,7 @@ class Joint:
     axes: np.ndarray  # (3, 3) rows: axis, axis1/2, or motor axes 1..3 (unit, world, at the start)
     params: dict[str, float]  # the joint's numeric input fields, SI
     outputs: tuple[str, ...]  # the output fields forceOutput selects
+    stops: tuple[float, float] | None = None  # a SliderJoint's (minSeparation, maxSeparation); None: no stops
 
 
 @dataclass
@@ -223,6 +225,36 @@ def undirected(w: World) -> list[str]:
     return out
 
 
+def slider_stops(node: Node) -> tuple[float, float] | None:
+    """A SliderJoint's stops (minSeparation, maxSeparation), or None: "If minSeparation is greater
+    than maxSeparation, the stops become ineffective as if the object has no stops at all" (V3.3,
+    37.4.13). Decided here once, so that no backend swaps them into stops of its own."""
+    lo, hi = float(node.get("minSeparation")), float(node.get("maxSeparation"))
+    return None if lo > hi else (lo, hi)
+
+
+# below this |axis1 x axis2| (unit axes) the two are one line: ODE's own test for its hinge2
+PARALLEL = 1e-9
+
+
+def parallel(w: World) -> list[str]:
+    """The DoubleAxisHingeJoints of the world whose axis1 and axis2 are parallel, each named with
+    both axes as the scene gives them: the joint "has two independent axes" (V3.3, 37.4.8), and
+    one line is not two. ODE refused it; MuJoCo's and DART's models were singular (MuJoCo
+    non-finite in the first frame of a driven hinge2, DART warning at every step), Bullet ran it:
+    every backend refuses it now. Only joints that join two ends and whose axes are not zero
+    (undirected names those). A UniversalJoint's axes are the spec's to leave undefined where
+    not perpendicular (x3d_core.validate warns); ODE alone refuses parallel ones, as its engine
+    cannot build them."""
+    out = []
+    for j in w.joints:
+        if j.type == "DoubleAxisHingeJoint" and j.body1 != j.body2 and np.all(np.any(j.axes[:2], axis=1)) \
+                and np.linalg.norm(np.cross(j.axes[0], j.axes[1])) < PARALLEL:
+            a1, a2 = (F.format_xml(F.FIELD_TYPES["SFVec3f"], j.node.get(f)) for f in ("axis1", "axis2"))
+            out.append(f"{j.type} {j.name}: axis1 = {a1} and axis2 = {a2} are parallel")
+    return out
+
+
 def _unit(v: np.ndarray) -> np.ndarray:
     n = np.linalg.norm(v)
     return v / n if n > 0 else np.zeros(3)
@@ -245,7 +277,9 @@ def _joint(node: Node, rows: dict[int, int], fixed: np.ndarray, names: dict[int,
     wanted = node.get("forceOutput")
     selected = outputs if "ALL" in wanted else tuple(f for f in outputs if f in wanted)
     anchor = np.asarray(node.get("anchorPoint"), dtype=np.float64) if "anchorPoint" in spec.fields else np.zeros(3)
-    return Joint(names[id(node)], node.type_name, node, row("body1"), row("body2"), anchor, axes, params, selected)
+    stops = slider_stops(node) if node.type_name == "SliderJoint" else None
+    return Joint(names[id(node)], node.type_name, node, row("body1"), row("body2"), anchor, axes, params, selected,
+                 stops)
 
 
 def _world(coll: Node, names: dict[int, str]) -> World:

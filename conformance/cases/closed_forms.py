@@ -75,6 +75,8 @@ HINGE2_LIMITS = spec("37.4.8 DoubleAxisHingeJoint: The minAngle1 and maxAngle1 f
 HINGE2_OUTPUTS = spec("37.4.8 DoubleAxisHingeJoint: The hingeXAngle output fields report the current relative angle "
                       "between the two bodies in radians and the hingeXAngleRate field describes the rate at which "
                       "that angle is currently changing in radians per second.", "V3.3")
+SLIDER_STOPS = spec("37.4.13 SliderJoint: If minSeparation is greater than maxSeparation, the stops become ineffective "
+                    "as if the object has no stops at all.", "V3.3")
 # constraint drift, shared by the ball chain and the universal joint
 ERROR_CORRECTION = 0.8  # RigidBodyCollection.errorCorrection default: the scenes leave it
 

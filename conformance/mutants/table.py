@@ -66,6 +66,14 @@ def _colinear(j: Joint) -> None:
     j.axes[1] = j.axes[0]
 
 
+def _default_stops(j: Joint) -> None:
+    j.stops = (0.0, 1.0)
+
+
+def _stops_swapped(j: Joint) -> None:
+    j.stops = tuple(sorted((j.params["minSeparation"], j.params["maxSeparation"])))
+
+
 def _at_origin(j: Joint) -> None:
     j.anchor = np.zeros(3)
 
@@ -152,8 +160,10 @@ MUTANTS: tuple[Mutant, ...] = (
            params((HINGE, DOUBLE), minAngle=math.radians, maxAngle=math.radians, minAngle1=math.radians,
                   maxAngle1=math.radians), kills=("hinge_limits",)),
     Mutant("slider-stops-ignored", "SliderJoint minSeparation/maxSeparation ignored: the stops stay at 0 and 1",
-           IGNORED, params((SLIDER,), minSeparation=lambda _: 0.0, maxSeparation=lambda _: 1.0),
-           kills=("slider_stops",)),
+           IGNORED, joints((SLIDER,), _default_stops), kills=("slider_stops",)),
+    Mutant("slider-stops-swapped", "SliderJoint minSeparation > maxSeparation taken as stops, the two swapped",
+           "stops sorted for the engine (x3drbp's five adapters sorted them)",
+           joints((SLIDER,), _stops_swapped), kills=("slider_unstopped",)),
     Mutant("stop-bounce-ignored", "stopBounce ignored: a joint stop never bounces", IGNORED,
            params((HINGE, SLIDER, DOUBLE), stopBounce=lambda _: 0.0, stop1Bounce=lambda _: 0.0),
            gap="hinge_bounce run with preferAccuracy TRUE: ode's quick-step meets the stop 0.5 rad late, and its "

@@ -10,8 +10,8 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import G, honoured, stop_overshoot
-from conformance.results import Measure, Settings, convention, spec
+from conformance.cases.closed_forms import SLIDER_STOPS, G, honoured, stop_overshoot
+from conformance.results import Measure, Settings, convention
 
 
 # slider_stops.x3d: the stops in X3D 3.3's range [0, inf); the block starts at separation 0, the
@@ -19,8 +19,6 @@ from conformance.results import Measure, Settings, convention, spec
 SLIDE_AXIS = np.array([0.6, -0.8, 0.0])
 SLIDE_MIN, SLIDE_MAX, SLIDE_ERP = 0.0, 0.3, 1.0  # SliderJoint.stopErrorCorrection default is 1
 SLIDE_DEFAULT_MAX = 1.0  # SliderJoint.maxSeparation default
-STOPS = spec("37.4.13 SliderJoint: If minSeparation is greater than maxSeparation, the stops become ineffective as "
-             "if the object has no stops at all.", "V3.3")
 ODE_SEPARATION = convention(
     "separation of body1 relative to body2 along the axis, from the initial configuration (ODE's "
     "dJointGetSliderPosition): the block starts at 0 and slides to the max stop; alternatives: body2 relative "
@@ -52,9 +50,9 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     tol = honoured(bound, SLIDE_DEFAULT_MAX - SLIDE_MAX)
     beyond = max(float(np.max(sep)) - SLIDE_MAX, SLIDE_MIN - float(np.min(sep)), 0.0)
     end = float(sep[-1])
-    return [Measure("Slide.separation beyond stops", beyond, tol, "m", STOPS, bound),
+    return [Measure("Slide.separation beyond stops", beyond, tol, "m", SLIDER_STOPS, bound),
             Measure("Slide.separation at the end - the nearer stop", min(abs(end - SLIDE_MIN), abs(end - SLIDE_MAX)),
-                    tol, "m", STOPS, bound),
+                    tol, "m", SLIDER_STOPS, bound),
             Measure("Slide.separation at the end - maxSeparation", abs(end - SLIDE_MAX),
                     honoured(bound, SLIDE_MAX - SLIDE_MIN), "m", ODE_SEPARATION, bound)]
 
