@@ -17,12 +17,15 @@ from conformance.cases import CASES
 from conformance.results import EDITIONS, SPEC, Basis
 from x3d_core import schema
 
-# ISO/IEC 19775-1 clause 37: 37.2's concepts (Table 37.1), and 37.4's nodes, one subclause
-# each in alphabetical order (37.4.1 BallJoint ... 37.4.14 UniversalJoint)
+# ISO/IEC 19775-1 clause 37: 37.2's concepts (Table 37.1), 37.3's abstract types and 37.4's
+# nodes, one subclause each in alphabetical order (37.3.1 X3DNBodyCollidableNode ...,
+# 37.4.1 BallJoint ... 37.4.14 UniversalJoint)
 CONCEPTS = {"37.2.1": "Overview", "37.2.2": "Bodies", "37.2.3": "Joints", "37.2.4": "Coordinate systems"}
+ABSTRACT = ("X3DNBodyCollidableNode", "X3DNBodyCollisionSpaceNode", "X3DRigidJointNode")  # schema's, sorted
 NODES = sorted(n for n, t in schema.NODE_TYPES.items() if t.component.startswith("RigidBodyPhysics") and not t.abstract)
-CLAUSES = CONCEPTS | {f"37.4.{i}": name for i, name in enumerate(NODES, 1)}
-HEAD = re.compile(r"^(37(?:\.\d+)+) ([A-Za-z][A-Za-z ]*?): \S")
+CLAUSES = (CONCEPTS | {f"37.3.{i}": name for i, name in enumerate(ABSTRACT, 1)}
+           | {f"37.4.{i}": name for i, name in enumerate(NODES, 1)})
+HEAD = re.compile(r"^(37(?:\.\d+)+) ([A-Za-z][A-Za-z0-9 ]*?): \S")
 
 
 def _modules() -> list[types.ModuleType]:
@@ -36,6 +39,10 @@ def _spec_bases() -> list[tuple[str, Basis]]:
 
 
 SPEC_BASES = _spec_bases()
+
+
+def test_the_abstract_types_are_the_schema_s():
+    assert all(schema.NODE_TYPES[n].abstract for n in ABSTRACT) and list(ABSTRACT) == sorted(ABSTRACT)
 
 
 def test_the_cases_quote_the_clause():
