@@ -136,11 +136,12 @@ def _comparisons(out: str, found: list[tuple[str, Comparison]]) -> str:
     return "\n".join(parts) + "\n"
 
 
-def _sweep(out: str) -> str:
+def _sweep(out: str, meta: dict) -> str:
     """The sweep's markdown, each scene's fronts beside its plot, the notes before them folded."""
     sweep = _read(os.path.join(out, "sweep", "sweep.md"))
     if not sweep:
-        return "## Speed against error\n\nNot run (`x3drbp report --quick` leaves it out).\n"
+        return "## Speed against error\n\n" + (_absent(meta, "sweep") if "sweep" in meta.get("failed", ())
+                                                else "Not run (`x3drbp report --quick` leaves it out).\n")
     head, *scenes = re.split(r"^(?=### )", _section(sweep, "sweep"), flags=re.M)
     with open(os.path.join(out, "sweep", "sweep.json"), encoding="utf-8") as f:
         names = [scene["name"] for scene in json.load(f)["scenes"]]  # as given: the headings' are escaped
@@ -156,6 +157,14 @@ def _sweep(out: str) -> str:
 def _logs(meta: dict, out: str) -> str:
     steps = [k for k in meta["timings_s"] if k != "total" and os.path.exists(os.path.join(out, "logs", f"{k}.log"))]
     return "Each step's log: " + ", ".join(link(f"logs/{k}.log", k) for k in steps) + "." if steps else ""
+
+
+def _absent(meta: dict, step: str) -> str:
+    """What a section says without its results: that its step failed (a reader must not take a
+    failure for a step left out), else that it was not run."""
+    if step in meta.get("failed", ()):
+        return f"FAILED: the {step} step could not run (report.json's `failed`; the report's stderr or logs/ say why).\n"
+    return "Not run.\n"
 
 
 def _header(meta: dict, out: str) -> str:
@@ -183,18 +192,19 @@ def report_markdown(out: str, found: list[tuple[str, Comparison]] | None = None)
     parts = [_header(meta, out), answers(out, [c for _, c in found])]
     matrix = _read(os.path.join(out, "conformance", "matrix.md"))
     parts.append("## Conformance\n\n" + (_folded("The matrix: every case on every backend, and why each verdict",
-                                                   _section(matrix, "conformance")) if matrix else "Not run.\n"))
+                                                   _section(matrix, "conformance")) if matrix else _absent(meta, "conformance")))
     advice = _read(os.path.join(out, "advice", "advice.json"))
-    parts.append("## Which backend for which scene\n\n" + (render_advice(json.loads(advice)) if advice else "Not run.\n"))
+    parts.append("## Which backend for which scene\n\n" + (render_advice(json.loads(advice)) if advice
+                                                          else _absent(meta, "advise")))
     parts.append(_comparisons(out, found))
-    parts.append(_sweep(out))
+    parts.append(_sweep(out, meta))
     stability = _read(os.path.join(out, "stability", "stability.md"))
     parts.append("## Stability\n\n" + (_folded("The hard cases on every backend, at each step, and why",
-                                                _section(stability, "stability")) if stability else "Not run.\n"))
+                                                _section(stability, "stability")) if stability else _absent(meta, "stability")))
     table = _read(os.path.join(out, "features.json"))
     parts.append("## Declared against measured\n\n" + (_folded("Every feature a case exercises, per backend",
                                                                 _features(json.loads(table)))
-                                                        if table else "Not run.\n"))
+                                                        if table else _absent(meta, "features")))
     x_ite = _read(os.path.join(out, "x_ite", "x_ite.json"))
     if x_ite:  # `x3drbp report --x-ite` only
         matrix_json = _read(os.path.join(out, "conformance", "matrix.json"))

@@ -101,6 +101,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.set_defaults(main=main)  # `x3drbp report` runs the other commands through it
     args = parser.parse_args(argv)
     given = _resolve_outputs(args)
+    args.given = {**given, **_resolve_scenes(args)}
     try:
         status = args.func(args)
         if sys.stdout is not None:
@@ -109,7 +110,7 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         return EXIT_INTERRUPTED
     except CannotWrite as e:  # an output file: its path, as given, and why
-        _say(f"x3drbp {args.command}: cannot write {_as_given(e.path, given) or e.path}: {e.reason}")
+        _say(f"x3drbp {args.command}: cannot write {as_given(e.path, given) or e.path}: {e.reason}")
         return EXIT_CANNOT_WRITE
     except BrokenPipeError as e:
         if _stdout_gone():
@@ -146,7 +147,26 @@ def _resolve_outputs(args: argparse.Namespace) -> dict[str, str]:
     return given
 
 
-def _as_given(path: str, given: dict[str, str]) -> str | None:
+# the scenes a command reads and hands to children, which run in the project root: (command, option)
+SCENE_OPTIONS = (("advise", "paths"), ("compare", "scene"), ("report", "scenes"))
+
+
+def _resolve_scenes(args: argparse.Namespace) -> dict[str, str]:
+    """The scene files and folders a command was given made absolute against the folder it
+    was run in, before any child (run in the project root) is handed one. {absolute: as given},
+    so that what the command prints names them as the user did (as_given)."""
+    given = {}
+    for command, name in SCENE_OPTIONS:
+        value = getattr(args, name, None) if args.command == command else None
+        if value is None:
+            continue
+        resolved = [os.path.abspath(v) for v in ([value] if isinstance(value, str) else value)]
+        given.update(zip(resolved, [value] if isinstance(value, str) else value))
+        setattr(args, name, resolved[0] if isinstance(value, str) else resolved)
+    return given
+
+
+def as_given(path: str, given: dict[str, str]) -> str | None:
     """An output's absolute path as the command line named it (or a file within a folder it
     named); None where it is none of them."""
     for full, value in given.items():
@@ -164,5 +184,5 @@ def _oserror(e: OSError, given: dict[str, str]) -> str:
     if not e.filename:
         return reason
     path = os.fsdecode(e.filename) if isinstance(e.filename, (str, bytes)) else str(e.filename)
-    shown = _as_given(os.path.abspath(path), given)
+    shown = as_given(os.path.abspath(path), given)
     return f"{path}: {reason}" if shown is None else f"cannot write {shown}: {reason}"

@@ -17,7 +17,8 @@ fastest within --tolerance of the reference (default 1 mm), else the most accura
 
 Exit status 0 when every scene got its advice (a scene no backend can run is advice too); 1
 when a scene does not load or has nothing to simulate (one line each; the others are still
-advised); 2 on bad usage; 130 or 143 when interrupted (every run stopped).
+advised); 2 on bad usage; 3 when the advice could not be made at all (the judgement's child
+failed, or a pin file does not parse: `x3drbp report` names the step failed); 130 or 143 when interrupted (every run stopped).
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ from x3d_core.documents import BadDocument, read_json
 from x3d_core.paths import scene_files
 
 from conformance import expectations
-from conformance.cli import options
+from conformance.cli import as_given, options
 from conformance.results import PASS
 from conformance.cli.run import scene_to_run
 from conformance.cli.sweep import plans, steps, targets
@@ -42,7 +43,7 @@ from conformance.runner import children
 from conformance.analyses import advice as A
 from conformance.analyses import sweep as S
 
-EXIT_OK, EXIT_SCENE, EXIT_USAGE = 0, 1, 2
+EXIT_OK, EXIT_SCENE, EXIT_USAGE, EXIT_FAILED = 0, 1, 2, 3
 
 
 def _usage(message: str) -> int:
@@ -83,6 +84,12 @@ def _verdict(matrix: dict[tuple[str, str], A.Said] | None, backends: list[str]) 
     return said
 
 
+def _named(scene: dict, given: dict[str, str]) -> dict:
+    """A scene's advice naming it as the command line did (its path was made absolute for the
+    children, which run in the project root)."""
+    return {**scene, "scene": as_given(scene["scene"], given) or scene["scene"]}
+
+
 @children.interruptible
 def cmd_advise(args: argparse.Namespace) -> int:
     try:
@@ -94,8 +101,9 @@ def cmd_advise(args: argparse.Namespace) -> int:
     if not files:
         return _usage("no X3D files (.x3d, .x3dv, .x3dj) under the given paths")
     scenes, status = {}, EXIT_OK
-    for path in files:  # each scene's errors and warnings once, before any run
-        loaded = scene_to_run(path)
+    given = getattr(args, "given", {})
+    for path in files:  # each scene's errors and warnings once, before any run, naming it as given
+        loaded = scene_to_run(as_given(path, given) or path)
         if loaded is None:
             status = EXIT_SCENE
         else:
@@ -115,11 +123,11 @@ def cmd_advise(args: argparse.Namespace) -> int:
         verdict = _verdict(matrix, list(planned))
     except ValueError as e:  # a pin file that does not parse: its path and entry
         print(f"x3drbp advise: {e}", file=sys.stderr)
-        return EXIT_SCENE
+        return EXIT_FAILED
     judged, why = A.judge(list(scenes), list(planned), verdict, args.timeout)
     if judged is None:
         print(f"x3drbp advise: the scenes could not be judged: {why}", file=sys.stderr)
-        return EXIT_SCENE
+        return EXIT_FAILED
     progress = options.progress(args)
     advice = A.advise(list(scenes), scenes, planned, judged, dts, args.duration, args.window, args.budget,
                       args.tolerance, args.timeout, args.workers, progress, args.repeats)
@@ -127,7 +135,8 @@ def cmd_advise(args: argparse.Namespace) -> int:
            "settings": {"dts": dts, "duration": args.duration, "window": args.window, "budget": args.budget,
                         "tolerance": args.tolerance, "repeats": args.repeats, "verdicts": args.verdicts or "pinned"},
            "backends": {n: p.version for n, p in planned.items()},
-           "scenes": [a.to_json() for a in advice], "wall_s": round(time.perf_counter() - started, 1)}
+           "scenes": [_named(a.to_json(), given) for a in advice],
+           "wall_s": round(time.perf_counter() - started, 1)}
     if args.json:
         atomic.write_json(args.json, doc)
     sys.stdout.write(render(doc))

@@ -34,7 +34,7 @@ import sys
 from reports.compare_text import render
 from x3d_core import atomic
 
-from conformance.cli import options
+from conformance.cli import as_given, options
 from conformance.cli.run import scene_to_run
 from conformance.runner import children, probe
 from conformance.results import Settings
@@ -59,7 +59,8 @@ def cmd_compare(args: argparse.Namespace) -> int:
     problem = options.settings_error(args)
     if problem:
         return _usage(problem)
-    loaded = scene_to_run(args.scene)
+    shown = as_given(args.scene, getattr(args, "given", {})) or args.scene  # made absolute for the children
+    loaded = scene_to_run(shown)  # its diagnostics naming it as given
     if loaded is None:
         return EXIT_NOTHING_COMPARED
     scene = loaded[0]
@@ -74,7 +75,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
         prefer = any(c.get("preferAccuracy") for c in scene.of_type("RigidBodyCollection"))
         runs = run_backends(args.scene, backends, settings, info, args.timeout, args.jobs, options.progress(args),
                             prefer)
-    result = Comparison(args.scene, args.duration, args.dt, args.frame_rate, thresholds,
+    result = Comparison(shown, args.duration, args.dt, args.frame_rate, thresholds,
                         [r for r, _ in runs], compare_all(runs, thresholds))
     sys.stdout.write(render(result))
     if args.json:

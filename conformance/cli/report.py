@@ -42,12 +42,13 @@ from typing import TextIO
 from x3d_core import atomic
 from x3d_core.paths import scene_files
 
-from conformance.cli import options
+from conformance.cli import as_given, options
 from conformance import cases as C
 from conformance.runner import children, probe
 from conformance.analyses import sweep as S
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+EXIT_SCENE_RESULT = 1  # compare and advise: a scene compared nothing or did not load, said in its log
 EXAMPLES = os.path.join(C.ROOT, "scenes", "examples")
 COMPARE_SECONDS = 5.0
 
@@ -147,7 +148,7 @@ def cmd_report(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     out = args.out
     logs = os.path.join(out, "logs")
-    missing = [p for p in args.scenes or () if not os.path.exists(p)]
+    missing = [as_given(p, getattr(args, "given", {})) or p for p in args.scenes or () if not os.path.exists(p)]
     if missing:  # before any step: a step would fail on it minutes later
         print(f"x3drbp report: --scenes: no such file or folder: {', '.join(missing)}", file=sys.stderr)
         return EXIT_USAGE
@@ -168,7 +169,7 @@ def cmd_report(args: argparse.Namespace) -> int:
         print(f"report: {step} ...", end="\n" if bars else "", file=sys.stderr, flush=True)
         codes = [_run(args.main, argv, log, bars) for argv in commands]
         if step in ("compare", "advise"):  # a scene that compares nothing or does not load is a result
-            bad = [c for c in codes if c == EXIT_USAGE]
+            bad = [c for c in codes if c not in (EXIT_OK, EXIT_SCENE_RESULT)]
         else:
             bad = [c for c in codes if c != 0]
         timings[step] = round(time.perf_counter() - t0, 1)
