@@ -8,6 +8,7 @@ and importing every command's analyses cost it 0.3 s of its 0.7 s start.
 from __future__ import annotations
 
 import argparse
+import difflib
 import importlib
 import os
 import select
@@ -99,7 +100,7 @@ def main(argv: list[str] | None = None) -> int:
     for module in _modules(sys.argv[1:] if argv is None else argv):
         importlib.import_module(f"conformance.cli.{module}").add_command(sub)
     parser.set_defaults(main=main)  # `x3drbp report` runs the other commands through it
-    args = parser.parse_args(argv)
+    args = _parsed(parser, sub, argv)
     given = _resolve_outputs(args)
     args.given = {**given, **_resolve_scenes(args)}
     try:
@@ -121,6 +122,25 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as e:  # the last resort: one line, never a traceback
         _say(f"x3drbp {args.command}: {_oserror(e, given)}")
         return EXIT_CANNOT_WRITE
+
+
+def _parsed(parser: argparse.ArgumentParser, sub: argparse._SubParsersAction, argv: list[str] | None
+            ) -> argparse.Namespace:
+    """The command line parsed; words the command does not know refused by the command's own
+    parser (its usage, not x3drbp's), with the option meant where one is close."""
+    args, extras = parser.parse_known_args(argv)
+    if extras:
+        command = sub.choices[args.command]
+        command.error(f"unrecognized arguments: {' '.join(extras)}{_meant(command, extras)}")
+    return args
+
+
+def _meant(command: argparse.ArgumentParser, extras: list[str]) -> str:
+    """'; did you mean --duration?' for each unknown option close to one the command has."""
+    known = [o for action in command._actions for o in action.option_strings]
+    meant = [close[0] for word in extras if word.startswith("-")
+             for close in [difflib.get_close_matches(word.split("=", 1)[0], known, n=1)] if close]
+    return "".join(f"; did you mean {m}?" for m in dict.fromkeys(meant))
 
 
 def _modules(argv: list[str]) -> list[str]:

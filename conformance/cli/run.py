@@ -189,6 +189,26 @@ def cmd_run(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+@contextmanager
+def _banner_silenced() -> Iterator[None]:
+    """Standard output and error, at the file descriptors, sent nowhere while an engine is
+    imported for its table: pybullet writes its build time to them from C on import, which is
+    no line of the listing. (An error still says itself: as an exception, after.)"""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = [os.dup(1), os.dup(2)]
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, 1)
+        os.dup2(devnull, 2)
+        yield
+    finally:
+        for fd, copy in zip((1, 2), saved):
+            os.dup2(copy, fd)
+            os.close(copy)
+        os.close(devnull)
+
+
 def cmd_backends(args: argparse.Namespace) -> int:
     """Each backend as the probe finds it, in a child with a time limit (conformance/runner/probe.py):
     a plug-in that crashes or hangs on import, or cannot say its version, is listed as unavailable
@@ -203,7 +223,8 @@ def cmd_backends(args: argparse.Namespace) -> int:
         print(f"{name} {info.version}")
         if args.features:
             try:
-                table = base.load(name).table()
+                with _banner_silenced():
+                    table = base.load(name).table()
             except Exception as e:  # the plug-in's own code: one line, never a traceback
                 print(f"  (no feature table: {type(e).__name__}: {e})")
                 continue
