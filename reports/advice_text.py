@@ -18,9 +18,9 @@ def _run(o: dict) -> str:
 
 
 def _speed(o: dict) -> str:
-    median = o["wall_per_sim_s"]
+    median = o["cpu_per_sim_s"]
     factor = f", {1 / median:,.0f}x real time" if median > 0 else ""
-    return f"{num(median)} s per simulated s ({num(o['wall_low'])}-{num(o['wall_high'])}){factor}"
+    return f"{num(median)} CPU s per simulated s ({num(o['cpu_low'])}-{num(o['cpu_high'])}){factor}"
 
 
 def _reference(scene: dict) -> str:
@@ -54,7 +54,7 @@ def _cases(j: dict) -> str:
 
 
 def _versus(o: dict, best: dict) -> str:
-    cost = o["wall_per_sim_s"] / best["wall_per_sim_s"] if best["wall_per_sim_s"] > 0 else float("inf")
+    cost = o["cpu_per_sim_s"] / best["cpu_per_sim_s"] if best["cpu_per_sim_s"] > 0 else float("inf")
     return (f"{_run(o)}: {num(cost)}x the cost, error {num(o['error'])} m "
             f"({'+' if o['error'] >= best['error'] else '-'}{num(abs(o['error'] - best['error']))} m)")
 
@@ -65,8 +65,8 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
     head = f"{scene['scene']} ({scene['kind']}): "
     lines = []
     if best is None:
-        ran = [o for o in scene["options"] if o.get("wall_per_sim_s") is not None and o["error"] is not None]
-        fastest = min(ran, key=lambda o: o["wall_per_sim_s"]) if ran else None
+        ran = [o for o in scene["options"] if o.get("cpu_per_sim_s") is not None and o["error"] is not None]
+        fastest = min(ran, key=lambda o: o["cpu_per_sim_s"]) if ran else None
         lines.append(head + f"no recommendation: {scene['rule']}" + (
             f"; the fastest run, {_run(fastest)}, costs {_speed(fastest)} against a budget of "
             f"{settings['budget']:g}" if fastest else ""))
@@ -78,10 +78,10 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
         if ref_error > settings["tolerance"]:
             own += (f"; the reference's own error ({num(ref_error)} m) exceeds the tolerance: errors under it "
                     "cannot be told apart")
-        lines += [head + f"{_run(best)} ({scene['rule']})",
+        lines += [head + f"{_run(best)} ({scene['said']})",
                   f"  error {num(best['error'])} m from the reference over the first {settings['window']:g} s "
                   f"({_reference(scene)}){own}; self-consistency {num(best['self_error'])} m",
-                  f"  speed {_speed(best)}; budget {settings['budget']:g} s per simulated s",
+                  f"  speed {_speed(best)}; budget {settings['budget']:g} CPU s per simulated s",
                   f"  agreement at this step: {_agreement(best, settings['duration'])}",
                   "  approximates: " + ("; ".join(j["approximated"]) or "nothing the scene uses"),
                   f"  cases exercising the features it uses: {_cases(j)}"]
@@ -107,8 +107,8 @@ def render(doc: dict) -> str:
     for scene in doc["scenes"]:
         out += scene_lines(scene, s) + [""]
     out.append(f"steps {', '.join(dt_label(d) for d in s['dts'])}; runs of {s['duration']:g} s, error over the first "
-               f"{s['window']:g} s; tolerance {s['tolerance']:g} m; budget {s['budget']:g} s per simulated s; "
-               f"speed the median of {s['repeats']} repeats; the rule: README, `x3drbp advise`")
+               f"{s['window']:g} s; tolerance {s['tolerance']:g} m; budget {s['budget']:g} CPU s per simulated s; "
+               f"speed the engine's steps' CPU time, the median of {s['repeats']} repeats; the rule: README, `x3drbp advise`")
     return "\n".join(out) + "\n"
 
 
@@ -116,7 +116,7 @@ def markdown(doc: dict, details: bool = True) -> str:
     """advice.json as markdown: a table of the answers and the rule's settings, then (details)
     each scene's reasons, folded."""
     s = doc["settings"]
-    lines = ["| scene | kind | recommended | step | error (m) | wall s per simulated s | runner-up |",
+    lines = ["| scene | kind | recommended | step | error (m) | CPU s per simulated s | runner-up |",
              "|---|---|---|---|---:|---:|---|"]
     for scene in doc["scenes"]:
         best = _find(scene, scene["recommended"])
@@ -126,8 +126,8 @@ def markdown(doc: dict, details: bool = True) -> str:
             lines.append(f"| {name} | {scene['kind']} | none: {escape(scene['rule'])} | - | - | - | - |")
             continue
         lines.append(f"| {name} | {scene['kind']} | {best['backend']} | {dt_label(best['dt'])} | {num(best['error'])} "
-                     f"| {num(best['wall_per_sim_s'])} | {escape(_versus(runner, best)) if runner else '-'} |")
-    lines += ["", f"Budget {s['budget']:g} s per simulated second, tolerance {s['tolerance']:g} m over the first "
+                     f"| {num(best['cpu_per_sim_s'])} | {escape(_versus(runner, best)) if runner else '-'} |")
+    lines += ["", f"Budget {s['budget']:g} CPU s per simulated second, tolerance {s['tolerance']:g} m over the first "
                   f"{s['window']:g} s, steps {', '.join(dt_label(d) for d in s['dts'])}, runs of {s['duration']:g} s. "
                   "The rule (README, `x3drbp advise`): the fastest run within the tolerance of the scene's reference; "
                   "if none, the most accurate; only runs that fit the budget, of backends that refuse nothing "

@@ -32,47 +32,81 @@ def _judged(**approximations: int) -> dict[str, A.Judged]:
 def test_within_the_tolerance_the_fastest_wins_and_coarser_steps_count():
     opts = [_option("ode", 1 / 60, 5e-3, 0.01), _option("ode", 1 / 240, 8e-4, 0.04),
             _option("mujoco", 1 / 240, 1e-4, 0.05), _option("mujoco", 1 / 1000, 1e-6, 0.2)]
-    chosen, rule, runners = A.choose(opts, _judged(ode=0, mujoco=0), 1.0, TOL, 0.0)
+    c = A.choose(opts, _judged(ode=0, mujoco=0), 1.0, TOL, 0.0)
+    chosen, rule, runners = c.chosen, c.rule, c.runners_up
+    assert c.said == "within the tolerance: the fastest"
     # ode at 1/60 is faster but 5 mm off; within 1 mm, ode at 1/240 is the fastest: more
     # accuracy is not asked for
     assert (chosen.backend, chosen.dt, rule) == ("ode", 1 / 240, A.WITHIN)
     assert [(o.backend, o.dt) for o in runners] == [("mujoco", 1 / 240)]
-    # the reference's own error widens the tolerance: 5 mm counts when the reference may be 4.5 mm off
-    chosen, _, _ = A.choose(opts, _judged(ode=0, mujoco=0), 1.0, TOL, 4.5e-3)
-    assert (chosen.backend, chosen.dt) == ("ode", 1 / 60)
+    # the reference's own error widens the tolerance: 5 mm counts when the reference may be 4.5 mm off,
+    # and the advice says accuracy cannot be ranked, never "within the tolerance" beside 5 mm
+    c = A.choose(opts, _judged(ode=0, mujoco=0), 1.0, TOL, 4.5e-3)
+    assert (c.chosen.backend, c.chosen.dt, c.rule) == ("ode", 1 / 60, A.CANNOT_RANK)
+    assert c.said.startswith("accuracy cannot be ranked on this scene") and "within the tolerance:" not in c.said
 
 
 def test_the_budget_excludes_and_nothing_affordable_is_said():
     opts = [_option("ode", 1 / 240, 8e-4, 0.04), _option("mujoco", 1 / 1000, 1e-6, 0.2)]
-    chosen, rule, _ = A.choose(opts, _judged(ode=0, mujoco=0), 0.03, TOL, 0.0)
-    assert chosen is None and rule == A.NONE_AFFORDABLE
-    chosen, _, _ = A.choose(opts, _judged(ode=0, mujoco=0), 0.1, TOL, 0.0)
-    assert chosen.backend == "ode"
+    c = A.choose(opts, _judged(ode=0, mujoco=0), 0.03, TOL, 0.0)
+    assert c.chosen is None and c.rule == A.NONE_AFFORDABLE
+    assert A.choose(opts, _judged(ode=0, mujoco=0), 0.1, TOL, 0.0).chosen.backend == "ode"
     failed = [_option("ode", 1 / 240, None, None)]
-    assert A.choose(failed, _judged(ode=0), 1.0, TOL, 0.0)[:2] == (None, A.NONE_RAN)
+    c = A.choose(failed, _judged(ode=0), 1.0, TOL, 0.0)
+    assert (c.chosen, c.rule) == (None, A.NONE_RAN)
 
 
 def test_none_within_the_tolerance_the_most_accurate_ties_within_the_reference_error():
     opts = [_option("bullet", 1 / 1000, 2.8e-3, 0.003), _option("dart", 1 / 1000, 2.9e-3, 0.001),
             _option("mujoco", 1 / 1000, 2e-2, 0.0005)]
-    chosen, rule, runners = A.choose(opts, _judged(bullet=0, dart=0, mujoco=0), 1.0, TOL, 0.0)
-    assert (chosen.backend, rule) == ("bullet", A.MOST_ACCURATE)
-    assert [o.backend for o in runners] == ["dart", "mujoco"]  # by error, as the rule ranks them
+    c = A.choose(opts, _judged(bullet=0, dart=0, mujoco=0), 1.0, TOL, 0.0)
+    assert (c.chosen.backend, c.rule) == ("bullet", A.MOST_ACCURATE)
+    assert [o.backend for o in c.runners_up] == ["dart", "mujoco"]  # by error, as the rule ranks them
     # within the reference's own error, 2.8 and 2.9 mm are one error: the faster wins
-    chosen, _, _ = A.choose(opts, _judged(bullet=0, dart=0, mujoco=0), 1.0, TOL, 2e-4)
-    assert chosen.backend == "dart"
+    assert A.choose(opts, _judged(bullet=0, dart=0, mujoco=0), 1.0, TOL, 2e-4).chosen.backend == "dart"
 
 
 def test_speed_ties_go_to_fewer_approximations_then_agreement_then_the_coarser_step():
     a = _option("bullet", 1 / 240, 5e-4, (0.010, 0.008, 0.014), {"mujoco": None, "ode": 0.5})
     b = _option("mujoco", 1 / 240, 5e-4, (0.011, 0.009, 0.013), {"bullet": None, "ode": None})
     c = _option("ode", 1 / 240, 5e-4, (0.012, 0.010, 0.015), {"bullet": 0.5, "mujoco": None})
-    assert A.choose([a, b, c], _judged(bullet=1, mujoco=0, ode=0), 1.0, TOL, 0.0)[0] is b  # fewest approximations
-    assert A.choose([a, b, c], _judged(bullet=0, mujoco=0, ode=0), 1.0, TOL, 0.0)[0] is b  # agrees with both others
+    assert A.choose([a, b, c], _judged(bullet=1, mujoco=0, ode=0), 1.0, TOL, 0.0).chosen is b  # fewest approximations
+    assert A.choose([a, b, c], _judged(bullet=0, mujoco=0, ode=0), 1.0, TOL, 0.0).chosen is b  # agrees with both others
     slow = _option("mujoco", 1 / 240, 5e-4, (0.020, 0.019, 0.021))  # beyond a's spread: not a tie
-    assert A.choose([a, slow], _judged(bullet=1, mujoco=0), 1.0, TOL, 0.0)[0] is a
+    assert A.choose([a, slow], _judged(bullet=1, mujoco=0), 1.0, TOL, 0.0).chosen is a
     refused = {"bullet": A.Judged(refused=["X: no"]), "mujoco": A.Judged()}
-    assert A.choose([a, slow], refused, 1.0, TOL, 0.0)[0] is slow  # a backend refusing a use is out
+    assert A.choose([a, slow], refused, 1.0, TOL, 0.0).chosen is slow  # a backend refusing a use is out
+
+    # a tie is said as one, with the tie-break that settled it; never "the fastest"
+    said = A.choose([a, b, c], _judged(bullet=1, mujoco=0, ode=1), 1.0, TOL, 0.0).said
+    assert said == ("within the tolerance: tied on speed with bullet at dt 1/240 and ode at dt 1/240 within their "
+                    "spreads; chosen by tie-break 1: fewer approximations")
+    said = A.choose([a, b, c], _judged(bullet=0, mujoco=0, ode=0), 1.0, TOL, 0.0).said
+    assert "the fastest" not in said and said.endswith("chosen by tie-break 3: within 1 mm / 1 mrad of more backends "
+                                                       "for the whole run")
+
+
+def test_within_the_tolerance_is_never_said_beside_an_error_above_it():
+    """1.2 mm passes within 1 mm plus a reference 0.5 mm off: said with the reference's error, not as within."""
+    c = A.choose([_option("ode", 1 / 60, 1.2e-3, 0.01)], _judged(ode=0), 1.0, TOL, 5e-4)
+    assert c.rule == A.WITHIN and c.said.startswith("within the tolerance and the reference's own error (0.0005 m)")
+
+
+def test_a_backend_failing_a_case_another_passes_is_not_recommended():
+    """The pendulum with hinge limits: pymunk, the fastest, fails hinge_limits, which bullet passes."""
+    fast, slow = _option("pymunk", 1 / 60, 5e-4, 0.001), _option("bullet", 1 / 60, 5e-4, 0.01)
+    judged = {"pymunk": A.Judged(failing={"hinge_limits": "fail"}), "bullet": A.Judged(passing=1)}
+    c = A.choose([fast, slow], judged, 1.0, TOL, 0.0)
+    assert c.chosen is slow and c.runners_up == [fast]
+    # every backend fails a case another passes: one is still chosen, and the first line says why
+    judged["bullet"] = A.Judged(failing={"hinge_max_limit": "fail"})
+    judged["pymunk"].passing = 1
+    c = A.choose([fast, slow], judged, 1.0, TOL, 0.0)
+    assert c.chosen is fast and c.said.startswith("every backend that fits fails a case another passes "
+                                                  "(pymunk: hinge_limits; bullet: hinge_max_limit)")
+    # a case that differs only in conventions sets nothing aside
+    judged = {"pymunk": A.Judged(failing={"hinge_limits": "conventions"}), "bullet": A.Judged(passing=1)}
+    assert A.choose([fast, slow], judged, 1.0, TOL, 0.0).chosen is fast
 
 
 def test_parting_is_the_first_frame_past_either_threshold():
@@ -119,10 +153,10 @@ def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
         best = next(o for o in scene["options"] if o["backend"] == scene["recommended"]["backend"]
                     and o["dt"] == scene["recommended"]["dt"])
         ok = [o for o in scene["options"] if o["error"] is not None]
-        assert len(ok) == 4 and best["wall_per_sim_s"] <= doc["settings"]["budget"]
+        assert len(ok) == 4 and best["cpu_per_sim_s"] <= doc["settings"]["budget"] and best["wall_per_sim_s"] > 0
         if scene["rule"] == A.WITHIN:  # nothing within the tolerance is faster beyond the spreads
             within = [o for o in ok if o["error"] <= TOL + scene["reference"]["error"]]
-            assert all(o["wall_high"] >= best["wall_low"] for o in within)
+            assert all(o["cpu_high"] >= best["cpu_low"] for o in within)
         else:
             assert best["error"] <= min(o["error"] for o in ok) + scene["reference"]["error"] + 1e-12
         assert scene["scene"] in captured.out
@@ -139,8 +173,9 @@ def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
 def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_the_tolerance():
     from reports.advice_text import scene_lines
     option = {"backend": "mujoco", "dt": 1 / 240, "verdict": "measured", "reason": "", "error": 2e-3,
-              "self_error": 2e-3, "parts": {"ode": None}, "wall_per_sim_s": 0.01, "wall_low": 0.009, "wall_high": 0.011}
-    scene = {"scene": "s.x3d", "kind": "contacts", "rule": A.WITHIN, "options": [option],
+              "self_error": 2e-3, "parts": {"ode": None}, "cpu_per_sim_s": 0.01, "cpu_low": 0.009, "cpu_high": 0.011}
+    scene = {"scene": "s.x3d", "kind": "contacts", "rule": A.CANNOT_RANK, "said": A.CANNOT_RANK_SAID + ": the fastest",
+             "options": [option],
              "reference": {"backend": "mujoco", "dt": 1 / 8000, "error": 3.5e-3},
              "judged": {"mujoco": {"refused": [], "approximated": [], "failing": {}, "passing": 2}},
              "recommended": {"backend": "mujoco", "dt": 1 / 240}, "runners_up": []}
@@ -148,7 +183,8 @@ def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_
     text = "\n".join(scene_lines(scene, settings))
     assert "the reference is this backend's own finer run, which favours it" in text
     assert "the reference's own error (0.0035 m) exceeds the tolerance" in text
-    scene["reference"] = {"backend": "ode", "dt": 1 / 8000, "error": 1e-9}
+    assert text.startswith("s.x3d (contacts): mujoco at dt 1/240 (accuracy cannot be ranked on this scene")
+    scene.update(reference={"backend": "ode", "dt": 1 / 8000, "error": 1e-9}, rule=A.MOST_ACCURATE, said=A.MOST_ACCURATE)
     text = "\n".join(scene_lines(scene, settings))
     assert "favours" not in text and "exceeds" not in text
     assert "within 1 mm / 1 mrad of ode for all 5 s" in text and "100x real time" in text

@@ -8,24 +8,33 @@ repeats; and how long each run stays within 1 mm / 1 mrad of each other backend'
 the same step. The recommendation is a rule, stated here and in README, not a score:
 
 1. Out: a backend that refuses a feature the scene uses, and every run that did not end
-   well (blew up, crashed, timed out).
-2. Affordable: a run whose engine steps cost at most `budget` wall seconds per simulated
-   second (median of the repeats; 1 is real time).
+   well (blew up, crashed, timed out). Set aside: a backend that fails (violates the spec
+   in) a conformance case exercising a feature the scene uses while another affordable
+   backend passes it; where every affordable backend is set aside so, the rule goes on
+   with all of them and the first line of the advice says why.
+2. Affordable: a run whose engine steps cost at most `budget` CPU seconds per simulated
+   second (median of the repeats; 1 is real time on a quiet machine). Speeds are the
+   steps' CPU time in the child, not wall time: other load on the machine does not
+   reorder them.
 3. Of the affordable runs, those within `tolerance` of the reference (error <= tolerance +
    the reference's own error): the fastest by median. Accuracy beyond the tolerance is
-   not asked for, so a coarser step that is accurate enough wins.
+   not asked for, so a coarser step that is accurate enough wins. Where the reference's
+   own error exceeds the tolerance, accuracy cannot be ranked on the scene, and the
+   advice says so: of the runs the reference cannot tell from within the tolerance, the
+   fastest.
 4. No affordable run within the tolerance: the most accurate affordable run (errors within
    the reference's own error or rounding tie; the fastest of those).
 5. Nothing affordable: no recommendation; the fastest run is named with its cost. No
    recommendation either where no run ended well, or where every backend refuses a use
    the scene makes (a routed input, say: each refusal is listed).
-Speeds whose repeats' spreads overlap the fastest's are ties; ties go to the backend with
-fewer approximations of what the scene uses (one per declared note, however many uses it
-covers), then to fewer conformance cases exercising the scene's features whose accuracy is
-graded beyond its bound, then to the run that stays within 1 mm /
-1 mrad of more other backends for the whole run, then to the coarser step, then to the
-backend's name. Each other backend's best run by the same rule is a runner-up, with what it
-would cost or lose against the recommendation.
+Speeds whose repeats' spreads overlap the fastest's are ties, and the advice says a tie is
+one ("tied on speed with ...; chosen by tie-break 1: fewer approximations"), never "the
+fastest". The tie-breaks (TIEBREAKS): 1, fewer approximations of what the scene uses (one
+per declared note, however many uses it covers); 2, fewer conformance cases exercising the
+scene's features whose accuracy is graded beyond its bound; 3, the run that stays within
+1 mm / 1 mrad of more other backends for the whole run; 4, the coarser step; 5, the
+backend's name. Each other backend's best run by the same rule is a runner-up, with what
+it would cost or lose against the recommendation.
 """
 
 from __future__ import annotations
@@ -40,7 +49,7 @@ from x3d_core.analysis import run_features
 from x3d_core.model import Scene
 
 from conformance import cases as C
-from conformance.results import PASS
+from conformance.results import FAIL, PASS, dt_label
 from conformance.runner import children, probe
 from conformance.analyses import sweep as S
 from conformance.analyses.compare import DEFAULT_THRESHOLDS, pose_gaps
@@ -51,9 +60,13 @@ DEFAULT_DURATION = 5.0  # s: how long the runs are watched for parting
 DEFAULT_BUDGET = 1.0  # wall s in the engine's steps per simulated s: real time
 DEFAULT_TOLERANCE = 1e-3  # m from the reference over the window: the 1 mm compare holds runs to
 JOINTS = ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint", "UniversalJoint", "MotorJoint")
-WITHIN, MOST_ACCURATE, NONE_AFFORDABLE, NONE_RAN, NONE_CAN = (
-    "within the tolerance: the fastest", "none within the tolerance: the most accurate",
+WITHIN, CANNOT_RANK, MOST_ACCURATE, NONE_AFFORDABLE, NONE_RAN, NONE_CAN = (
+    "within the tolerance", "accuracy cannot be ranked", "none within the tolerance: the most accurate",
     "nothing fits the budget", "no run ended well", "every backend refuses a use the scene makes")
+CANNOT_RANK_SAID = ("accuracy cannot be ranked on this scene (the reference's own error exceeds the tolerance); "
+                    "ranked by speed among the runs it cannot place beyond the tolerance")
+TIEBREAKS = ("fewer approximations", "fewer cases graded beyond their bound",
+             "within 1 mm / 1 mrad of more backends for the whole run", "the coarser step", "the backend's name")
 
 
 def kind(scene: Scene) -> str:
@@ -137,8 +150,9 @@ class Option:
     reason: str
     error: float | None  # m from the common reference over the window
     self_error: float | None  # m from the same backend at the fine step
-    cost: Cost | None  # wall s in the engine's steps per simulated s
+    cost: Cost | None  # CPU s in the engine's steps per simulated s: what the rule ranks (load does not reorder it)
     parts: dict[str, float | None] = field(default_factory=dict)  # other backend -> when they part (None: never)
+    wall: Cost | None = None  # wall s in the engine's steps per simulated s: shown, not ranked
 
     @property
     def ran(self) -> bool:
@@ -164,20 +178,18 @@ class Advice:
     reference: S.Reference | str
     judged: dict[str, Judged]
     options: list[Option]
-    recommended: Option | None
-    rule: str  # which branch of the rule chose it
-    runners_up: list[Option]
+    choice: Choice
 
     def to_json(self) -> dict:
-        ref = self.reference
+        ref, c = self.reference, self.choice
         return {
-            "scene": self.scene, "kind": self.kind, "rule": self.rule,
+            "scene": self.scene, "kind": self.kind, "rule": c.rule, "said": c.said,
             "reference": ({"backend": ref.backend, "dt": ref.dt, "error": ref.error} if isinstance(ref, S.Reference)
                           else {"backend": None, "why_none": ref}),
             "judged": {b: vars(j) for b, j in self.judged.items()},
             "options": [_option_json(o) for o in self.options],
-            "recommended": None if self.recommended is None else _key(self.recommended),
-            "runners_up": [_key(o) for o in self.runners_up],
+            "recommended": None if c.chosen is None else _key(c.chosen),
+            "runners_up": [_key(o) for o in c.runners_up],
         }
 
 
@@ -189,42 +201,88 @@ def _option_json(o: Option) -> dict:
     d = {"backend": o.backend, "dt": o.dt, "verdict": o.verdict, "reason": o.reason, "error": o.error,
          "self_error": o.self_error, "parts": o.parts}
     if o.cost is not None:
-        d.update(wall_per_sim_s=o.cost.median, wall_low=o.cost.low, wall_high=o.cost.high)
+        d.update(cpu_per_sim_s=o.cost.median, cpu_low=o.cost.low, cpu_high=o.cost.high)
+    if o.wall is not None:
+        d.update(wall_per_sim_s=o.wall.median, wall_low=o.wall.low, wall_high=o.wall.high)
     return d
 
 
+@dataclass
+class Choice:
+    """What the rule chose: the run (or None), the branch, the first line's honest account of
+    why (a tie said as a tie, the tie-break that settled it), and each other backend's best run."""
+    chosen: Option | None
+    rule: str
+    said: str
+    runners_up: list[Option]
+
+
+def _tiebreak(o: Option, judged: dict[str, Judged]) -> tuple:
+    """The tie-breaks, in TIEBREAKS' order (lower is better)."""
+    agreeing = sum(1 for t in o.parts.values() if t is None)
+    j = judged[o.backend]
+    return len(j.approximated), len(j.beyond_bound), -agreeing, -o.dt, o.backend
+
+
+def _label(o: Option) -> str:
+    return f"{o.backend} at dt {dt_label(o.dt)}"
+
+
+def _fastest(group: list[Option], judged: dict[str, Judged]) -> tuple[Option, str]:
+    """The fastest by median, ties (spreads overlapping its own) broken by the tie-breaks; and
+    what to say of its speed: 'the fastest' only where nothing ties with it."""
+    first = min(group, key=lambda o: o.cost.median)
+    tied = [o for o in group if o.cost.ties(first.cost)]
+    chosen = min(tied, key=lambda o: _tiebreak(o, judged))
+    others = [o for o in tied if o is not chosen]
+    if not others:
+        return chosen, "the fastest"
+    rival = min(others, key=lambda o: _tiebreak(o, judged))
+    k = next(i for i, (a, b) in enumerate(zip(_tiebreak(chosen, judged), _tiebreak(rival, judged))) if a != b)
+    return chosen, (f"tied on speed with {' and '.join(map(_label, others))} within their spreads; "
+                    f"chosen by tie-break {k + 1}: {TIEBREAKS[k]}")
+
+
+def _outdone(backend: str, backends: Sequence[str], judged: dict[str, Judged]) -> list[str]:
+    """The cases exercising what the scene uses that the backend fails (violates the spec)
+    while another of `backends` passes them."""
+    return [c for c, v in judged[backend].failing.items() if v == FAIL
+            and any(b != backend and c not in judged[b].failing for b in backends)]
+
+
 def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, tolerance: float,
-           reference_error: float) -> tuple[Option | None, str, list[Option]]:
-    """The rule of the module docstring: (the recommended run or None, the branch that
-    chose it, each other backend's best run, best first)."""
+           reference_error: float) -> Choice:
+    """The rule of the module docstring."""
     ok = [o for o in options if o.ran and not judged[o.backend].refused]
     affordable = [o for o in ok if o.cost.median <= budget]
     if not affordable:
-        return None, NONE_AFFORDABLE if ok else NONE_RAN, []
+        rule = NONE_AFFORDABLE if ok else NONE_RAN
+        return Choice(None, rule, rule, [])
+    able = list(dict.fromkeys(o.backend for o in affordable))
+    outdone = {b: _outdone(b, able, judged) for b in able}
+    clean = [o for o in affordable if not outdone[o.backend]]
 
-    def tiebreak(o: Option) -> tuple:
-        agreeing = sum(1 for t in o.parts.values() if t is None)
-        j = judged[o.backend]
-        return len(j.approximated), len(j.beyond_bound), -agreeing, -o.dt, o.backend
-
-    def fastest(group: list[Option]) -> Option:
-        """The fastest by median, ties (spreads overlapping its own) broken by tiebreak."""
-        first = min(group, key=lambda o: o.cost.median)
-        return min((o for o in group if o.cost.ties(first.cost)), key=tiebreak)
-
-    def best(group: list[Option]) -> tuple[Option, str]:
+    def best(group: list[Option]) -> tuple[Option, str, str]:
         accurate = [o for o in group if o.error <= tolerance + reference_error]
         if accurate:
-            return fastest(accurate), WITHIN
+            o, speed = _fastest(accurate, judged)
+            rule = WITHIN if reference_error <= tolerance else CANNOT_RANK
+            within = ("within the tolerance" if o.error <= tolerance else
+                      f"within the tolerance and the reference's own error ({reference_error:.3g} m)")
+            return o, rule, f"{within if rule == WITHIN else CANNOT_RANK_SAID}: {speed}"
         least = min(o.error for o in group)
-        return fastest([o for o in group if same_error(o.error, least, reference_error)]), MOST_ACCURATE
+        o, speed = _fastest([o for o in group if same_error(o.error, least, reference_error)], judged)
+        return o, MOST_ACCURATE, MOST_ACCURATE + ("" if speed == "the fastest" else f"; {speed}")
 
-    chosen, rule = best(affordable)
-    others = [best([o for o in affordable if o.backend == b]) for b in dict.fromkeys(o.backend for o in affordable)
-              if b != chosen.backend]
+    chosen, rule, said = best(clean or affordable)
+    if not clean:
+        said = ("every backend that fits fails a case another passes ("
+                + "; ".join(f"{b}: {', '.join(cs)}" for b, cs in outdone.items()) + "), so one is chosen regardless; "
+                + said)
+    others = [best([o for o in affordable if o.backend == b]) for b in able if b != chosen.backend]
     # runners-up in the rule's own order: those within the tolerance by speed, then the rest by error
-    others.sort(key=lambda pair: (pair[1] != WITHIN, pair[0].cost.median if pair[1] == WITHIN else pair[0].error))
-    return chosen, rule, [o for o, _ in others]
+    others.sort(key=lambda t: (t[1] == MOST_ACCURATE, t[0].cost.median if t[1] != MOST_ACCURATE else t[0].error))
+    return Choice(chosen, rule, said, [o for o, _, _ in others])
 
 
 def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.BackendPlan],
@@ -239,7 +297,7 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
         (target,) = S.targets([path], dts, window, duration)
         swept = S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, repeats) if able else None
         options = [] if swept is None else [
-            Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cost) for p in swept.points]
+            Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cpu, wall=p.cost) for p in swept.points]
         if swept is not None:
             for o in options:
                 mine = swept.positions.get((target.name, o.backend, o.dt))
@@ -252,8 +310,8 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
                             continue
         reference = swept.references[target.name] if swept is not None else "no backend can run the scene"
         ref_error = reference.error if isinstance(reference, S.Reference) else 0.0
-        chosen, rule, runners_up = choose(options, judged[path], budget, tolerance, ref_error)
+        choice = choose(options, judged[path], budget, tolerance, ref_error)
         if not able:
-            rule = NONE_CAN
-        out.append(Advice(path, kind(scenes[path]), reference, judged[path], options, chosen, rule, runners_up))
+            choice.rule = choice.said = NONE_CAN
+        out.append(Advice(path, kind(scenes[path]), reference, judged[path], options, choice))
     return out

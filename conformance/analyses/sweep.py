@@ -184,10 +184,18 @@ class Point:
     wall_low: float | None = None  # ... the repeats' spread
     wall_high: float | None = None
     simulation_per_sim_s: float | None = None  # the whole simulation: build, steps, per-frame reads
+    cpu_per_sim_s: float | None = None  # the engine's steps in CPU time (what load does not reorder): the median
+    cpu_low: float | None = None  # ... the repeats' spread
+    cpu_high: float | None = None
     pareto_backend: bool = False  # on the front of this scene's points on this backend
     pareto_scene: bool = False  # on the front of this scene's points on every backend
     tie_backend: str | None = None  # on that front as a tie of this point (its label)
     tie_scene: str | None = None
+
+    @property
+    def cpu(self) -> Cost | None:
+        """The engine's steps' CPU time per simulated second, with its spread (None before it is measured)."""
+        return None if self.cpu_per_sim_s is None else Cost(self.cpu_per_sim_s, self.cpu_low, self.cpu_high)
 
     @property
     def label(self) -> str:
@@ -317,6 +325,9 @@ def _fill(p: Point, job: Job, res: JobResult, reference: Reference | str | None,
         cost = Cost.of([s / job.settings.duration for s in res.step_s])
         p.wall_per_sim_s, p.wall_low, p.wall_high = cost.median, cost.low, cost.high
         p.simulation_per_sim_s = res.simulation_s / job.settings.duration
+    if res.cpu_s:
+        cpu = Cost.of([s / job.settings.duration for s in res.cpu_s])
+        p.cpu_per_sim_s, p.cpu_low, p.cpu_high = cpu.median, cpu.low, cpu.high
     if res.positions is None:
         p.error = res.error
         return

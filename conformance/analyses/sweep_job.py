@@ -52,6 +52,7 @@ class JobResult:
     error: float | None = None  # the case's convergence measure
     unit: str = ""
     positions: Positions | None = None
+    cpu_s: tuple[float, ...] = ()  # the child's CPU time in the engine's steps, each repeat: what load does not inflate
 
 
 def with_collection_fields(src: str, dst: str, iterations: int | None, prefer_accuracy: bool | None) -> None:
@@ -102,13 +103,14 @@ def run_job(job: Job) -> JobResult:
             with open(timing, encoding="utf-8") as f:
                 times = json.load(f)
             step_s = tuple(float(x) for x in times["repeats"]["step_wall_s"])
+            cpu_s = tuple(float(x) for x in times["repeats"].get("step_cpu_s", ()))
             simulation_s = float(times["simulation_wall_s"])
             view = read_view(trace)
         except (OSError, ValueError, KeyError) as e:
             return JobResult(results.ERROR, f"unreadable trace or timing: {e}")
     if job.case is None:
         try:
-            return JobResult(MEASURED, "", step_s, simulation_s, positions=positions(view))
+            return JobResult(MEASURED, "", step_s, simulation_s, cpu_s=cpu_s, positions=positions(view))
         except ValueError as e:
             return JobResult(results.ERROR, str(e), step_s, simulation_s)
     case = C.BY_NAME[job.case]
@@ -117,4 +119,4 @@ def run_job(job: Job) -> JobResult:
     if measure is None:
         return JobResult(result.verdict if result.verdict == results.ERROR else results.ERROR,
                          result.reason or f"no {case.convergence} measure", step_s, simulation_s)
-    return JobResult(result.verdict, result.reason, step_s, simulation_s, measure.error, measure.unit)
+    return JobResult(result.verdict, result.reason, step_s, simulation_s, measure.error, measure.unit, cpu_s=cpu_s)

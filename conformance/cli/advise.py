@@ -9,11 +9,12 @@ features it uses (refused, approximated, and the verdicts of the conformance cas
 exercise them: the pinned ones, or those of a conformance run's matrix.json with
 --verdicts), then the scene on every backend that can run it at each step, each run's error
 against one common reference over the first --window seconds (the most accurate run
-available, with its own error), its speed (the engine's steps, median of --repeats timed
-runs), and how long it stays within 1 mm / 1 mrad of each other backend at that step; then
+available, with its own error), its speed (the engine's steps' CPU time in the child, so
+that other load does not reorder the backends; median of --repeats timed runs), and how long it stays within 1 mm / 1 mrad of each other backend at that step; then
 the recommendation by the rule conformance/analyses/advice.py states (README too): of the
-runs that fit --budget (wall seconds per simulated second, default 1: real time), the
-fastest within --tolerance of the reference (default 1 mm), else the most accurate.
+runs that fit --budget (CPU seconds per simulated second, default 1: real time), the
+fastest within --tolerance of the reference (default 1 mm), else the most accurate; a tie
+said as one, with the tie-break that settled it.
 
 Exit status 0 when every scene got its advice (a scene no backend can run is advice too); 1
 when a scene does not load or has nothing to simulate (one line each; the others are still
@@ -149,7 +150,7 @@ def add_command(sub) -> None:
     p.add_argument("paths", nargs="+", metavar="SCENE_OR_FOLDER",
                    help="scene files, or folders searched for .x3d/.x3dv/.x3dj files")
     p.add_argument("--budget", type=options.positive, default=A.DEFAULT_BUDGET, metavar="S",
-                   help=f"wall seconds the engine's steps may take per simulated second (default "
+                   help=f"CPU seconds the engine's steps may take per simulated second (default "
                         f"{A.DEFAULT_BUDGET:g}: real time; a browser sharing its frame with rendering wants less)")
     p.add_argument("--tolerance", type=options.positive, default=A.DEFAULT_TOLERANCE, metavar="M",
                    help=f"metres from the reference that count as accurate (default {A.DEFAULT_TOLERANCE:g})")
