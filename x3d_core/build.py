@@ -11,6 +11,7 @@ import difflib
 import math
 import re
 from dataclasses import dataclass, field
+from collections.abc import Iterator
 from typing import Any, Callable
 
 import numpy as np
@@ -79,18 +80,29 @@ PRESENTATION = frozenset({"Appearance", "Material", "Background", "Viewpoint", "
                           "OrientationInterpolator", "Color", "Normal", "TextureCoordinate"})
 
 
-# Spellings X3D allows for the events of an inputOutput field
+def _base_names(name: str) -> Iterator[str]:
+    """The inputOutput field an event name may stand for: X3D routes to an inputOutput FOO
+    as set_FOO and from it as FOO_changed."""
+    for prefix, suffix in (("set_", ""), ("", "_changed")):
+        if name.startswith(prefix) and name.endswith(suffix):
+            yield name[len(prefix):len(name) - len(suffix)]
+
+
 def _base_field(spec: schema.NodeType, name: str) -> schema.FieldDef | None:
     fd = spec.fields.get(name)
     if fd is not None:
         return fd
-    for prefix, suffix in (("set_", ""), ("", "_changed")):
-        if name.startswith(prefix) and name.endswith(suffix):
-            base = name[len(prefix):len(name) - len(suffix)]
-            fd = spec.fields.get(base)
-            if fd is not None and fd.access == "inputOutput":
-                return fd
-    return None
+    fds = (spec.fields.get(base) for base in _base_names(name))
+    return next((fd for fd in fds if fd is not None and fd.access == "inputOutput"), None)
+
+
+def _declared_field(node: Node, name: str) -> FieldDecl | None:
+    """A field the node's file declares (a Script's), by its name or an event name of it."""
+    by_name = {d.name: d for d in node.interface}
+    if name in by_name:
+        return by_name[name]
+    decls = (by_name.get(base) for base in _base_names(name))
+    return next((d for d in decls if d is not None and d.access == "inputOutput"), None)
 
 
 class Builder:
@@ -333,9 +345,7 @@ class Builder:
                 self.error(loc, subject, f"no node named {name!r}")
                 return
             if n.spec is not None:
-                fd = _base_field(n.spec, fname)
-                decl = None if fd is not None else next((d for d in n.interface if d.name == fname), None)
-                end = fd or decl
+                end = _base_field(n.spec, fname) or _declared_field(n, fname)
                 if end is None or end.access not in (("inputOutput", "outputOnly") if direction == "out" else
                                                      ("inputOutput", "inputOnly")):
                     what = "output" if direction == "out" else "input"
