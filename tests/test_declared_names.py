@@ -74,3 +74,39 @@ def test_only_an_input_output_field_has_event_names(tmp_path, route, message):
     s = _vrml(tmp_path, "DEF T TimeSensor { }\n"
                         "DEF S Script { outputOnly SFTime go initializeOnly SFTime init 0 }\n" + route)
     assert [e.message for e in s.errors] == [message]
+
+
+# -- item 14: a PROTO or EXTERNPROTO named Delay (a node of X3D 4.1) is the file's, not the built-in
+
+EXTERN_URL = '"delay.x3dv#Delay"'
+
+
+def _proto_scene(tmp_path, encoding: str, extern: bool):
+    if encoding == "vrml":
+        declared = (f"EXTERNPROTO Delay [ inputOutput SFFloat a ] {EXTERN_URL}" if extern else
+                    "PROTO Delay [ inputOutput SFFloat a 0 ] { Group { } }")
+        return _vrml(tmp_path, f"{declared}\nDEF D Delay {{ a 1 }}\n")
+    field = {"@name": "a", "@type": "SFFloat", "@accessType": "inputOutput"}
+    instance = {"@name": "Delay", "@DEF": "D", "fieldValue": [{"@name": "a", "@value": 1}]}
+    if encoding == "json":
+        declared = ({"ExternProtoDeclare": {"@name": "Delay", "@url": ["delay.x3dv#Delay"], "field": [field]}}
+                    if extern else {"ProtoDeclare": {"@name": "Delay", "ProtoInterface": {"field": [{**field, "@value": 0}]},
+                                                     "ProtoBody": {"-children": [{"Group": {}}]}}})
+        return _json(tmp_path, [{"ProtoInstance": instance}], [declared])
+    declared = ("<ExternProtoDeclare name='Delay' url='\"delay.x3dv#Delay\"'>"
+                "<field name='a' type='SFFloat' accessType='inputOutput'/></ExternProtoDeclare>" if extern else
+                "<ProtoDeclare name='Delay'><ProtoInterface><field name='a' type='SFFloat' accessType='inputOutput' "
+                "value='0'/></ProtoInterface><ProtoBody><Group/></ProtoBody></ProtoDeclare>")
+    return _xml(tmp_path, declared + "<ProtoInstance name='Delay' DEF='D'><fieldValue name='a' value='1'/></ProtoInstance>")
+
+
+@pytest.mark.parametrize("encoding", ["xml", "vrml", "json"])
+@pytest.mark.parametrize("extern", [True, False], ids=["EXTERNPROTO", "PROTO"])
+def test_a_declared_prototype_wins_over_a_later_versions_node_of_its_name(tmp_path, encoding, extern):
+    s = _proto_scene(tmp_path, encoding, extern)
+    assert not s.errors, [str(e) for e in s.errors]
+    (d,) = s.roots
+    if extern:  # kept as a node that does not run, not as X3D 4.1's Delay with its fields and defaults
+        assert (d.type_name, d.spec, d.def_name) == ("Delay", None, "D")
+    else:  # expanded: the body's first node
+        assert (d.type_name, d.def_name) == ("Group", "D")

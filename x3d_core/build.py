@@ -136,8 +136,10 @@ class Builder:
         return self.scopes[-1]
 
     def node(self, type_name: str, loc: Location, def_name: str | None = None) -> Node:
-        """A new node, entered as being read until done() is called."""
-        spec = schema.node_type(type_name)
+        """A new node, entered as being read until done() is called. An EXTERNPROTO's instance
+        is kept untyped even where a later X3D version has a node of its name (4.1's Delay):
+        the file's declaration wins over the built-in, whose fields it need not have."""
+        spec = None if type_name in self.externs else schema.node_type(type_name)
         if spec is None and not NAME.fullmatch(type_name):
             raise self.fatal(loc, f"{type_name!r} is not a node type name")
         if type_name == "Script":
