@@ -27,7 +27,8 @@ the same step. The recommendation is a rule, stated here and in README, not a sc
 5. Nothing affordable: no recommendation; the fastest run is named with its cost. No
    recommendation either where no run ended well, or where every backend refuses a use
    the scene makes (a routed input, say: each refusal is listed).
-Speeds whose repeats' spreads overlap the fastest's are ties, and the advice says a tie is
+Speeds whose repeats' spreads overlap the fastest's, or that differ from it by less than
+SPEED_RESOLUTION (1 ms per simulated second), are ties, and the advice says a tie is
 one ("tied on speed with ...; chosen by tie-break 1: fewer approximations"), never "the
 fastest". The tie-breaks (TIEBREAKS): 1, fewer approximations of what the scene uses (one
 per declared note, however many uses it covers); 2, fewer conformance cases exercising the
@@ -65,6 +66,10 @@ WITHIN, CANNOT_RANK, MOST_ACCURATE, NONE_AFFORDABLE, NONE_RAN, NONE_CAN = (
     "nothing fits the budget", "no run ended well", "every backend refuses a use the scene makes")
 CANNOT_RANK_SAID = ("accuracy cannot be ranked on this scene (the reference's own error exceeds the tolerance); "
                     "ranked by speed among the runs it cannot place beyond the tolerance")
+# CPU s per simulated s: speeds closer than this are ties. Runs this cheap (1,000x real time)
+# are resolved by no measure under load (a busy sibling hyperthread doubled a 0.3 ms run's CPU
+# time), and no budget hangs on the difference.
+SPEED_RESOLUTION = 1e-3
 TIEBREAKS = ("fewer approximations", "fewer cases graded beyond their bound",
              "within 1 mm / 1 mrad of more backends for the whole run", "the coarser step", "the backend's name")
 
@@ -232,7 +237,7 @@ def _fastest(group: list[Option], judged: dict[str, Judged]) -> tuple[Option, st
     """The fastest by median, ties (spreads overlapping its own) broken by the tie-breaks; and
     what to say of its speed: 'the fastest' only where nothing ties with it."""
     first = min(group, key=lambda o: o.cost.median)
-    tied = [o for o in group if o.cost.ties(first.cost)]
+    tied = [o for o in group if o.cost.ties(first.cost) or o.cost.median - first.cost.median <= SPEED_RESOLUTION]
     chosen = min(tied, key=lambda o: _tiebreak(o, judged))
     others = [o for o in tied if o is not chosen]
     if not others:
