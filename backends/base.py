@@ -34,7 +34,7 @@ import numpy as np
 
 from x3d_core import fields as F
 from x3d_core.integration import POSITION_FIRST, RK4, SEMI_IMPLICIT, in_substeps  # noqa: F401  (the backends' names)
-from x3d_core.analysis import Use, run_uses
+from x3d_core.analysis import SCRIPT_DIRECT_OUTPUT, Use, run_uses
 from x3d_core.engine import Simulation
 from x3d_core.model import Scene
 from x3d_core.world import World
@@ -156,6 +156,9 @@ def above(limit: float, why: str) -> Callable[[Any], str | None]:
 
 NOT_YET = "not implemented by this backend yet"
 ROUTED = Declared(Support.UNSUPPORTED, "x3drbp runs no ROUTEs or Scripts: this input would keep the file's value")
+SCRIPTED = Declared(Support.UNSUPPORTED, "x3drbp runs no Scripts, and with directOutput TRUE a Script may set the "
+                                         "fields of the nodes it holds, and of what they hold, with no ROUTE: a run "
+                                         "would keep the file's values there")
 
 
 class Backend(ABC):
@@ -183,6 +186,8 @@ class Backend(ABC):
     def support(self, feature: str) -> Declared:
         if feature.endswith(".routed"):
             return ROUTED
+        if feature == SCRIPT_DIRECT_OUTPUT:
+            return SCRIPTED
         # a backend's own word wins: its engine may do natively what the evaluator
         # approximates for all (ODE's finite rotation axis)
         d = self.declared.get(feature) or EVALUATOR.get(feature)

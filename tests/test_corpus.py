@@ -46,10 +46,10 @@ EXPECTED = {
 needs_corpus = pytest.mark.skipif(not os.path.isdir(CORPUS), reason=f"no corpus at {CORPUS}")
 
 # Scenes whose motion a ROUTE from a Script or an input device drives, or a Script with
-# directOutput TRUE (x_ite_media/CollisionCollection.x3d: its initialize() sets the ball's
-# position and velocities through an SFNode field): refused on every backend by naming the
-# routed input (x3drbp runs no Scripts). Every other scene runs, except where a backend
-# declares a feature it uses unsupported.
+# directOutput TRUE that holds a physics node (x_ite_media/CollisionCollection.x3d: its
+# initialize() sets the ball's position and velocities through an SFNode field): refused on
+# every backend by naming the routed input or the Script (x3drbp runs no Scripts). Every
+# other scene runs, except where a backend declares a feature it uses unsupported.
 SCRIPTED = {"xj3d/combined__cannon.x3dv", "xj3d/combined__toy_car.x3dv", "xj3d/physics__ball_bounce.x3dv",
             "xj3d/physics__bounce_trimesh.x3dv", "xj3d/physics__double_hinge_joint.x3dv",
             "xj3d/physics__motor_joint.x3dv", "xj3d/physics__moving_body.x3dv", "xj3d/physics__slider_joint.x3dv",
@@ -130,7 +130,7 @@ def corpus_runs(tmp_path_factory):
 def test_corpus_scene_runs_five_seconds_or_names_what_it_lacks(name, backend, corpus_runs):
     status, stderr, last = corpus_runs[(name, backend)]
     assert "Traceback" not in stderr and "blew up" not in stderr, stderr
-    refused = [line.split(f"unsupported by {backend}: ", 1)[1].split(":", 1)[0].split(" = ", 1)[0]
+    refused = [line.split(f"unsupported by {backend}: ", 1)[1].split(":", 1)[0].split(" = ", 1)[0].split(" (", 1)[0]
                for line in stderr.splitlines() if f"unsupported by {backend}: " in line]
     if name in EMPTY:
         assert status == 1 and "nothing to simulate" in stderr and last is None, stderr
@@ -142,18 +142,22 @@ def test_corpus_scene_runs_five_seconds_or_names_what_it_lacks(name, backend, co
     assert status == 3 and refused, stderr
     table = base.load(backend)
     assert all(table.support(f).support is base.Support.UNSUPPORTED for f in refused), refused
+    scripted = [f for f in refused if f.endswith(".routed") or f == SCRIPT_DIRECT_OUTPUT]
     if name in SCRIPTED:
-        assert any(f.endswith(".routed") for f in refused), refused
+        assert scripted, refused
     else:  # nothing routed: only what this backend itself declares it cannot do
-        assert not any(f.endswith(".routed") for f in refused), refused
+        assert not scripted, refused
 
 
-# -- Scripts, in scenes written here: one with directOutput TRUE writes fields of the nodes
-# it reaches itself, with no ROUTE, so it is refused by name like a routed input; one with
-# directOutput FALSE acts only through ROUTEs, and without one into a physics node it runs
+# -- Scripts, in scenes written here: one with directOutput TRUE that holds a physics node, or a
+# node holding one, may write its fields itself, with no ROUTE, so it is refused by name; one
+# that holds none, or has directOutput FALSE and no ROUTE into a physics node, runs
 
 BODY = "#X3D V4.0 utf8\nDEF World RigidBodyCollection { bodies DEF Ball RigidBody { position 0 1 0 } }\n"
+HELD = "#X3D V4.0 utf8\nDEF Top Group { children [ DEF World RigidBodyCollection { bodies DEF Ball RigidBody { } } ] }\n"
 SETS_THE_BALL = 'url "ecmascript: function initialize() { ball.position = new SFVec3f(0, 5, 0); }"'
+BY_NAME = ("directOutput TRUE url \"ecmascript: function initialize() { "
+           "Browser.currentScene.getNamedNode('Ball').position = new SFVec3f(0, 5, 0); }\"")
 
 
 def _script(tmp_path, script: str, route: str = "", body: str = BODY) -> str:
@@ -167,20 +171,35 @@ def _x3drbp(*args: str) -> subprocess.CompletedProcess:
                           timeout=120)
 
 
-@pytest.mark.parametrize("script", [
-    f"directOutput TRUE initializeOnly SFNode ball USE Ball {SETS_THE_BALL}",  # reaches the body by a field
-    "directOutput TRUE url \"ecmascript: function initialize() { "  # or by name, through the Browser
-    "Browser.currentScene.getNamedNode('Ball').position = new SFVec3f(0, 5, 0); }\""],
-    ids=["by-field", "by-name"])
-def test_a_script_with_direct_output_is_refused_by_name_on_every_backend(tmp_path, script):
-    path = _script(tmp_path, script)
+@pytest.mark.parametrize("script,body,held", [
+    (f"directOutput TRUE initializeOnly SFNode ball USE Ball {SETS_THE_BALL}", BODY, "RigidBody Ball in its field ball"),
+    ("directOutput TRUE inputOutput MFNode top [ USE Top ]", HELD,
+     "Group Top (holding RigidBodyCollection World) in its field top")],
+    ids=["the-body", "an-ancestor"])
+def test_a_script_with_direct_output_holding_physics_is_refused_naming_what_it_holds(tmp_path, script, body, held):
+    path = _script(tmp_path, script, body=body)
     assert SCRIPT_DIRECT_OUTPUT in run_features(load(path))
+    refusal = f"{SCRIPT_DIRECT_OUTPUT} (Script Mover holds {held}): x3drbp runs no Scripts, and with directOutput TRUE"
     for backend in BACKENDS:
         assert base.load(backend).support(SCRIPT_DIRECT_OUTPUT).support is base.Support.UNSUPPORTED
         out = tmp_path / f"{backend}.csv"
         r = _x3drbp("run", path, "--backend", backend, "--duration", "0.1", "--trace", str(out))
         assert r.returncode == 3, (backend, r.stderr)
-        assert f"unsupported by {backend}: {SCRIPT_DIRECT_OUTPUT}: " in r.stderr and not out.exists()
+        assert f"unsupported by {backend}: {refusal}" in r.stderr and "routed" not in r.stderr and not out.exists()
+
+
+@pytest.mark.parametrize("script", [BY_NAME, "directOutput TRUE initializeOnly SFNode look Shape { }"],
+                         ids=["by-name", "holds-no-physics"])
+def test_a_script_with_direct_output_holding_no_physics_runs_saying_what_it_ignores(tmp_path, script):
+    path = _script(tmp_path, script)
+    assert SCRIPT_DIRECT_OUTPUT not in features(load(path))
+    check = _x3drbp("check", path)
+    assert check.returncode == 0 and "Script Mover.directOutput: TRUE, but none of its SFNode/MFNode fields holds " \
+        "a physics node or a node that holds one, so a run goes on without it" in check.stdout, check.stdout
+    for backend in BACKENDS:
+        out = tmp_path / f"{backend}.csv"
+        r = _x3drbp("run", path, "--backend", backend, "--duration", "0.1", "--trace", str(out))
+        assert r.returncode == 0 and out.exists(), (backend, r.stderr)
 
 
 def test_a_script_without_direct_output_or_a_route_into_physics_runs_with_a_warning(tmp_path):

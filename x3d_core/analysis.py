@@ -89,14 +89,61 @@ def summarize(scene: Scene) -> Summary:
     return s
 
 
-# A Script whose directOutput is TRUE sets fields of other nodes itself, with no ROUTE (X3D
-# 4.0 Scripting, the Script node: the nodes its SFNode/MFNode fields hold and what they
-# contain; through the Browser object, any named node, and routes it adds): an input that
-# no field or ROUTE of the file names. Any such Script in a physics scene counts, whatever
-# its fields hold: which nodes it reaches is for its code to say. The name ends in '.routed',
-# so every backend refuses it by name (backends/base.py, Backend.support). A Script with
-# directOutput FALSE acts only through its ROUTEs, each counted in features() itself.
-SCRIPT_DIRECT_OUTPUT = "Script.directOutput.routed"
+# A Script whose directOutput is TRUE may set the fields of the nodes its SFNode/MFNode fields
+# hold, and of what those hold, with no ROUTE (X3D 4.0 Scripting, the Script node): where one
+# of them is a physics node, or holds one, a run that keeps the file's values would not be the
+# file's run, so every backend refuses it (backends/base.py, Backend.support), naming the
+# Script, the field and the node. A Script that holds none, or has directOutput FALSE, is
+# ignored like every Script (x3drbp runs none): the first acts on no physics node it holds
+# (outcome.py says so, and that a node it looks up by name is not followed), the second only
+# through its ROUTEs, each counted in features() itself.
+SCRIPT_DIRECT_OUTPUT = "Script.directOutput"
+
+
+@dataclass(frozen=True)
+class Reach:
+    """The nodes a directOutput Script holds in one of its fields that are physics nodes or
+    hold one (each with the first physics node under it): what the Script may change with no
+    ROUTE."""
+    script: Node
+    field: str
+    held: tuple[tuple[Node, Node], ...]  # (node held, the physics node at or under it)
+
+    def __str__(self) -> str:
+        """In the file's words: 'Script Mover holds Transform T (holding RigidBodyCollection
+        World) in its field root'."""
+        nodes = ", ".join(n.label if n is p else f"{n.label} (holding {p.label})" for n, p in self.held)
+        return f"{self.script.label} holds {nodes} in its field {self.field}"
+
+
+def _physics_within(node: Node) -> Node | None:
+    """The first physics node at or under the node (through every field), None where it holds none."""
+    seen: set[int] = set()
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if id(n) in seen:
+            continue
+        seen.add(id(n))
+        if n.spec is not None and n.type_name in RBP_TYPES:
+            return n
+        stack.extend(reversed(list(n.children())))
+    return None
+
+
+def script_reach(scene: Scene) -> list[Reach]:
+    """Each node a Script with directOutput TRUE holds in a declared SFNode/MFNode field that is
+    a physics node or holds one."""
+    out = []
+    for script in scene.of_type("Script"):
+        if not script.get("directOutput"):
+            continue
+        for decl in script.interface:
+            nodes = [n for n in (decl.value if isinstance(decl.value, list) else [decl.value]) if isinstance(n, Node)]
+            held = tuple((n, p) for n, p in ((n, _physics_within(n)) for n in nodes) if p is not None)
+            if held:
+                out.append(Reach(script, decl.name, held))
+    return out
 
 
 @dataclass(frozen=True)
@@ -107,9 +154,13 @@ class Use:
     feature: str
     value: Any = None
     ftype: F.FieldType | None = None
+    where: str = ""  # what in the file makes a use no field value says (a Script's Reach)
 
     def __str__(self) -> str:
-        """As a refusal names it: 'RigidBodyCollection.constantForceMix = 0.5'."""
+        """As a refusal names it: 'RigidBodyCollection.constantForceMix = 0.5',
+        'Script.directOutput (Script Mover holds RigidBody Ball in its field ball)'."""
+        if self.where:
+            return f"{self.feature} ({self.where})"
         return self.feature if self.value is None else f"{self.feature} = {F.format_xml(self.ftype, self.value)}"
 
 
@@ -163,23 +214,19 @@ def _node_uses(n: Node) -> Iterator[Use]:
 
 def _uses(scene: Scene) -> Iterator[tuple[Node, Use]]:
     """Every use, with the node it acts on (a route's: the node it goes into)."""
-    physics = False
     for n in scene.nodes():
         if n.spec is not None and n.type_name in RBP_TYPES:
-            physics = True
             yield from ((n, u) for u in _node_uses(n))
     for r in scene.routes:  # inputs that change during a run
         if r.to_node.type_name not in RBP_TYPES:
             continue
-        physics = True
         if r.to_field == "set_contacts" and r.from_node.type_name == "CollisionSensor" and r.from_field == "contacts":
             foreign = foreign_contacts(r.to_node, scene.routes)
             yield r.to_node, Use("RigidBodyCollection.set_contacts.fromOtherCollider" if foreign
                                  else "RigidBodyCollection.set_contacts.fromSensor")
         else:
             yield r.to_node, Use(f"{r.to_node.type_name}.{r.to_field}.routed")
-    if physics:
-        yield from ((n, Use(SCRIPT_DIRECT_OUTPUT)) for n in scene.of_type("Script") if n.get("directOutput"))
+    yield from ((r.script, Use(SCRIPT_DIRECT_OUTPUT, where=str(r))) for r in script_reach(scene))
 
 
 def features(scene: Scene) -> list[str]:

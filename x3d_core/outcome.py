@@ -3,10 +3,11 @@
 Each warning names the node and what a run does with it: bodies whose collision geometry
 nothing lets collide (the collision set is collision.plan's own, so the warning agrees
 with it), a body in no collection, a transform around physics nodes, a collidable shared
-by two bodies, and a scene with nothing to simulate. The commands that judge or run a
-scene add them to what load() found (load's own diagnostics are about the file, and a
-conformance case may leave a body out of its collider on purpose); only a scene without
-errors gets them: they say what a run does, and a scene with errors does not run.
+by two bodies, a scene with nothing to simulate, and a Script with directOutput TRUE that a
+run ignores because it holds no physics node (analysis.script_reach). The commands that
+judge or run a scene add them to what load() found (load's own diagnostics are about the
+file, and a conformance case may leave a body out of its collider on purpose); only a scene
+without errors gets them: they say what a run does, and a scene with errors does not run.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import rotation as R
+from .analysis import RBP_TYPES, script_reach
 from .collision import Geometry, collider, foreign_contacts
 from .model import Diagnostic, Location, Node, Route, Scene
 from .validate import by_type, diagnostic
@@ -38,7 +40,8 @@ def outcome_warnings(scene: Scene, ws: list[World] | None = None) -> list[Diagno
         return []
     groups = by_type(scene)
     return [*_nothing_to_simulate(scene, groups), *_in_no_collection(scene, groups), *_transformed(scene, groups),
-            *_shared_collidables(scene, groups), *_never_colliding(scene, groups, worlds(scene) if ws is None else ws)]
+            *_shared_collidables(scene, groups), *_never_colliding(scene, groups, worlds(scene) if ws is None else ws),
+            *_scripts_holding_no_physics(scene, groups)]
 
 
 def _nothing_to_simulate(scene: Scene, groups: dict[str, list[Node]]) -> list[Diagnostic]:
@@ -175,6 +178,20 @@ def _no_collider(coll: Node, routes: list[Route], sensors: list[Node]) -> str:
     if not unrouted:
         return "the collection has no collider"
     return f"the collection has no collider, and the contacts of {_names(unrouted)} are not routed to its set_contacts"
+
+
+def _scripts_holding_no_physics(scene: Scene, groups: dict[str, list[Node]]) -> list[Diagnostic]:
+    """A Script with directOutput TRUE in a physics scene that holds no physics node, nor a node
+    holding one (analysis.script_reach): a run ignores it rather than refusing the scene, and
+    says so, with the one way the Script could still reach a body that x3drbp does not follow."""
+    if not any(t in groups for t in RBP_TYPES):
+        return []
+    reaching = {id(r.script) for r in script_reach(scene)}
+    return [diagnostic(scene, s, "directOutput", "TRUE, but none of its SFNode/MFNode fields holds a physics node "
+                                                "or a node that holds one, so a run goes on without it, as without "
+                                                "every Script; a physics node it reaches by name through the Browser "
+                                                "would keep the file's values")
+            for s in groups.get("Script", []) if s.get("directOutput") and id(s) not in reaching]
 
 
 def _names(nodes: list[Node]) -> str:
