@@ -36,6 +36,16 @@ def run(argv: list[str], cwd: str = ROOT, memory: int = MEMORY, cpu_s: int = CPU
                           preexec_fn=lambda: _limits(memory, cpu_s))
 
 
+def cpu_of(run_child) -> tuple[subprocess.CompletedProcess, float]:
+    """What run_child() returns (it runs and reaps one child) and the CPU seconds, user and
+    system, that child and its own children spent: a bound a busy machine does not move, as
+    wall time would (three 10 s wall-clock limits failed at load 5-9)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    p = run_child()
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return p, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
 def x3drbp(*args: str, memory: int = MEMORY) -> subprocess.CompletedProcess:
     """`x3drbp ARGS` from the project root, limited as `run` says."""
     return run([sys.executable, "-m", "conformance.cli", *args], memory=memory)

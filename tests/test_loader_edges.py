@@ -131,10 +131,10 @@ def test_a_file_past_the_size_bound_is_refused_before_a_byte_is_read(tmp_path):
     with open(path, "wb") as f:  # sparse: no disk is written
         f.write(b"<X3D>")
         f.truncate(MAX_BYTES + 1)
-    started = time.monotonic()
+    started = time.process_time()
     with pytest.raises(LoadError, match=f"file is {MAX_BYTES + 1} bytes; x3drbp reads at most {MAX_BYTES}"):
         load(str(path))
-    assert time.monotonic() - started < 1
+    assert time.process_time() - started < 1  # CPU: the 200 MiB are not read
 
 
 def test_vrml_locations_across_blocks(tmp_path):
@@ -171,10 +171,10 @@ def test_minified_xml_with_many_problems_is_fast_and_exact(tmp_path):
     els = "".join(f"<RigidBody mass='-{i + 1}'/>" for i in range(n))
     text = RBP_X3D.format(head="", body=f"<RigidBodyCollection>{els}</RigidBodyCollection>").replace("\n", "", 1)
     path = _write(tmp_path, "minified.x3d", text)
-    t = time.perf_counter()
+    t = time.process_time()
     s = load(path)
-    took = time.perf_counter() - t
-    assert took < 15, f"{took:.1f} s"
+    took = time.process_time() - t
+    assert took < 15, f"{took:.1f} s of CPU"
     errors = [d for d in s.errors if d.subject == "RigidBody.mass"]
     assert len(errors) == n
     assert {d.loc.line for d in errors} == {1}
