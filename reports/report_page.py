@@ -3,7 +3,7 @@
 Reads results only. The page leads with the answers (reports/summary.py: what conforms,
 which backend and step for each kind of scene, the findings), then each section is the
 markdown its own command rendered (headings moved one level down), the long tables
-folded, each plot beside what it draws: do the engines conform, which backend for which
+folded, each comparison's plot beside what it draws and each sweep's below its tables: do the engines conform, which backend for which
 scene, where do they part, what does speed cost in error, what survives the hard cases,
 and what each engine declares against what was measured. The HTML is that markdown
 through Python-Markdown, in one page beside its PNGs; every link in it points at a file
@@ -44,8 +44,8 @@ img { max-width: 100%; border: 1px solid #ddd; }
 h1 { border-bottom: 2px solid #444; } h2 { border-bottom: 1px solid #aaa; margin-top: 2em; }
 details { margin: 0.4em 0 1em; } summary { cursor: pointer; color: #245; }
 .side { display: flex; flex-wrap: wrap; gap: 1.2em; align-items: flex-start; }
-.side > div { flex: 1 1 34em; min-width: 0; overflow-x: auto; } .side > p { flex: 1 1 30em; margin: 0; }
-"""
+.side > div { flex: 1 1 34em; min-width: min-content; } .side > p { flex: 1 1 30em; margin: 0; }
+"""  # no box scrolls or clips a table: a table too wide to stand beside its plot pushes the plot below
 _MARK = {"native": "native", "approximate": "approx.", "unsupported": "unsupported"}
 
 
@@ -137,7 +137,8 @@ def _comparisons(out: str, found: list[tuple[str, Comparison]]) -> str:
 
 
 def _sweep(out: str, meta: dict) -> str:
-    """The sweep's markdown, each scene's fronts beside its plot, the notes before them folded."""
+    """The sweep's markdown, each scene's fronts at the page's full width (eight columns: beside
+    a plot they were squeezed) with its plot below them, the notes before them folded."""
     sweep = _read(os.path.join(out, "sweep", "sweep.md"))
     if not sweep:
         return "## Speed against error\n\n" + (_absent(meta, "sweep") if "sweep" in meta.get("failed", ())
@@ -149,8 +150,9 @@ def _sweep(out: str, meta: dict) -> str:
     for chunk, name in zip(scenes, names, strict=True):
         title, _, body = chunk.partition("\n")
         plot = f"sweep/sweep_{name}.png"
-        parts += [title, "", _beside(body, plot, f"{name}: error against speed")
-                  if os.path.exists(os.path.join(out, plot)) else body]
+        parts += [title, "", body.strip(), ""]
+        if os.path.exists(os.path.join(out, plot)):
+            parts += ["!" + link(plot, f"{name}: error against speed"), ""]
     return "\n".join(parts) + "\n"
 
 
