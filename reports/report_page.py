@@ -26,7 +26,7 @@ from x3d_core import atomic
 
 from .advice_text import markdown as render_advice
 from .compare_text import render as render_comparison
-from .summary import answers
+from .summary import answers, scene_name, yours
 from .text import escape, link
 from .x_ite_text import render as render_x_ite
 
@@ -119,8 +119,10 @@ def comparisons(out: str) -> list[tuple[str, Comparison]]:
 
 
 def _comparisons(out: str, found: list[tuple[str, Comparison]]) -> str:
+    mine = yours(out)
     parts = ["## Where the backends part", "",
-             "Each example scene (and each of yours) on every backend, every pair compared (`x3drbp compare`): "
+             "Each example scene" + (" and each of yours (marked so)" if mine else "") + " on every backend, "
+             "every pair compared (`x3drbp compare`): "
              "position and orientation divergence over time (the plot), when it first passes the threshold and "
              "which bodies, the worst joint output difference, and each run's real-time factor (the tables)."]
     for stem, comparison in found:
@@ -132,7 +134,7 @@ def _comparisons(out: str, found: list[tuple[str, Comparison]]) -> str:
             text += f"\nWhere they part, as a rerun recording: {link('compare/' + rrd, rrd)} (open it with `rerun`).\n"
         plot = f"compare/{name}{DIVERGENCE}"
         body = _beside(text, plot, f"{name}: divergence over time") if os.path.exists(os.path.join(out, plot)) else text
-        parts += ["", f"### {escape(os.path.basename(comparison.scene))}", "", body]
+        parts += ["", f"### {escape(scene_name(comparison.scene, mine))}", "", body]
     return "\n".join(parts) + "\n"
 
 

@@ -2,7 +2,7 @@
 
 What conforms (the conformance matrix per backend), which backend and step for each kind of
 scene (advice.json), and the findings, each stated from what the runs measured: where the
-example scenes' runs part, what the hard cases did on every backend, which point of each
+example scenes' runs (and yours) part, what the hard cases did on every backend, which point of each
 sweep is the most accurate and which the fastest, and what a backend declares native yet
 fails.
 """
@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import os
 from collections import Counter
+from collections.abc import Collection
 
 from conformance.results import PASS, Comparison
 
@@ -41,11 +42,24 @@ def conformance_lines(matrix: dict) -> list[str]:
     return lines
 
 
-def compare_findings(comparisons: list[Comparison]) -> list[str]:
-    """Per example scene: the pairs that stay within the thresholds, and the first to part."""
+def yours(out: str) -> set[str]:
+    """The user's own scenes of the report in out (report.json's `scenes`, `report --scenes`),
+    as absolute paths: they are no example scenes, and the page must not call them so."""
+    meta = _load(os.path.join(out, "report.json")) or {}
+    return {os.path.abspath(p) for p in meta.get("scenes") or ()}
+
+
+def scene_name(scene: str, mine: Collection[str]) -> str:
+    """A scene's file name, marked (yours) where it is one of the user's."""
+    return os.path.basename(scene) + (" (yours)" if os.path.abspath(scene) in mine else "")
+
+
+def compare_findings(comparisons: list[Comparison], mine: Collection[str] = ()) -> list[str]:
+    """Per scene (the examples, and the user's: `mine`, marked so): the pairs that stay within
+    the thresholds, and the first to part."""
     out = []
     for c in comparisons:
-        name = os.path.basename(c.scene)
+        name = scene_name(c.scene, mine)
         parted = [(min(x.time for x in (p.position.first_over, p.orientation.first_over) if x is not None), p)
                   for p in c.pairs if p.position.first_over is not None or p.orientation.first_over is not None]
         apart = {id(p) for _, p in parted}
@@ -123,7 +137,9 @@ def answers(out: str, comparisons: list[Comparison]) -> str:
     parts += ["", "**Which backend, at which step, for each kind of scene** (`x3drbp advise`; "
                   "[how it is chosen](#which-backend-for-which-scene)):", ""]
     parts.append(advice_markdown(advice, details=False) if advice else "Not run.")
-    findings = [("Where the example scenes' runs part", compare_findings(comparisons), "where-the-backends-part")]
+    mine = yours(out)
+    title = "Where the runs of the example scenes" + (" and of yours" if mine else "") + " part"
+    findings = [(title, compare_findings(comparisons, mine), "where-the-backends-part")]
     stability = _load(os.path.join(out, "stability", "stability.json"))
     findings.append(("The hard cases", stability_findings(stability) if stability else [], "stability"))
     sweep = _load(os.path.join(out, "sweep", "sweep.json"))

@@ -280,3 +280,19 @@ def test_sweep_tables_span_the_page_and_no_box_scrolls_or_clips_a_table(tmp_path
     assert boxes.tables and not any("side" in c for around in boxes.tables for c in around)
     assert 'src="sweep/sweep_pendulum.png"' in page
     assert "overflow" not in report_page._STYLE and "min-width: min-content" in report_page._STYLE
+
+
+def test_your_scenes_are_not_called_example_scenes(tmp_path):
+    from conformance.results import Comparison
+    from reports.summary import answers
+    _fake_results(tmp_path)
+    mine = str(tmp_path / "mine" / "car.x3d")
+    meta = json.loads((tmp_path / "report.json").read_text())
+    (tmp_path / "report.json").write_text(json.dumps({**meta, "scenes": [os.path.relpath(mine)]}))
+    scenes = [Comparison(s, 5.0, 1 / 240, 60.0, {"position": 1e-3, "orientation": 1e-3}, [], [])
+              for s in (os.path.join(R.EXAMPLES, "pendulum.x3d"), mine)]
+    text = answers(str(tmp_path), scenes)
+    assert "example scenes' runs part" not in text
+    assert "Where the runs of the example scenes and of yours part" in text
+    assert "pendulum.x3d: fewer" in text and "car.x3d (yours): fewer than two backends ran it" in text
+    assert "### car.x3d (yours)" in report_markdown(str(tmp_path), [("x", c) for c in scenes])
