@@ -25,8 +25,10 @@ needs_two = pytest.mark.skipif(len(INSTALLED) < 2, reason="a report compares two
 
 def test_features_set_declarations_against_the_cases_verdicts():
     backend = INSTALLED[0]
-    matrix = {"results": [{"case": "free_fall", "backend": backend, "verdict": "fail"},
-                          {"case": "projectile", "backend": backend, "verdict": "pass"}]}
+    over = {"quantity": "Ball.height", "ok": False, "basis": "spec"}
+    graded = {"quantity": "Ball.height order", "ok": False, "basis": "accuracy"}
+    matrix = {"results": [{"case": "free_fall", "backend": backend, "verdict": "fail", "measures": [over, graded]},
+                          {"case": "projectile", "backend": backend, "verdict": "pass", "measures": []}]}
     tables, why = R.declarations([backend])
     assert tables is not None, why
     table = R.features(matrix, tables)
@@ -36,6 +38,10 @@ def test_features_set_declarations_against_the_cases_verdicts():
     assert {"case": "free_fall", "verdict": "fail"} in cell["cases"]
     velocity = next(r for r in table["features"] if r["feature"] == "RigidBody.linearVelocity")
     assert {"case": "projectile", "verdict": "pass"} in velocity["backends"][backend]["cases"]
+    # what failed, as measured (an accuracy grade decides no verdict), with the case's pin
+    pin = R.expectations.load(backend).get("free_fall")
+    assert table["not_passing"] == {backend: {"free_fall": {"verdict": "fail", "measures": ["Ball.height"],
+                                                            "why": pin.why if pin else ""}}}
     declared = table["declared"][backend]
     assert sum(declared.values()) == len(base.load(backend).table())
 
@@ -73,10 +79,17 @@ def _fake_results(out) -> None:
             ("chain", "a", 0.1, "survived"), ("chain", "b", 0.1, "blew up"), ("chain", "c", 0.1, "unsupported"))]}))
     (out / "compare").mkdir()
     feature = {"feature": "RigidBody.mass", "backends": {
-        "a": {"support": "native", "note": "", "cases": [{"case": "c1", "verdict": "fail"}]},
+        "a": {"support": "native", "note": "", "cases": [{"case": "c1", "verdict": "fail"},
+                                                         {"case": "c2", "verdict": "fail"}]},
         "b": {"support": "approximate", "note": "", "cases": [{"case": "c1", "verdict": "unsupported"}]}}}
-    (out / "features.json").write_text(json.dumps({"features": [feature], "declared": {
-        "a": {"native": 3, "approximate": 1, "unsupported": 0}, "b": {"native": 1, "approximate": 2, "unsupported": 1}}}))
+    bounce = {"feature": "CollisionCollection.bounce", "backends": {  # c2's failure: a declared approximation
+        "a": {"support": "approximate", "note": "", "cases": [{"case": "c2", "verdict": "fail"}]},
+        "b": {"support": "native", "note": "", "cases": [{"case": "c2", "verdict": "pass"}]}}}
+    why = "Chipmunk's solver, 10 iterations: the stop fights the pivot"
+    (out / "features.json").write_text(json.dumps({"features": [feature, bounce], "declared": {
+        "a": {"native": 3, "approximate": 1, "unsupported": 0}, "b": {"native": 1, "approximate": 2, "unsupported": 1}},
+        "not_passing": {"a": {"c1": {"verdict": "fail", "measures": ["Arm.angle beyond limits"], "why": why},
+                              "c2": {"verdict": "fail", "measures": ["Ball apex"], "why": ""}}, "b": {}}}))
     (out / "report.json").write_text(json.dumps({
         "generated": "2026-11-21T00:00:00+00:00", "backends": {"a": "1", "b": "2"}, "cpus": 2,
         "timings_s": {"conformance": 1.5, "stability": 2.0, "total": 3.5}, "failed": [], "quick": True}))
@@ -89,14 +102,17 @@ def test_the_page_gathers_each_section_from_the_files_alone(tmp_path):
     assert "# x3drbp conformance" not in text and "### Measures" in text  # titles dropped, headings down one
     assert "[traces](conformance/traces/x.csv)" in text  # links into the step's folder
     assert "Not run (`x3drbp report --quick` leaves it out)" in text  # no sweep
-    assert "| RigidBody.mass | **native: 0 pass, 1 not (c1)** | approx.: 0 pass, 1 refused |" in text
+    assert "| RigidBody.mass | **native: 0 pass, 2 not (c1, c2)** | approx.: 0 pass, 1 refused |" in text
     assert "| a | 3 | 1 | 0 |" in text
     answers = text[text.index("## Answers"):text.index("## Conformance")]
     assert "- **a**: 1 of 2 cases pass; 1 fail" in answers and "- **b**: 2 of 2 cases pass" in answers
     # a hard case that ended alike everywhere is a finding; one that did not is not
     assert "wall: tunnelled on every backend that ran it, at every step" in answers and "chain:" not in answers
     assert "runs that held: a 1 of 2, b 0 of 3" in answers
-    assert "a declares RigidBody.mass native; not passing: c1" in answers
+    # blamed on what was measured, not on RigidBody.mass; c2, which a declared approximation explains, is none
+    assert ("a: c1: fail on Arm.angle beyond limits; its pin says: Chipmunk's solver, 10 iterations (every "
+            "feature it exercises declared native)") in answers
+    assert "c2:" not in answers and "declares RigidBody.mass" not in answers
     assert '<details markdown="1"><summary>The matrix' in text  # the long tables folded
 
 

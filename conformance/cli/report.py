@@ -44,6 +44,8 @@ from x3d_core.paths import scene_files
 
 from conformance.cli import as_given, options
 from conformance import cases as C
+from conformance import expectations
+from conformance.results import ACCURACY, CONVENTIONS, PASS, UNSUPPORTED
 from conformance.runner import children, probe
 from conformance.analyses import sweep as S
 
@@ -114,10 +116,26 @@ def declarations(backends: list[str], timeout: float = children.DEFAULT_TIMEOUT)
     return probe.ask(_TABLES, [",".join(backends), *sorted(C.exercising())], timeout, "the declarations' child")
 
 
+def not_passing(matrix: dict, backends: list[str]) -> dict:
+    """Per backend, each case that does not pass: its verdict, the measures beyond tolerance
+    that decide it (accuracy grades decide none) and its pin's `why` (conformance/expectations):
+    what was measured to fail, so that a finding blames that and not a feature the case uses."""
+    pins = {b: expectations.load(b) for b in backends}
+    out: dict[str, dict] = {b: {} for b in backends}
+    for r in matrix["results"]:
+        if r["backend"] in out and r["verdict"] not in (PASS, CONVENTIONS, UNSUPPORTED):
+            pin = pins[r["backend"]].get(r["case"])
+            out[r["backend"]][r["case"]] = {
+                "verdict": r["verdict"], "why": pin.why if pin is not None else "",
+                "measures": [m["quantity"] for m in r["measures"] if not m["ok"] and m["basis"] != ACCURACY]}
+    return out
+
+
 def features(matrix: dict, tables: dict) -> dict:
     """Per backend and feature exercised by a case: what the backend declares (tables:
-    declarations()), and the verdicts of the cases that exercise it (a feature declared
-    native whose case fails is a finding)."""
+    declarations()), and the verdicts of the cases that exercise it; per backend, what its
+    cases that do not pass measured (a case whose every feature is declared native yet fails
+    is a finding)."""
     verdicts = {(r["case"], r["backend"]): r["verdict"] for r in matrix["results"]}
     exercised = C.exercising()
     rows = []
@@ -128,7 +146,8 @@ def features(matrix: dict, tables: dict) -> dict:
             cells[b] = {"support": support, "note": note,
                         "cases": [{"case": c, "verdict": verdicts.get((c, b), "not run")} for c in exercised[feature]]}
         rows.append({"feature": feature, "backends": cells})
-    return {"features": rows, "declared": {b: table["declared"] for b, table in tables.items()}}
+    return {"features": rows, "declared": {b: table["declared"] for b, table in tables.items()},
+            "not_passing": not_passing(matrix, list(tables))}
 
 
 @children.interruptible
