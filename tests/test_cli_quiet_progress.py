@@ -19,13 +19,16 @@ import pytest
 
 from backends import base
 from conftest import ROOT, SCENES
+from conformance import cases as C
 from conformance import cli
 from conformance import results
 from conformance.analyses import stability as S
 from conformance.cli import main as cli_main
+from conformance.cli.run import LEAD, NAMED, approximation
 from conformance.results import Settings
 from conformance.runner import children, verdicts
 from reports.text import link
+from x3d_core.analysis import Use
 from x3d_core.load import load
 
 from fake_child import fake_python
@@ -42,12 +45,12 @@ class Terminal(io.StringIO):
         return True
 
 
-def _approximated(backend: str, path: str) -> dict[str, list[str]]:
+def _approximated(backend: str, path: str) -> dict[str, list[Use]]:
     """The backend's notes on the scene, each with the uses it covers (what `x3drbp run` groups)."""
     out: dict[str, list[str]] = {}
     for use, d in base.judged(base.load(backend), load(path)):
         if d.support is base.Support.APPROXIMATE:
-            out.setdefault(d.note, []).append(str(use))
+            out.setdefault(d.note, []).append(use)
     return out
 
 
@@ -94,11 +97,33 @@ def test_version_without_installed_metadata_is_pyprojects(tmp_path, monkeypatch,
 
 # -- run -q / -v ------------------------------------------------------------------------------------
 
+def test_run_says_each_note_in_one_bounded_line_and_each_refusal_reason_once(tmp_path, capsys):
+    """DART's notes on a scene ran to 1,900 characters, every use with its value and the whole
+    note; ODE's hinge2 refused by pymunk was 10 to 15 lines of one reason, one per field."""
+    pytest.importorskip("dartpy")
+    pytest.importorskip("pymunk")
+    bound = len(BALL) + 40 + NAMED * 60 + LEAD + 30  # the scene, the words, the features, the note's lead
+    lines = {}
+    for flags in ((), ("-v",)):
+        code = cli_main(["run", BALL, "--backend", "dart", "--duration", "0.02", "--trace", str(tmp_path / "t.csv"),
+                         *flags])
+        assert code == 0
+        lines[flags] = _note_lines(capsys.readouterr().err)
+    assert lines[()] and all(len(line) <= bound for line in lines[()])
+    notes = _approximated("dart", BALL)
+    assert any(len(note) > LEAD for note in notes)  # a note the default line cuts: -v says it whole
+    assert all(any(line.endswith(f": {note}") for line in lines[("-v",)]) for note in notes)
+    hinge2 = C.BY_NAME["hinge2_steering"].path
+    assert cli_main(["run", hinge2, "--backend", "pymunk", "--trace", str(tmp_path / "u.csv")]) == 3
+    (refusal,) = [ln for ln in capsys.readouterr().err.splitlines() if "unsupported by pymunk" in ln]
+    assert re.search(r"DoubleAxisHingeJoint, .* \(\d+ uses\): ODE's hinge2", refusal) and refusal.count("hinge2:") == 1
+
+
 def test_run_notes_once_per_approximation_every_use_with_v_none_with_q(tmp_path, capsys):
     groups = _approximated(BACKEND, BALL)
     assert any(len(uses) > 1 for uses in groups.values())  # a note two uses share: grouping shows
     prefix = f"{BALL}: note: {BACKEND} approximates"
-    wanted = {(): [f"{prefix} {', '.join(uses)}: {note}" for note, uses in groups.items()],
+    wanted = {(): [f"{prefix} {approximation(uses, note)}" for note, uses in groups.items()],
               ("-v",): [f"{prefix} {use}: {note}" for note, uses in groups.items() for use in uses],
               ("-q",): []}
     for flags, lines in wanted.items():
@@ -170,7 +195,7 @@ def _shown(path: str) -> str:
 
 
 def _impact_notes() -> list[str]:
-    return [f"{_shown(IMPACT.path)}: note: {BACKEND} approximates {', '.join(uses)}: {note}"
+    return [f"{_shown(IMPACT.path)}: note: {BACKEND} approximates {approximation(uses, note)}"
             for note, uses in _approximated(BACKEND, IMPACT.path).items()]
 
 
@@ -263,7 +288,7 @@ def test_compare_draws_its_bar_on_a_terminal_and_says_each_backends_notes_once(m
     argv = ["compare", BALL, "--backends", ",".join(pair), "--duration", "0.1"]
     code, err = _run(argv, monkeypatch)
     assert code == 0 and re.search(r"2/2 \[", err)
-    assert sorted(_note_lines(err)) == sorted(f"{_shown(BALL)}: note: {b} approximates {', '.join(uses)}: {note}"
+    assert sorted(_note_lines(err)) == sorted(f"{_shown(BALL)}: note: {b} approximates {approximation(uses, note)}"
                                               for b in pair for note, uses in _approximated(b, BALL).items())
     code, err = _run([*argv, "-q"], monkeypatch)
     assert code == 0 and "2/2" not in err and _note_lines(err) == []

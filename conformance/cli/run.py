@@ -8,6 +8,7 @@ import signal
 import sys
 import threading
 import time
+from collections import Counter
 from collections.abc import Iterator
 from contextlib import contextmanager
 
@@ -16,6 +17,7 @@ import numpy as np
 from backends import base
 from x3d_core import atomic
 from x3d_core.engine import Engine, Simulation, Stopped, TimedOut, Unsupported, on_engine_abort
+from x3d_core.analysis import Use
 from x3d_core.evaluator import RunSettings, run
 from x3d_core.model import Scene
 from x3d_core.outcome import EMPTY, NOTHING_TO_SIMULATE, outcome_warnings, simulates
@@ -26,6 +28,7 @@ from x3d_core.world import World, worlds
 from conformance.cli import options
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE, EXIT_UNSUPPORTED = 0, 1, 2, 3
+NAMED, LEAD = 4, 120  # a default note's features named, and characters of its note: one short line each
 STUCK_GRACE = 5.0  # s an engine call may run past --timeout before the process ends without a trace
 
 
@@ -113,6 +116,31 @@ def time_limit(seconds: float | None, said: str) -> Iterator[None]:
         signal.signal(signal.SIGALRM, previous)
 
 
+def refusal(uses: list[Use], note: str) -> str:
+    """Uses refused for one reason, as a refusal says them: each use with its value, the reason
+    once (a car's four wheel joints, each field of each, share one), with their count."""
+    count = f" ({len(uses)} uses)" if len(uses) > 1 else ""
+    return f"{', '.join(map(str, uses))}{count}: {note}"
+
+
+def approximation(uses: list[Use], note: str) -> str:
+    """Uses approximated alike, as a note says them by default, bounded whatever the scene: the
+    features (each once, with its count), NAMED of them at most, and the note's lead (-v: every
+    use with its value, the whole note)."""
+    counts = Counter(u.feature for u in uses)
+    names = [f + (f" ({n} uses)" if n > 1 else "") for f, n in counts.items()]
+    more = f" and {len(names) - NAMED} more features" if len(names) > NAMED else ""
+    return f"{', '.join(names[:NAMED])}{more}: {_lead(note)}"
+
+
+def _lead(note: str) -> str:
+    """A note's first clause, cut at a word to LEAD characters (the whole note under -v)."""
+    lead = note.split("; ", 1)[0]
+    if len(lead) <= LEAD:
+        return lead + (" ... (-v: the whole note)" if lead != note else "")
+    return lead[:LEAD].rsplit(" ", 1)[0] + " ... (-v: the whole note)"
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     problem = options.settings_error(args)
     if problem:
@@ -132,19 +160,18 @@ def cmd_run(args: argparse.Namespace) -> int:
     except ImportError as e:
         print(f"x3drbp run: backend {args.backend}: {e}", file=sys.stderr)
         return EXIT_ERROR
-    refused, approximated = [], {}
+    refused: dict[str, list[Use]] = {}
+    approximated: dict[str, list[Use]] = {}
     for use, d in base.judged(backend, scene, ws):  # each named with its value
-        if d.support is base.Support.UNSUPPORTED:
-            refused.append(f"{use}: {d.note}")
-        elif d.support is base.Support.APPROXIMATE:
-            approximated.setdefault(d.note, []).append(str(use))
+        if d.support is not base.Support.NATIVE:
+            (refused if d.support is base.Support.UNSUPPORTED else approximated).setdefault(d.note, []).append(use)
     if not args.quiet:
         for note, uses in approximated.items():  # one line per approximation, or per use with -v
-            for named in ([u] for u in uses) if args.verbose else [uses]:
-                print(f"{args.scene}: note: {args.backend} approximates {', '.join(named)}: {note}", file=sys.stderr)
+            for line in ([f"{u}: {note}" for u in uses] if args.verbose else [approximation(uses, note)]):
+                print(f"{args.scene}: note: {args.backend} approximates {line}", file=sys.stderr)
     if refused:
-        for line in refused:
-            print(f"{args.scene}: unsupported by {args.backend}: {line}", file=sys.stderr)
+        for note, uses in refused.items():  # a refusal's reason once, whatever number of uses it covers
+            print(f"{args.scene}: unsupported by {args.backend}: {refusal(uses, note)}", file=sys.stderr)
         return EXIT_UNSUPPORTED
     settings = RunSettings(duration=args.duration, dt=args.dt, frame_rate=args.frame_rate)
 
