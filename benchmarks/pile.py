@@ -62,12 +62,6 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from backends import base  # noqa: E402
-from x3d_core.engine import Unsupported  # noqa: E402
-from x3d_core.evaluator import RunSettings, run  # noqa: E402
-from x3d_core.load import load  # noqa: E402
-from x3d_core.world import worlds  # noqa: E402
-
 from measure import peak_mb, timed  # noqa: E402  (benchmarks/measure.py, beside this script)
 
 DT = 1 / 240
@@ -378,28 +372,11 @@ def native_ode(duration: float, contacts: bool = False) -> np.ndarray:
     per-body reads measured about 8% of this side's time)."""
     import ctypes
 
+    import native_ode  # beside this script
     from backends import ode_lib as ode
     lib = ode.lib
-
-    def declare(name: str, restype, argtypes: list) -> ctypes._CFuncPtr:
-        """A call the backend's binding leaves out (it has no spaces), declared here only."""
-        fn = lib[name]  # a fresh function object: the binding's own declarations are untouched
-        fn.restype, fn.argtypes = restype, argtypes
-        return fn
-
-    near = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p)
-    hash_space = declare("dHashSpaceCreate", ctypes.c_void_p, [ctypes.c_void_p])
-    space_collide = declare("dSpaceCollide", None, [ctypes.c_void_p, ctypes.c_void_p, near])
-    space_destroy = declare("dSpaceDestroy", None, [ctypes.c_void_p])
-    lib.dAllocateODEDataForThread(ode.ALLOCATE_ALL)
-    lib.dRandSetSeed(0)
-    world = lib.dWorldCreate()
-    lib.dWorldSetGravity(world, 0, -GRAVITY, 0)
-    lib.dWorldSetERP(world, ERP)
-    lib.dWorldSetCFM(world, 1e-4)  # RigidBodyCollection constantForceMix's default
-    lib.dWorldSetQuickStepNumIterations(world, ITERATIONS)
-    lib.dWorldSetContactSurfaceLayer(world, 0.0)
-    space = hash_space(None)
+    world = native_ode.world(GRAVITY, ERP, 1e-4, ITERATIONS)  # 1e-4: constantForceMix's default
+    space = native_ode.hash_space(None)
     mass = (ctypes.c_double * ode.MASS_REALS)()
     bodies, body_of = [], {}  # body_of: each geom's body (None for the floor and walls)
     for kind, position, axis, angle in draws():
@@ -424,7 +401,7 @@ def native_ode(duration: float, contacts: bool = False) -> np.ndarray:
     group = lib.dJointGroupCreate(0)
     found = 0  # contacts in the buffer this step
 
-    @near
+    @native_ode.NEAR
     def collide(_data, o1: int, o2: int) -> None:
         nonlocal buffer, found
         b1, b2 = body_of[o1], body_of[o2]
@@ -437,23 +414,20 @@ def native_ode(duration: float, contacts: bool = False) -> np.ndarray:
             lib.dJointAttach(lib.dJointCreateContact(world, group, at + k * ode.CONTACT.itemsize), b1, b2)
             found += 1
 
-    frames, steps_per_frame = _frames(duration)
-    out, touching = [], []
-    for _ in range(frames):
-        for _ in range(steps_per_frame):
-            lib.dJointGroupEmpty(group)
-            found = 0
-            space_collide(space, None, collide)
-            lib.dWorldQuickStep(world, DT)
-        out.append([(lib.dBodyGetPosition(b)[:3], lib.dBodyGetQuaternion(b)[:4], lib.dBodyGetLinearVel(b)[:3],
-                     lib.dBodyGetAngularVel(b)[:3]) for b in bodies])
+    touching = []
+
+    def reset() -> None:
+        nonlocal found
+        found = 0
+
+    def read_contacts() -> None:
         if contacts:
             c = buffer[:found]
             touching.append((c["pos"][:, :3].copy(), c["normal"][:, :3].copy(), c["depth"].copy(), c["g1"].copy(),
                              c["g2"].copy()))
-    lib.dJointGroupDestroy(group)
-    space_destroy(space)  # and its geoms
-    lib.dWorldDestroy(world)
+
+    out = native_ode.simulate(world, space, group, collide, bodies, *_frames(duration), DT, before_step=reset,
+                              after_frame=read_contacts)
     return np.array([[pose[0] for pose in frame] for frame in out])
 
 
@@ -474,8 +448,10 @@ def contact_counts(trace) -> float:
     return sum(t.count for t in trace.tables_of("contacts")) / max(frames, 1)
 
 
-def refusal(name: str, backend: base.Backend, path: str) -> str | None:
+def refusal(name: str, backend, path: str) -> str | None:
     """Why `x3drbp run` would refuse the scene on this backend (exit 3), or None."""
+    from backends import base
+    from x3d_core.load import load
     refused = [str(u) for u, d in base.judged(backend, load(path)) if d.support is base.Support.UNSUPPORTED]
     return f"{name} refuses {', '.join(refused)}" if refused else None
 
@@ -500,6 +476,13 @@ def main(argv: list[str] | None = None) -> int:
                     help="default: every engine that runs the scene (mujoco,bullet,dart,ode)")
     ap.add_argument("--profile", action="store_true", help=f"cProfile x3drbp's run where it is over {SLOW}x native")
     args = ap.parse_args(argv)
+    # x3drbp's own modules here only: benchmarks/native_run.py imports the native builds above
+    # into a process that must not pay for them
+    from backends import base
+    from x3d_core.engine import Unsupported
+    from x3d_core.evaluator import RunSettings, run
+    from x3d_core.load import load
+    from x3d_core.world import worlds
     if min(args.duration, args.dart_duration) < CHECK_T:
         ap.error(f"--duration and --dart-duration must reach the {CHECK_T} s check")
     folder = tempfile.mkdtemp(prefix="x3drbp-pile-bench-")

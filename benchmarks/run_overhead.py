@@ -26,11 +26,6 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-from backends import base  # noqa: E402
-from x3d_core.evaluator import RunSettings, run  # noqa: E402
-from x3d_core.load import load  # noqa: E402
-from x3d_core.world import worlds  # noqa: E402
-
 from measure import peak_mb, timed  # noqa: E402  (benchmarks/measure.py, beside this script)
 
 DT = 1 / 240
@@ -289,6 +284,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--backends", default=",".join(NATIVE))
     args = ap.parse_args(argv)
+    # x3drbp's own modules here only: benchmarks/native_run.py imports the native builds above
+    # into a process that must not pay for them
+    from backends import base
+    from x3d_core.evaluator import RunSettings, run
+    from x3d_core.load import load
+    from x3d_core.world import worlds
     folder = tempfile.mkdtemp(prefix="x3drbp-run-bench-")
     paths = {}
     for name, text in (("chain", chain_x3d()), ("boxes", boxes_x3d())):

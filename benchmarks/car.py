@@ -1,0 +1,131 @@
+"""The car scene of benchmarks/engine_speed.py, and the same car written in ODE's own API.
+
+A 10 kg box chassis (2 x 0.4 x 1 m, no collider: only the wheels touch anything) on four
+1 kg sphere wheels (radius 0.3 m), each joined to the chassis by a DoubleAxisHingeJoint at
+its centre (axis1 0 1 0, the steering axis, free; axis2 0 0 1, the axle; every other field
+its default: no stops, no suspension, no motors), rolling at 2 m/s along +x on a static
+floor box (top face y = 0), friction 0.8, bounce 0. Every body's inertia is explicit (its
+shape's solid inertia), so no engine computes its own.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+DT, FRAME_RATE, GRAVITY = 1 / 240, 60, 9.81
+ITERATIONS, ERP, CFM = 10, 0.8, 1e-4  # RigidBodyCollection's iterations (set), errorCorrection and constantForceMix
+MU, MIN_BOUNCE_SPEED = 0.8, 0.1
+SPEED = 2.0  # m/s along +x
+CHASSIS_MASS, CHASSIS_SIZE = 10.0, np.array([2.0, 0.4, 1.0])
+CHASSIS_MOMENTS = CHASSIS_MASS * (CHASSIS_SIZE[[1, 0, 0]] ** 2 + CHASSIS_SIZE[[2, 2, 1]] ** 2) / 12
+WHEEL_MASS, RADIUS = 1.0, 0.3
+WHEEL_MOMENT = 0.4 * WHEEL_MASS * RADIUS ** 2
+START = np.array([-3.0, 0.55, 0.0])  # the chassis centre: its bottom face 0.05 m above the axles
+WHEELS = np.array([[x, RADIUS, z] for x in (-0.7, 0.7) for z in (-0.6, 0.6)]) + [START[0], 0.0, 0.0]
+FLOOR_SIZE, FLOOR_CENTRE = (20.0, 0.2, 20.0), (0.0, -0.1, 0.0)
+SPIN = np.array([0.0, 0.0, -SPEED / RADIUS])  # rolling without slip along +x
+
+
+def _vec(v) -> str:
+    return " ".join(repr(float(x)) for x in v)
+
+
+def car_x3d() -> str:
+    """The scene: the chassis first, then the wheels W0-W3, the joints, the floor."""
+    velocity = _vec([SPEED, 0.0, 0.0])
+    items = [f"<RigidBody DEF='Chassis' mass='{CHASSIS_MASS!r}' position='{_vec(START)}' linearVelocity='{velocity}' "
+             f"inertia='{_vec(np.diag(CHASSIS_MOMENTS).ravel())}'/>"]
+    shapes = []
+    for k, centre in enumerate(WHEELS):
+        items.append(f"<RigidBody DEF='W{k}' mass='{WHEEL_MASS!r}' position='{_vec(centre)}' "
+                     f"linearVelocity='{velocity}' angularVelocity='{_vec(SPIN)}' "
+                     f"inertia='{_vec(np.diag([WHEEL_MOMENT] * 3).ravel())}'>"
+                     f"<CollidableShape DEF='S{k}' containerField='geometry'><Shape containerField='shape'>"
+                     f"<Sphere radius='{RADIUS!r}'/></Shape></CollidableShape></RigidBody>")
+        shapes.append(f"<CollidableShape USE='S{k}' containerField='collidables'/>")
+    for k, centre in enumerate(WHEELS):
+        items.append(f"<DoubleAxisHingeJoint anchorPoint='{_vec(centre)}' axis1='0 1 0' axis2='0 0 1'>"
+                     "<RigidBody USE='Chassis' containerField='body1'/>"
+                     f"<RigidBody USE='W{k}' containerField='body2'/></DoubleAxisHingeJoint>")
+    shapes.append(f"<CollidableShape DEF='Floor' containerField='collidables' translation='{_vec(FLOOR_CENTRE)}'>"
+                  f"<Shape containerField='shape'><Box size='{_vec(FLOOR_SIZE)}'/></Shape></CollidableShape>")
+    collision = (f"<CollisionCollection frictionCoefficients='{_vec([MU, MU])}' bounce='0'>\n"
+                 + "\n".join(shapes) + "\n</CollisionCollection>")
+    return ("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n"
+            f"<RigidBodyCollection gravity='0 {-GRAVITY!r} 0' iterations='{ITERATIONS}'>\n"
+            + "\n".join(items) + "\n" + collision + "\n</RigidBodyCollection>\n</Scene></X3D>\n")
+
+
+def _frames(duration: float) -> tuple[int, int]:
+    return round(duration * FRAME_RATE), round(1 / (FRAME_RATE * DT))
+
+
+def native_ode(duration: float) -> np.ndarray:
+    """As backends/ode.py builds it, through its ctypes binding of libode: a body per body with
+    dMassSetParameters' mass and inertia, the chassis first; a hinge2 per wheel (chassis as
+    body 1) with no stops, suspension ERP 0.8 and CFM 0 (X3D's defaults: rigid), no motors; a
+    sphere geom per wheel and a bodiless box for the floor; quick-step, ERP 0.8, CFM 1e-4, 10
+    iterations, surface layer 0; every contact dContactApprox1 | dContactBounce (mu 0.8,
+    bounce 0, bounce_vel 0.1). Collision is ODE's own, as a user writes it: the geoms in a
+    dSimpleSpace, dSpaceCollide calling back into Python per overlapping pair, dCollide
+    there, the pair's geoms in the order the backend gives them (wheel first). State is
+    read with dBodyGet* calls every frame. Returns every frame's positions (frames, 5, 3)."""
+    import ctypes
+
+    import native_ode  # beside this script
+    from backends import ode_lib as ode
+    lib = ode.lib
+    world = native_ode.world(GRAVITY, ERP, CFM, ITERATIONS)
+    space = native_ode.simple_space(None)
+    mass = (ctypes.c_double * ode.MASS_REALS)()
+    chassis = lib.dBodyCreate(world)
+    lib.dMassSetParameters(mass, CHASSIS_MASS, 0, 0, 0, *CHASSIS_MOMENTS, 0, 0, 0)
+    lib.dBodySetMass(chassis, mass)
+    lib.dBodySetPosition(chassis, *START)
+    lib.dBodySetLinearVel(chassis, SPEED, 0, 0)
+    bodies, body_of = [chassis], {}
+    lib.dMassSetParameters(mass, WHEEL_MASS, 0, 0, 0, WHEEL_MOMENT, WHEEL_MOMENT, WHEEL_MOMENT, 0, 0, 0)
+    for centre in WHEELS:
+        wheel = lib.dBodyCreate(world)
+        lib.dBodySetMass(wheel, mass)
+        lib.dBodySetPosition(wheel, *centre)
+        lib.dBodySetLinearVel(wheel, SPEED, 0, 0)
+        lib.dBodySetAngularVel(wheel, *SPIN)
+        geom = lib.dCreateSphere(space, RADIUS)
+        lib.dGeomSetBody(geom, wheel)
+        body_of[geom] = wheel
+        bodies.append(wheel)
+    for centre, wheel in zip(WHEELS, bodies[1:]):
+        hinge = lib.dJointCreateHinge2(world, None)
+        lib.dJointAttach(hinge, chassis, wheel)
+        lib.dJointSetHinge2Anchor(hinge, *centre)
+        lib.dJointSetHinge2Axes(hinge, ode.array([0, 1, 0]), ode.array([0, 0, 1]))
+        lib.dJointSetHinge2Param(hinge, ode.SUSPENSION_ERP, 0.8)
+        lib.dJointSetHinge2Param(hinge, ode.SUSPENSION_CFM, 0.0)
+    floor = lib.dCreateBox(space, *FLOOR_SIZE)
+    lib.dGeomSetPosition(floor, *FLOOR_CENTRE)
+    surface = np.zeros(1, dtype=ode.CONTACT)
+    surface["mode"] = ode.CONTACT_APPROX1 | ode.CONTACT_BOUNCE
+    surface["mu"], surface["bounce"], surface["bounce_vel"] = MU, 0.0, MIN_BOUNCE_SPEED
+    buffer = np.repeat(surface, 64)
+    group = lib.dJointGroupCreate(0)
+    found = 0
+
+    @native_ode.NEAR
+    def collide(_data, o1: int, o2: int) -> None:
+        nonlocal found
+        if o1 == floor:
+            o1, o2 = o2, o1  # the wheel as geom 1, as the backend orders its pairs
+        at = buffer.ctypes.data + found * ode.CONTACT.itemsize
+        for k in range(lib.dCollide(o1, o2, 16, at + ode.GEOM_OFFSET, ode.CONTACT.itemsize)):
+            lib.dJointAttach(lib.dJointCreateContact(world, group, at + k * ode.CONTACT.itemsize), body_of[o1], None)
+            found += 1
+
+    def reset() -> None:
+        nonlocal found
+        found = 0
+
+    out = native_ode.simulate(world, space, group, collide, bodies, *_frames(duration), DT, before_step=reset)
+    return np.array([[pose[0] for pose in frame] for frame in out])
+
+NATIVE = {"ode": native_ode}

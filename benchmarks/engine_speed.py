@@ -1,0 +1,154 @@
+"""Benchmark: is a backend's speed the engine's? `x3drbp run` against a hand-written native script.
+
+Three scenes, generated here: run_overhead.py's hinge chain with 10 links (no contacts),
+car.py's car (a box chassis on four sphere wheels joined by DoubleAxisHingeJoints, rolling
+on a floor) and pile.py's pit with 100 boxes falling into a pile (no spheres). Each runs
+for --duration simulated seconds (DART's pile at most DART_PILE: its Dantzig solver on a
+settled pile is slow alike on both sides) at dt = 1/240 s with a frame every 1/60 s. Both
+sides are whole processes, cold interpreter to exit, taking turns (native, x3drbp, for
+every scene and backend, --repeat rounds) so that a load shifts both alike:
+
+- x3drbp: `x3drbp run SCENE --backend B --dt 1/240 --duration D --trace OUT.npz`;
+- native: benchmarks/native_run.py, which builds the same model in the engine's own API
+  (the native_* builds of run_overhead.py, pile.py and car.py: same step, solver settings,
+  shapes, masses, inertias and contact parameters as the backend sets them), steps it, reads
+  every body's pose and velocity at every frame, and saves the positions; it imports no
+  x3drbp code.
+
+Each side's time is the median over the rounds of its process's CPU time (user + system,
+from the kernel's accounting of the child: a load beside it barely moves it) and, apart,
+of its wall time. The ratio is x3drbp's CPU median over the native one; TARGET is 1.15x.
+The traces are checked to agree (exit status 1 where one does not): the chain's and the
+car's positions to SAME at every compared frame (the car's every frame, the chain's last);
+the pile, being chaotic, as pile.py checks it (every body to pile.AGREE at pile.CHECK_T,
+before any contact, and the final mean height to PILE_HEIGHT_SAME, 1 cm). A backend without a
+native build of a scene (no `NATIVE` entry) is listed as such; pymunk (2D) has none.
+
+    python benchmarks/engine_speed.py [--duration 2] [--repeat 5] [--backends mujoco,bullet,dart,ode]
+                                      [--scenes chain,car,pile]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [os.path.dirname(HERE), HERE]
+
+import car  # noqa: E402  (benchmarks/car.py, beside this script)
+import native_run  # noqa: E402
+import pile  # noqa: E402
+import run_overhead  # noqa: E402
+from x3d_core.trace import read_view  # noqa: E402
+
+DT, FRAME_RATE = 1 / 240, 60
+TARGET = 1.15
+SAME = 1e-6  # m: the chain's and the car's positions on the two sides
+# pile.py's HEIGHT_SAME is for its 200 bodies: one body landing elsewhere moves the mean of 100 twice as far
+PILE_HEIGHT_SAME = 2 * pile.HEIGHT_SAME
+DART_PILE = 1.0  # s: DART's pile runs this long at most (its 2 s take ~20 s a side, measured)
+NATIVE = {"chain": run_overhead.NATIVE, "car": car.NATIVE, "pile": pile.NATIVE}
+
+
+def scene_files(folder: str) -> dict[str, str]:
+    """The three scenes written into folder, as native_run.py builds them."""
+    run_overhead.LINKS = native_run.CHAIN_LINKS
+    pile.SPHERES, pile.BOXES, pile.LAYERS = 0, native_run.PILE_BOXES, native_run.PILE_LAYERS
+    paths = {}
+    for name, text in (("chain", run_overhead.chain_x3d()), ("car", car.car_x3d()), ("pile", pile.pile_x3d(False))):
+        paths[name] = os.path.join(folder, f"{name}.x3d")
+        with open(paths[name], "w", encoding="utf-8") as f:
+            f.write(text)
+    return paths
+
+
+def process_times(cmd: list[str], env: dict[str, str]) -> tuple[float, float]:
+    """One whole process's (wall, CPU) seconds, its output discarded (CalledProcessError if it fails)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    started = time.perf_counter()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    wall = time.perf_counter() - started
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def agreement(scene: str, trace: str, native: str) -> tuple[float, bool, str]:
+    """The largest position difference that the scene's check compares, whether it passes, and what was compared."""
+    view, theirs = read_view(trace), np.load(native)
+    names = sorted(view.bodies(), key=lambda n: (len(n), n)) if scene != "car" else ["Chassis", "W0", "W1", "W2", "W3"]
+    names = [n for n in names if n != "Base"]
+    ours = np.stack([view.series(n, "position")[1] for n in names], axis=1)[1:]  # frames after t = 0
+    if scene == "chain":
+        gap = float(np.abs(ours[-1] - theirs).max())
+        return gap, gap <= SAME, "last frame"
+    if scene == "car":
+        gap = float(np.abs(ours - theirs).max())
+        return gap, gap <= SAME, "every frame"
+    check = round(pile.CHECK_T * FRAME_RATE) - 1
+    early = float(np.abs(ours[check] - theirs[check]).max())
+    height = float(ours[-1, :, 1].mean() - theirs[-1, :, 1].mean())
+    ok = early <= pile.AGREE and abs(height) <= PILE_HEIGHT_SAME
+    return early, ok, f"at {pile.CHECK_T:g} s; mean height {height:+.1e} m at the end"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--duration", type=float, default=2.0)
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--backends", default="mujoco,bullet,dart,ode")
+    ap.add_argument("--scenes", default="chain,car,pile")
+    args = ap.parse_args(argv)
+    x3drbp = os.path.join(os.path.dirname(sys.executable), "x3drbp")
+    env = dict(os.environ, MUJOCO_GL=os.environ.get("MUJOCO_GL", "disable"))  # what x3drbp sets for itself
+    cases, missing = [], []
+    for scene in args.scenes.split(","):
+        for backend in args.backends.split(","):
+            (cases if backend in NATIVE[scene] else missing).append((scene, backend))
+    load_before = os.getloadavg()[0]
+    with tempfile.TemporaryDirectory(prefix="x3drbp-engine-speed-") as tmp:
+        paths = scene_files(tmp)
+        commands = {}
+        for scene, backend in cases:
+            duration = min(args.duration, DART_PILE) if (scene, backend) == ("pile", "dart") else args.duration
+            out = os.path.join(tmp, f"{scene}-{backend}")
+            commands[scene, backend] = (
+                [sys.executable, os.path.join(HERE, "native_run.py"), backend, scene, repr(duration), out + ".npy"],
+                [x3drbp, "run", paths[scene], "--backend", backend, "--dt", repr(DT), "--duration", repr(duration),
+                 "--trace", out + ".npz"], duration, out)
+        times = {case: ([], []) for case in cases}  # (native, x3drbp): (wall, cpu) per round
+        for _ in range(args.repeat):
+            for case, (native, ours, _, _) in commands.items():
+                times[case][0].append(process_times(native, env))
+                times[case][1].append(process_times(ours, env))
+        checks = {case: agreement(case[0], out + ".npz", out + ".npy") for case, (_, _, _, out) in commands.items()}
+    load_after = os.getloadavg()[0]
+    print(f"dt 1/240 s, frames at {FRAME_RATE}/s; whole processes taking turns, median of {args.repeat}; "
+          f"2 cores, load average {load_before:.1f} before, {load_after:.1f} after\n")
+    print("| scene | backend | simulated s | native CPU s | x3drbp CPU s | ratio (CPU) | native wall s | x3drbp wall s "
+          "| x3drbp - native CPU s | max position difference |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---|")
+    failed = False
+    for case, (native, ours) in times.items():
+        duration = commands[case][2]
+        (nw, nc), (ow, oc) = ([statistics.median(t[k] for t in side) for k in (0, 1)] for side in (native, ours))
+        gap, ok, what = checks[case]
+        failed |= not ok
+        flag = "" if oc / nc <= TARGET else f" (over {TARGET}x)"
+        print(f"| {case[0]} | {case[1]} | {duration:g} | {nc:.3f} | {oc:.3f} | {oc / nc:.2f}x{flag} | {nw:.3f} | "
+              f"{ow:.3f} | {oc - nc:+.3f} | {gap:.1e} m ({what}){'' if ok else ' NOT THE SAME'} |")
+    for scene, backend in missing:
+        print(f"| {scene} | {backend} | no native build written | | | | | | | |")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,37 @@
+"""One native run for benchmarks/engine_speed.py, as a process of its own: a scene built,
+stepped and read every frame in one engine's own API, with no x3drbp code imported (the
+native builds live in run_overhead.py, pile.py and car.py, whose x3drbp imports are in their
+main only). It saves what the build returns, the bodies' positions, to OUT.npy.
+
+    python benchmarks/native_run.py ENGINE chain|car|pile DURATION OUT.npy
+"""
+
+import sys
+
+import numpy as np
+
+CHAIN_LINKS = 10
+PILE_BOXES, PILE_LAYERS = 100, 4  # pile.py's 5 x 5 grid, 4 layers of boxes and no spheres
+
+
+def build(engine: str, scene: str, duration: float) -> np.ndarray:
+    """The bodies' positions: (n, 3) at the end for the chain, (frames, n, 3) for the others."""
+    if scene == "chain":
+        import run_overhead
+        run_overhead.LINKS = CHAIN_LINKS
+        return run_overhead.NATIVE[engine]("chain", duration)
+    if scene == "pile":
+        import pile
+        pile.SPHERES, pile.BOXES, pile.LAYERS = 0, PILE_BOXES, PILE_LAYERS
+        return pile.NATIVE[engine](duration)
+    import car
+    return car.NATIVE[engine](duration)
+
+
+def main() -> None:
+    engine, scene, duration, out = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
+    np.save(out, build(engine, scene, duration))
+
+
+if __name__ == "__main__":
+    main()
