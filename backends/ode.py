@@ -20,7 +20,8 @@ direct (Dantzig) solver; both integrate semi-implicit Euler, with the rotation a
 ODE's finite rotation mode says.
 
 Collisions (where world.collisions is not None): one ODE geom per geometry, in no space.
-The broad phase is numpy's: moving geoms as bounding spheres (binned in a grid, see
+The broad phase is numpy's: moving geoms as bounding spheres (every allowed pair listed at
+build and tested at once where there are few, _ALL_PAIRS; else binned in a grid, see
 _near), static ones as their ODE AABBs, pairs kept where x3d_core's may_touch allows; each
 step then runs dCollide over the overlapping pairs in index order (the lower index as
 ODE's geom 1), so contacts come in the same order every run; it needs no Python
@@ -53,6 +54,12 @@ _Z_TO_Y = R.from_axis_angle(np.array([1.0, 0.0, 0.0, -np.pi / 2]))  # ODE's cyli
 _CONE_SIDES = 64  # a cone is the convex hull of a 64-gon and its apex
 _PER_PAIR = 16  # the most contacts dCollide returns for one pair of geoms
 _SLACK = 1e-9  # m: bounding volumes this close count as overlapping
+# Up to this many pairs with a moving side, every allowed pair is listed once at build and
+# tested in one vectorised pass a step; past it, _near's grid (linear in the geoms). Measured
+# (CPU, dt 1/240, same contacts to the bit): a car's 4 wheels on a floor, 2 s in 0.06 s against
+# the grid's 0.18 s; 100 boxes in a pit (5450 pairs) 0.49 s against 0.63 s; 200 bodies in it
+# (20900 pairs), 1 s in 0.54 s against 0.30 s
+_ALL_PAIRS = 8000
 
 
 def _fatal(kind: str, number: int, text: str) -> None:
@@ -296,6 +303,8 @@ class _Contacts:
             else np.zeros((2, 0), dtype=np.int64)
         kept = self.may_touch(i, j)
         self.static_pairs = list(zip(i[kept].tolist(), j[kept].tolist()))
+        m, f = len(self.moving), len(self.fixed)
+        self.candidates = self._candidates() if m * (m - 1) // 2 + m * f <= _ALL_PAIRS else None
         self.template = _surface(c.parameters)
         self.buffer = np.zeros(0, dtype=ode.CONTACT)
         self._grow(256)
@@ -311,8 +320,26 @@ class _Contacts:
         self.buffer[:len(old)] = old
         self.address = self.buffer.ctypes.data
 
+    def _candidates(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Every allowed pair with a moving side, once: moving pairs (rows a, b into self.moving),
+        moving-static pairs (rows m into self.moving, f into self.fixed), and the order that
+        puts both lists' (lower, higher) geom indices, kept by may_touch, in index order."""
+        a, b = np.triu_indices(len(self.moving), 1)
+        m, f = (x.ravel() for x in np.meshgrid(np.arange(len(self.moving)), np.arange(len(self.fixed)),
+                                                indexing="ij"))
+        both = np.concatenate([np.stack([self.moving[a], self.moving[b]], axis=1),
+                               np.stack([self.moving[m], self.fixed[f]], axis=1)]).astype(np.int64)
+        both.sort(axis=1)
+        kept = self.may_touch(both[:, 0], both[:, 1])
+        kept_mm, kept_mf = kept[:len(a)], kept[len(a):]
+        both = both[kept]
+        order = np.lexsort((both[:, 1], both[:, 0]))
+        return a[kept_mm], b[kept_mm], m[kept_mf], f[kept_mf], (order, both[order])
+
     def pairs(self, centres: np.ndarray) -> list[tuple[int, int]]:
         """The allowed pairs whose bounding volumes overlap, lower index first, in index order."""
+        if self.candidates is not None:
+            return self._listed_pairs(centres)
         out = []
         m, r = self.moving, self.radius
         if len(m) > 1:
@@ -329,6 +356,20 @@ class _Contacts:
         both = both[self.may_touch(both[:, 0], both[:, 1])]
         both = both[np.lexsort((both[:, 1], both[:, 0]))]
         return self.static_pairs + [tuple(p) for p in both.tolist()]
+
+    def _listed_pairs(self, centres: np.ndarray) -> list[tuple[int, int]]:
+        """pairs() over the candidates listed at build: the same tests as _near's and the
+        grid's AABB test, on every listed pair at once."""
+        a, b, m, f, (order, both) = self.candidates
+        r = self.radius
+        with np.errstate(invalid="ignore"):  # a state gone non-finite: the evaluator reports it at the frame
+            d = centres[a] - centres[b]
+            near = np.einsum("ij,ij->i", d, d) <= (r[a] + r[b] + _SLACK) ** 2
+            c = centres[m]
+            gap = np.maximum(self.low[f] - c, 0) + np.maximum(c - self.high[f], 0)
+            touching = np.einsum("ij,ij->i", gap, gap) <= r[m] ** 2
+        hit = np.concatenate([near, touching])[order]
+        return self.static_pairs + [tuple(p) for p in both[hit].tolist()]
 
     def collide(self, position: np.ndarray, orientation: np.ndarray) -> None:
         """This step's contacts as contact joints (last step's joints go first)."""
