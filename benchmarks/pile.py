@@ -95,6 +95,8 @@ CHECK_T = 0.5  # s: every body still in the air (it has fallen 1.23 m), none tou
 AGREE = 1e-9  # m: positions at CHECK_T on the two sides
 HEIGHT_SAME = 0.005  # m: the final mean heights on the two sides
 SLOW = 1.15  # x3drbp/native ratio past which --profile profiles
+PAIR_CAP = 20000  # backends/mujoco.py's: up to this many pairs it lists each pair explicitly
+FRICTION_BDT = 0.15  # backends/mujoco.py's: an explicit pair's friction rows' damping, times 1/dt
 # DART's default solver (Dantzig's, direct) on the pile's one island of 500-600 contacts takes
 # about 0.2 s a step once the pile has settled (measured: its first 2 s take 1 min, its first 4 s
 # 8 min): a 5 s run would take some 12 minutes, so DART runs this long by default; the pile has
@@ -181,8 +183,11 @@ def native_mujoco(duration: float, contacts: bool = False) -> np.ndarray:
     per body with its inertia explicit, a massless geom each, the floor and walls geoms on
     the world body; 200 bodies and 5 static boxes make 20900 possible pairs, past the
     backend's PAIR_CAP of 20000,
-    so geoms collide through MuJoCo's default contype/conaffinity broad phase (the backend's
-    explicit pairs, with their softer friction rows, are not used). Friction: condim 3 on
+    so geoms collide through MuJoCo's default contype/conaffinity broad phase. With fewer
+    pairs (engine_speed.py's 100 boxes: 5450) the backend lists every pair explicitly, and
+    so does this: the static geoms' pairs with each body in turn, then the bodies' pairs in
+    order, each with friction [mu, mu] and softer friction rows (solreffriction damping
+    0.15/dt, the backend's FRICTION_BDT), the geoms' own contype/conaffinity off. Friction: condim 3 on
     the elliptic cone with 30 no-slip iterations; contacts without bounce or softness get the
     backend's "hard" direct solref (stiffness min(ERP, 0.25)/dt^2, damping 1/dt) and its hard
     solimp (impedance 0.99 at any depth)."""
@@ -220,6 +225,8 @@ def native_mujoco(duration: float, contacts: bool = False) -> np.ndarray:
         n += 1
     for _, size, centre in STATIC:
         surface(spec.worldbody.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=np.array(size) / 2, pos=centre))
+    if n * (n - 1) // 2 + n * len(STATIC) <= PAIR_CAP:
+        _explicit_pairs(spec, n, solref, solimp)
     m = spec.compile()
     d = mujoco.MjData(m)
     ids = np.array([m.body(f"b{k}").id for k in range(n)])
@@ -236,6 +243,22 @@ def native_mujoco(duration: float, contacts: bool = False) -> np.ndarray:
             touching.append((c.pos[:n].copy(), c.frame[:n, :3].copy(), c.dist[:n].copy(), c.geom1[:n].copy(),
                              c.geom2[:n].copy()))
     return np.array([pos for pos, _, _ in out])
+
+
+def _explicit_pairs(spec, n: int, solref: list[float], solimp: list[float]) -> None:
+    """Every pair that may touch as a MuJoCo `pair`, in the backend's order: the static geoms
+    (the world body's, created last) with each body, then each body with every later one."""
+    geoms = spec.geoms
+    for k, geom in enumerate(geoms):
+        geom.name, geom.contype, geom.conaffinity = f"g{k}", 0, 0
+    static = [g.name for g in geoms[n:]]
+    pairs = [(s, f"g{k}") for k in range(n) for s in static]
+    pairs += [(f"g{a}", f"g{b}") for a in range(n) for b in range(a + 1, n)]
+    for first, second in pairs:
+        pair = spec.add_pair(geomname1=first, geomname2=second)
+        pair.condim, pair.friction = 3, [MU, MU, 0.0, 0.0, 0.0]
+        pair.solref, pair.solimp = solref, solimp
+        pair.solreffriction = [-1e-9, -FRICTION_BDT / DT]
 
 
 def native_bullet(duration: float, contacts: bool = False) -> np.ndarray:
