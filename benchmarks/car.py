@@ -128,4 +128,58 @@ def native_ode(duration: float) -> np.ndarray:
     out = native_ode.simulate(world, space, group, collide, bodies, *_frames(duration), DT, before_step=reset)
     return np.array([[pose[0] for pose in frame] for frame in out])
 
-NATIVE = {"ode": native_ode}
+def native_mujoco(duration: float) -> np.ndarray:
+    """As backends/mujoco.py builds it: the chassis a free body, each wheel its child with a
+    hinge about axis 1 then one about axis 2 at the wheel's centre (no suspension slide: its
+    force is 0), inertias explicit, massless sphere geoms and the floor box on the world
+    body; the wheels' velocities as joint velocities (the spin about axis 2). Every pair
+    that may touch listed explicitly, the floor's with each wheel, then the wheels' with
+    each other: condim 3, friction [mu, mu] on the elliptic cone with 30 no-slip
+    iterations, the backend's hard solref (stiffness min(ERP, 0.25)/dt^2, damping 1/dt) and
+    solimp, friction rows damped 0.15/dt. Reads every body's pose and velocities every
+    frame. Returns every frame's positions (frames, 5, 3)."""
+    import mujoco
+    spec = mujoco.MjSpec()
+    spec.compiler.degree = False
+    spec.option.timestep, spec.option.gravity, spec.option.iterations = DT, [0, -GRAVITY, 0], ITERATIONS
+    spec.option.cone, spec.option.noslip_iterations = mujoco.mjtCone.mjCONE_ELLIPTIC, 30
+
+    def inertial(body, mass: float, moments) -> None:
+        body.explicitinertial, body.mass, body.ipos = True, mass, [0, 0, 0]
+        body.fullinertia = [*moments, 0, 0, 0]
+
+    chassis = spec.worldbody.add_body(name="chassis", pos=START)
+    inertial(chassis, CHASSIS_MASS, CHASSIS_MOMENTS)
+    chassis.add_freejoint()
+    for k, centre in enumerate(WHEELS):
+        wheel = chassis.add_body(name=f"w{k}", pos=centre - START)
+        inertial(wheel, WHEEL_MASS, [WHEEL_MOMENT] * 3)
+        wheel.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 1, 0])
+        wheel.add_joint(type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1])
+        wheel.add_geom(name=f"g{k}", type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[RADIUS, 0, 0], density=0.0,
+                       contype=0, conaffinity=0)
+    spec.worldbody.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_BOX, size=np.array(FLOOR_SIZE) / 2,
+                            pos=FLOOR_CENTRE, contype=0, conaffinity=0)
+    names = [f"g{k}" for k in range(len(WHEELS))]
+    for first, second in [("floor", n) for n in names] + [(a, b) for i, a in enumerate(names) for b in names[i + 1:]]:
+        pair = spec.add_pair(geomname1=first, geomname2=second)
+        pair.condim, pair.friction = 3, [MU, MU, 0.0, 0.0, 0.0]
+        pair.solref, pair.solimp = [-min(ERP, 0.25) / DT ** 2, -1.0 / DT], [0.99, 0.99, 0.001, 0.5, 2.0]
+        pair.solreffriction = [-1e-9, -0.15 / DT]
+    m = spec.compile()
+    d = mujoco.MjData(m)
+    d.qvel[0] = SPEED  # the free joint's linear velocity; then each wheel's steering and spin rates
+    d.qvel[6:] = np.tile([0.0, SPIN[2]], len(WHEELS))
+    ids = [m.body("chassis").id] + [m.body(f"w{k}").id for k in range(len(WHEELS))]
+    frames, steps_per_frame = _frames(duration)
+    out = []
+    for _ in range(frames):
+        mujoco.mj_step(m, d, nstep=steps_per_frame)
+        mujoco.mj_kinematics(m, d)
+        mujoco.mj_comPos(m, d)
+        mujoco.mj_comVel(m, d)
+        out.append((d.xpos[ids], d.xquat[ids], d.cvel[ids]))
+    return np.array([pos for pos, _, _ in out])
+
+
+NATIVE = {"ode": native_ode, "mujoco": native_mujoco}
