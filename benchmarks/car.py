@@ -72,11 +72,11 @@ def native_ode(duration: float) -> np.ndarray:
     read with dBodyGet* calls every frame. Returns every frame's positions (frames, 5, 3)."""
     import ctypes
 
-    import native_ode  # beside this script
+    import ode_shared  # beside this script
     from backends import ode_lib as ode
     lib = ode.lib
-    world = native_ode.world(GRAVITY, ERP, CFM, ITERATIONS)
-    space = native_ode.simple_space(None)
+    world = ode_shared.world(GRAVITY, ERP, CFM, ITERATIONS)
+    space = ode_shared.simple_space(None)
     mass = (ctypes.c_double * ode.MASS_REALS)()
     chassis = lib.dBodyCreate(world)
     lib.dMassSetParameters(mass, CHASSIS_MASS, 0, 0, 0, *CHASSIS_MOMENTS, 0, 0, 0)
@@ -111,7 +111,7 @@ def native_ode(duration: float) -> np.ndarray:
     group = lib.dJointGroupCreate(0)
     found = 0
 
-    @native_ode.NEAR
+    @ode_shared.NEAR
     def collide(_data, o1: int, o2: int) -> None:
         nonlocal found
         if o1 == floor:
@@ -125,7 +125,7 @@ def native_ode(duration: float) -> np.ndarray:
         nonlocal found
         found = 0
 
-    out = native_ode.simulate(world, space, group, collide, bodies, *_frames(duration), DT, before_step=reset)
+    out = ode_shared.simulate(world, space, group, collide, bodies, *_frames(duration), DT, before_step=reset)
     return np.array([[pose[0] for pose in frame] for frame in out])
 
 def native_mujoco(duration: float) -> np.ndarray:
@@ -182,4 +182,67 @@ def native_mujoco(duration: float) -> np.ndarray:
     return np.array([pos for pos, _, _ in out])
 
 
-NATIVE = {"ode": native_ode, "mujoco": native_mujoco}
+def native_dart(duration: float) -> np.ndarray:
+    """As backends/dart.py builds it: DART's Bullet collision detector, sleeping off; an
+    immobile welded skeleton for the floor, added to the world first; one skeleton for the
+    car, the chassis on a FreeJoint and each wheel its child on a UniversalJoint at the
+    wheel's centre (axis 1 fixed in the chassis, axis 2 carried by the wheel: a hinge2
+    without suspension), inertias explicit, the car's self-collision on with each
+    chassis-wheel pair blacklisted; every shape friction mu, restitution 0; DART's default
+    solver. The velocities as joint velocities. Returns every frame's positions (frames, 5, 3)."""
+    import dartpy as dart
+
+    import dart_shared  # beside this script
+
+    def at(where) -> dart.math.Isometry3:
+        t = dart.math.Isometry3()
+        t.set_translation(np.asarray(where, dtype=np.float64))
+        return t
+
+    def collide(node, shape, name: str, where=(0.0, 0.0, 0.0)) -> None:
+        frame = node.createShapeNode(shape, name)
+        frame.setRelativeTransform(at(where))
+        frame.createCollisionAspect()
+        surface = frame.createDynamicsAspect()
+        surface.setFrictionCoeff(MU)
+        surface.setRestitutionCoeff(0.0)
+
+    world = dart_shared.world(DT, GRAVITY)
+    car = dart.dynamics.Skeleton("car")
+    joint, chassis = car.createFreeJointAndBodyNodePair(None)
+    joint.setPositions(dart.dynamics.FreeJoint.convertToPositions(at(START)))
+    chassis.setInertia(dart.dynamics.Inertia(CHASSIS_MASS, np.zeros(3), np.diag(CHASSIS_MOMENTS)))
+    nodes = [chassis]
+    for centre in WHEELS:
+        joint, wheel = car.createUniversalJointAndBodyNodePair(chassis)
+        joint.setAxis1([0.0, 1.0, 0.0])
+        joint.setAxis2([0.0, 0.0, 1.0])
+        joint.setTransformFromParentBodyNode(at(centre - START))
+        joint.setTransformFromChildBodyNode(at(np.zeros(3)))
+        wheel.setInertia(dart.dynamics.Inertia(WHEEL_MASS, np.zeros(3), WHEEL_MOMENT * np.eye(3)))
+        nodes.append(wheel)
+    ground = dart.dynamics.Skeleton("ground")
+    _, floor = ground.createWeldJointAndBodyNodePair(None)
+    ground.setMobile(False)
+    world.addSkeleton(ground)
+    for k, wheel in enumerate(nodes[1:]):
+        collide(wheel, dart.dynamics.SphereShape(RADIUS), f"wheel{k}")
+    collide(floor, dart.dynamics.BoxShape(np.array(FLOOR_SIZE)), "floor", FLOOR_CENTRE)
+    car.enableSelfCollisionCheck()
+    car.enableAdjacentBodyCheck()
+    keep_apart = world.getConstraintSolver().getCollisionOption().collisionFilter
+    for wheel in nodes[1:]:
+        keep_apart.addBodyNodePairToBlackList(chassis, wheel)
+    world.addSkeleton(car)
+    car.setVelocities(np.concatenate([[0.0, 0.0, 0.0, SPEED, 0.0, 0.0], np.tile([0.0, SPIN[2]], len(WHEELS))]))
+    frames, steps_per_frame = _frames(duration)
+    out = []
+    for _ in range(frames):
+        for _ in range(steps_per_frame):
+            world.step()
+        out.append([(n.getWorldTransform().matrix(), n.getCOMLinearVelocity(), n.getAngularVelocity())
+                    for n in nodes])
+    return np.array([[tf[:3, 3] for tf, _, _ in frame] for frame in out])
+
+
+NATIVE = {"ode": native_ode, "mujoco": native_mujoco, "dart": native_dart}

@@ -315,13 +315,9 @@ def native_dart(duration: float, contacts: bool = False) -> np.ndarray:
     immobile welded skeleton added last, every shape friction mu (DART takes the smaller
     of two) and restitution 0; DART's default solver (Dantzig's LCP)."""
     import dartpy as dart
-    world = dart.simulation.World()
-    world.setTimeStep(DT)
-    world.setGravity([0, -GRAVITY, 0])
-    sleep = world.getDeactivationOptions()
-    sleep.mEnabled = False  # DART puts slow bodies to sleep by default
-    world.setDeactivationOptions(sleep)
-    world.setCollisionDetector(dart.collision.BulletCollisionDetector())
+
+    import dart_shared  # beside this script
+    world = dart_shared.world(DT, GRAVITY)
 
     def collide(node, shape, name: str, where=None) -> None:
         frame = node.createShapeNode(shape, name)
@@ -395,11 +391,11 @@ def native_ode(duration: float, contacts: bool = False) -> np.ndarray:
     per-body reads measured about 8% of this side's time)."""
     import ctypes
 
-    import native_ode  # beside this script
+    import ode_shared  # beside this script
     from backends import ode_lib as ode
     lib = ode.lib
-    world = native_ode.world(GRAVITY, ERP, 1e-4, ITERATIONS)  # 1e-4: constantForceMix's default
-    space = native_ode.hash_space(None)
+    world = ode_shared.world(GRAVITY, ERP, 1e-4, ITERATIONS)  # 1e-4: constantForceMix's default
+    space = ode_shared.hash_space(None)
     mass = (ctypes.c_double * ode.MASS_REALS)()
     bodies, body_of = [], {}  # body_of: each geom's body (None for the floor and walls)
     for kind, position, axis, angle in draws():
@@ -424,7 +420,7 @@ def native_ode(duration: float, contacts: bool = False) -> np.ndarray:
     group = lib.dJointGroupCreate(0)
     found = 0  # contacts in the buffer this step
 
-    @native_ode.NEAR
+    @ode_shared.NEAR
     def collide(_data, o1: int, o2: int) -> None:
         nonlocal buffer, found
         b1, b2 = body_of[o1], body_of[o2]
@@ -449,7 +445,7 @@ def native_ode(duration: float, contacts: bool = False) -> np.ndarray:
             touching.append((c["pos"][:, :3].copy(), c["normal"][:, :3].copy(), c["depth"].copy(), c["g1"].copy(),
                              c["g2"].copy()))
 
-    out = native_ode.simulate(world, space, group, collide, bodies, *_frames(duration), DT, before_step=reset,
+    out = ode_shared.simulate(world, space, group, collide, bodies, *_frames(duration), DT, before_step=reset,
                               after_frame=read_contacts)
     return np.array([[pose[0] for pose in frame] for frame in out])
 
