@@ -1,15 +1,21 @@
 """One native run for benchmarks/engine_speed.py, as a process of its own: a scene built,
 stepped and read every frame in one engine's own API, with no x3drbp code imported (the
 native builds live in run_overhead.py, pile.py and car.py, whose x3drbp imports are in their
-main only). It saves what the build returns, the bodies' positions, to OUT.npy.
+main only). It saves what the build returns, the bodies' positions, to OUT.npy, and the
+CPU time of the build, steps and reads (what `x3drbp run --timing` calls the simulation's,
+simulation_cpu_s) to OUT.json.
 
-    python benchmarks/native_run.py ENGINE chain|car|pile DURATION OUT.npy
+    python benchmarks/native_run.py ENGINE chain|car|pile DURATION OUT.npy OUT.json
 """
 
+import importlib
+import json
 import sys
+import time
 
 import numpy as np
 
+ENGINES = {"mujoco": "mujoco", "bullet": "pybullet", "dart": "dartpy", "ode": "backends.ode_lib"}
 CHAIN_LINKS = 10
 PILE_BOXES, PILE_LAYERS = 100, 4  # pile.py's 5 x 5 grid, 4 layers of boxes and no spheres
 
@@ -29,8 +35,14 @@ def build(engine: str, scene: str, duration: float) -> np.ndarray:
 
 
 def main() -> None:
-    engine, scene, duration, out = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
-    np.save(out, build(engine, scene, duration))
+    engine, scene, duration, out, timing = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4], sys.argv[5]
+    importlib.import_module(ENGINES[engine])  # the engine's import is no part of the simulation's time
+    cpu = time.process_time()
+    positions = build(engine, scene, duration)
+    cpu = time.process_time() - cpu
+    np.save(out, positions)
+    with open(timing, "w", encoding="utf-8") as f:
+        json.dump({"simulation_cpu_s": cpu}, f)
 
 
 if __name__ == "__main__":
