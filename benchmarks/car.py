@@ -245,4 +245,64 @@ def native_dart(duration: float) -> np.ndarray:
     return np.array([[tf[:3, 3] for tf, _, _ in frame] for frame in out])
 
 
-NATIVE = {"ode": native_ode, "mujoco": native_mujoco, "dart": native_dart}
+def native_bullet(duration: float) -> np.ndarray:
+    """As backends/bullet.py builds it: one multibody, the chassis its base, each wheel two
+    revolute links (a massless link about axis 1 at the wheel's centre, then the wheel about
+    axis 2: two hinges in series), self-collision on, damping off, joint motors freed; the
+    floor a massless multibody created after it; the solver's iterations, ERP (contacts too),
+    no split impulse, pyramid friction, each object's friction sqrt(mu) (pybullet multiplies
+    two objects'), restitution 0, no rolling or spinning friction, contactProcessingThreshold
+    1e-4. The velocities as the base's and the joints'. Returns every frame's positions."""
+    import pybullet as p
+    c = p.connect(p.DIRECT)
+    p.setGravity(0, -GRAVITY, 0, physicsClientId=c)
+    p.setPhysicsEngineParameter(fixedTimeStep=DT, numSubSteps=0, numSolverIterations=ITERATIONS, erp=ERP,
+                                useSplitImpulse=0, physicsClientId=c)
+    wheels = [p.createCollisionShape(p.GEOM_SPHERE, radius=RADIUS, collisionFramePosition=[0, 0, 0],
+                                     collisionFrameOrientation=[0, 0, 0, 1], physicsClientId=c) for _ in WHEELS]
+    n = 2 * len(WHEELS)
+    unturned = [[0, 0, 0, 1]] * n
+    car = p.createMultiBody(
+        baseMass=CHASSIS_MASS, baseCollisionShapeIndex=-1, baseVisualShapeIndex=-1, basePosition=START,
+        baseOrientation=[0, 0, 0, 1], baseInertialFramePosition=[0, 0, 0], baseInertialFrameOrientation=[0, 0, 0, 1],
+        linkMasses=[0.0, WHEEL_MASS] * len(WHEELS), linkCollisionShapeIndices=[x for w in wheels for x in (-1, w)],
+        linkVisualShapeIndices=[-1] * n,
+        linkPositions=[x for centre in WHEELS for x in (centre - START, [0, 0, 0])], linkOrientations=unturned,
+        linkInertialFramePositions=[[0, 0, 0]] * n, linkInertialFrameOrientations=unturned,
+        linkParentIndices=[x for k in range(len(WHEELS)) for x in (0, 2 * k + 1)],
+        linkJointTypes=[p.JOINT_REVOLUTE] * n, linkJointAxis=[[0, 1, 0], [0, 0, 1]] * len(WHEELS),
+        flags=p.URDF_USE_SELF_COLLISION, physicsClientId=c)
+    # multibodies are damped by default, and their joint speeds clamped
+    p.changeDynamics(car, -1, linearDamping=0, angularDamping=0, maxJointVelocity=1e6, physicsClientId=c)
+    p.changeDynamics(car, -1, mass=CHASSIS_MASS, localInertiaDiagonal=CHASSIS_MOMENTS, physicsClientId=c)
+    for link in range(n):
+        wheel = link % 2 == 1
+        p.changeDynamics(car, link, mass=WHEEL_MASS if wheel else 0.0,
+                         localInertiaDiagonal=[WHEEL_MOMENT if wheel else 0.0] * 3, physicsClientId=c)
+        p.changeDynamics(car, link, jointDamping=0.0, physicsClientId=c)
+        p.setJointMotorControl2(car, link, p.VELOCITY_CONTROL, targetVelocity=0.0, force=0.0, physicsClientId=c)
+    floor = p.createMultiBody(baseMass=0.0, physicsClientId=c, basePosition=FLOOR_CENTRE,
+                              baseCollisionShapeIndex=p.createCollisionShape(
+                                  p.GEOM_BOX, halfExtents=(np.array(FLOOR_SIZE) / 2).tolist(), physicsClientId=c))
+    p.setPhysicsEngineParameter(restitutionVelocityThreshold=MIN_BOUNCE_SPEED, contactSlop=0, enableConeFriction=0,
+                                contactERP=ERP, physicsClientId=c)
+    for uid, link in [(car, k) for k in range(1, n, 2)] + [(floor, -1)]:
+        p.changeDynamics(uid, link, lateralFriction=float(np.sqrt(MU)), restitution=0.0, rollingFriction=0.0,
+                         spinningFriction=0.0, contactProcessingThreshold=1e-4, physicsClientId=c)
+    p.resetBaseVelocity(car, [SPEED, 0, 0], [0, 0, 0], physicsClientId=c)
+    for link in range(1, n, 2):
+        p.resetJointState(car, link, 0.0, SPIN[2], physicsClientId=c)
+    links = list(range(n))
+    frames, steps_per_frame = _frames(duration)
+    out = []
+    for _ in range(frames):
+        for _ in range(steps_per_frame):
+            p.stepSimulation(physicsClientId=c)
+        out.append((p.getBasePositionAndOrientation(car, physicsClientId=c), p.getBaseVelocity(car, physicsClientId=c),
+                    p.getLinkStates(car, links, computeLinkVelocity=1, computeForwardKinematics=1,
+                                    physicsClientId=c)))
+    p.disconnect(c)
+    return np.array([[base[0]] + [state[0] for state in states[1::2]] for base, _, states in out])
+
+
+NATIVE = {"ode": native_ode, "mujoco": native_mujoco, "dart": native_dart, "bullet": native_bullet}
