@@ -81,6 +81,17 @@ SLIDER_STOPS = spec("37.4.13 SliderJoint: If minSeparation is greater than maxSe
 ERROR_CORRECTION = 0.8  # RigidBodyCollection.errorCorrection default: the scenes leave it
 
 
+SINGLE = 2.0 ** -23  # single precision's unit roundoff
+
+
+def single(bound: float, scale: float, operations: float) -> float:
+    """The tolerance of a measure that is exact but for rounding (its bound: ROUNDING, double
+    precision's), for an engine that keeps state in single precision, which the clause does not
+    rule out (PhysX, Ammo's Bullet): `operations` roundings of a quantity of size `scale`,
+    never less than the bound. The bound stays the grade."""
+    return max(bound, SINGLE * scale * operations)
+
+
 def honoured(bound: float, *misreadings: float) -> float:
     """The spec tolerance of a measure whose accuracy bound is `bound`, where `misreadings` are
     the errors the measure shows for the misreadings of its field (the module's argument): half
@@ -178,8 +189,12 @@ def ballistic(body: str, p0: Sequence[float], v0: Sequence[float], a: Sequence[f
             out.append(Measure(f"{body} acceleration (fitted to linearVelocity) - {_vec(a)}", math.inf, 0.0, "m/s^2",
                                basis))
         p_bound = 0.5 * float(np.linalg.norm(a)) * T * s.dt + ROUNDING * scale
-        return out + [Measure(f"{body}.linearVelocity", max_norm(v - v_exact), v_round, "m/s", PHYSICS_CLOCK, v_round),
-                      Measure(f"{body}.position", max_norm(p - p_exact), p_bound, "m", PHYSICS_CLOCK, p_bound)]
+        n = float(steps(t[-1:], s.dt)[0]) + 1
+        v_scale = 1.0 + float(np.linalg.norm(v0)) + float(np.linalg.norm(a)) * T
+        return out + [Measure(f"{body}.linearVelocity", max_norm(v - v_exact), single(v_round, v_scale, n), "m/s",
+                              PHYSICS_CLOCK, v_round),
+                      Measure(f"{body}.position", max_norm(p - p_exact), single(p_bound, scale, n), "m", PHYSICS_CLOCK,
+                              p_bound)]
     return expect
 
 
@@ -421,7 +436,8 @@ def stops_at(tr: TraceView, s: Settings, body: str, p0: Sequence[float], v0: Seq
              time: float, basis: Basis) -> list[Measure]:
     """A free body drifting at v0 and turning at w0 (nothing acting) until it is disabled after
     ceil(time/h) steps, then still: p = p0 + v0 h min(n, N), v = v0 and w = w0 while n < N, 0
-    after. Exact but for ROUNDING (the evaluator zeroes a disabled body's velocities)."""
+    after. Exact but for rounding (the evaluator zeroes a disabled body's velocities): ROUNDING
+    the bound, single() the tolerance."""
     h = s.dt
     p0, v0, w0 = (np.asarray(x, dtype=np.float64) for x in (p0, v0, w0))
     t, p = tr.series(body, "position")
@@ -430,10 +446,15 @@ def stops_at(tr: TraceView, s: Settings, body: str, p0: Sequence[float], v0: Seq
     n = steps(t, h)[:, None]
     stop = np.ceil(time / h - 1e-9)
     moving = n < stop
+    ops = float(n[-1, 0]) + 1
+    p_bound = ROUNDING * (1.0 + np.linalg.norm(p0))
     return [Measure(f"{body}.position (stops at disableTime)", max_norm(p - (p0 + v0 * h * np.minimum(n, stop))),
-                    ROUNDING * (1.0 + np.linalg.norm(p0)), "m", basis),
-            Measure(f"{body}.linearVelocity", max_norm(v - np.where(moving, v0, 0.0)), ROUNDING, "m/s", basis),
-            Measure(f"{body}.angularVelocity", max_norm(w - np.where(moving, w0, 0.0)), ROUNDING, "rad/s", basis)]
+                    single(p_bound, 1.0 + float(np.linalg.norm(p0)) + float(np.linalg.norm(v0)) * time, ops), "m",
+                    basis, p_bound),
+            Measure(f"{body}.linearVelocity", max_norm(v - np.where(moving, v0, 0.0)),
+                    single(ROUNDING, 1.0 + float(np.linalg.norm(v0)), ops), "m/s", basis, ROUNDING),
+            Measure(f"{body}.angularVelocity", max_norm(w - np.where(moving, w0, 0.0)),
+                    single(ROUNDING, 1.0 + float(np.linalg.norm(w0)), ops), "rad/s", basis, ROUNDING)]
 
 
 def held(tr: TraceView, body: str, position: Sequence[float], orientation: Sequence[float],

@@ -32,7 +32,7 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import ROUNDING, steps, max_norm
+from conformance.cases.closed_forms import ROUNDING, max_norm, single, steps
 from conformance.results import Measure, Settings, convention, spec
 
 
@@ -72,21 +72,26 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     under any integrator. Spec: per_frame_error, within ROUNDING (a ratio and a product per frame,
     each reading's r exact up to rounding: a product of k factors or one).
     Convention (x3drbp's, ODE's): after n = floor(t/dt) steps v_n = v0 (1-d)^n, exact up to
-    ROUNDING (n multiplications, each within an ulp). There is no continuous limit to converge
+    ROUNDING (n multiplications, each within an ulp): the bound; the tolerance allows single
+    precision (closed_forms.single). There is no continuous limit to converge
     to: at a fixed d the decay per second depends on dt (or on the frame rate) by definition."""
     tr, s = traces[0], settings[0]
     t, v = tr.series("Damped", "linearVelocity")
     _, w = tr.series("Damped", "angularVelocity")
     n = steps(t, s.dt)[:, None]
-    tol_v, tol_w = ROUNDING * np.linalg.norm(DAMP_V0), ROUNDING * np.linalg.norm(DAMP_W0)
+    bound_v, bound_w = ROUNDING * np.linalg.norm(DAMP_V0), ROUNDING * np.linalg.norm(DAMP_W0)
+    ops = float(n[-1, 0]) + 1
+    tol_v = single(bound_v, float(np.linalg.norm(DAMP_V0)), ops)
+    tol_w = single(bound_w, float(np.linalg.norm(DAMP_W0)), ops)
     return [Measure("Damped.linearVelocity, each frame r x the last, r of one reading (per step or frame, force, "
-                    "per second)", per_frame_error(t, v, DAMP_LINEAR, s.dt, DAMP_MASS), tol_v, "m/s", DAMPED),
+                    "per second)", per_frame_error(t, v, DAMP_LINEAR, s.dt, DAMP_MASS), tol_v, "m/s", DAMPED, bound_v),
             Measure("Damped.angularVelocity, each frame r x the last, r of one reading (per step or frame, torque, "
-                    "per second)", per_frame_error(t, w, DAMP_ANGULAR, s.dt, DAMP_MOMENT), tol_w, "rad/s", DAMPED),
+                    "per second)", per_frame_error(t, w, DAMP_ANGULAR, s.dt, DAMP_MOMENT), tol_w, "rad/s", DAMPED,
+                    bound_w),
             Measure("Damped.linearVelocity = v0 (1-d)^steps", max_norm(v - DAMP_V0 * (1.0 - DAMP_LINEAR) ** n),
-                    tol_v, "m/s", PER_STEP),
+                    tol_v, "m/s", PER_STEP, bound_v),
             Measure("Damped.angularVelocity = w0 (1-d)^steps", max_norm(w - DAMP_W0 * (1.0 - DAMP_ANGULAR) ** n),
-                    tol_w, "rad/s", PER_STEP)]
+                    tol_w, "rad/s", PER_STEP, bound_w)]
 
 
 CASE = Case("damping", "damping.x3d",
