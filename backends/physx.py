@@ -177,7 +177,7 @@ class PhysxSimulation:
         fp, fq = frame
         s.set_local_pose(_pose(fp + R.rotate(fq, g.position), R.multiply(R.multiply(fq, g.orientation), turn)))
         thickness = self.world.contact_surface_thickness
-        s.set_rest_offset(-float(thickness) if thickness > 0 else 0.0)
+        s.set_rest_offset(-float(thickness) / 2 if thickness > 0 else 0.0)  # PhysX sums the two shapes' offsets
         s.set_contact_offset(max(0.02, 2 * float(thickness)))
         self.shapes.append((s, k))
         return s
@@ -300,9 +300,12 @@ class PhysxSimulation:
                     torque = p[f"maxTorque{k}"]
                     if torque > 0:
                         motor = self._d6(b2, b1, a, _frame(axis))
-                        motor.set_drive_property_twist(0.0, _DRIVE, float(min(torque, _FLOAT32_MAX)))
+                        # SAPIEN leaves PhysX's drive limits as impulses (eDRIVE_LIMITS_ARE_FORCES unset): the
+                        # torque bound is maxTorque dt a step; PhysX drives the parent (body2) relative to the
+                        # child, so the target is X3D's body1-relative rate turned round (measured: both motors)
+                        motor.set_drive_property_twist(0.0, _DRIVE, float(min(torque * self.dt, _FLOAT32_MAX)))
                         motor.set_drive_velocity_target(np.zeros(3, dtype=np.float32),
-                                                        np.array([p[f"desiredAngularVelocity{k}"], 0, 0],
+                                                        np.array([-p[f"desiredAngularVelocity{k}"], 0, 0],
                                                                  dtype=np.float32))
         else:
             raise Unsupported(f"{j.type} {j.name}: not built by the physx backend")
@@ -423,9 +426,9 @@ class PhysxBackend(Backend):
         **unsupported("a D6 linear axis is locked, limited or free: ODE's suspension spring along axis1 is not "
                       "built", "DoubleAxisHingeJoint.suspensionForce",
                       "DoubleAxisHingeJoint.suspensionErrorCorrection"),
-        **unsupported("PhysX's solver has no global ERP (it corrects position errors fully, bounded by "
-                      "maxDepenetrationVelocity for contacts)", "RigidBodyCollection.errorCorrection",
-                      native_at=1.0),
+        **approximate("no effect: PhysX's solver has no ERP; its position iterations correct joint and contact "
+                      "errors fully each step (contacts at most maxDepenetrationVelocity)",
+                      "RigidBodyCollection.errorCorrection"),
         **unsupported("PhysX's constraint rows carry no CFM: 0, rigid, is PhysX's own",
                       "RigidBodyCollection.constantForceMix", native_at=0.0),
         **unsupported("PhysX has one integrator: preferAccuracy changes nothing", "RigidBodyCollection.preferAccuracy",
