@@ -186,9 +186,10 @@ class PhysxSimulation:
         b, w = self.world.bodies, self.world
         m, inertia = float(b.mass[i]), b.inertia[i]
         moments, principal = _principal(inertia)
-        if not (m > 0 and np.all(moments > 0)):
+        if not (m >= _FLOAT32_TINY and np.all(moments >= _FLOAT32_TINY)):
             raise Unsupported(f"RigidBody {b.names[i]}: PhysX needs a positive mass and a positive definite inertia "
-                              f"(mass {m:g}, principal moments {moments.tolist()}): it takes 0 as infinite")
+                              f"in single precision (mass {m:g}, principal moments {moments.tolist()}): it takes 0, "
+                              f"or a value under {_FLOAT32_TINY:.4g} that rounds to 0, as infinite")
         comp = px.PhysxRigidDynamicComponent()
         for k in geoms:
             comp.attach(self._shape(k, True, (np.zeros(3), R.IDENTITY)))
