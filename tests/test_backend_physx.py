@@ -218,3 +218,25 @@ def test_a_missing_sapien_leaves_the_other_backends_usable():
             "assert 'physx' in base.engines() and base.load('pymunk').name == 'pymunk'\n")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
+
+
+def test_heightfield_and_mesh_lie_as_x3d_places_them(tmp_path):
+    # a 3 x 3 grid, 1 m spacing, rising 0.2 per row along z (a static triangle mesh here): a ball
+    # placed touching it at (1, z) meets it along the normal (0, 1, -0.2); the same grid as an
+    # IndexedFaceSet does the same
+    grid = ("<ElevationGrid xDimension='3' zDimension='3' xSpacing='1' zSpacing='1' "
+            "height='0 0 0 0.2 0.2 0.2 0.4 0.4 0.4'/>")
+    faces = ("<IndexedFaceSet coordIndex='0 3 4 1 -1 1 4 5 2 -1 3 6 7 4 -1 4 7 8 5 -1'><Coordinate point='"
+             "0 0 0 1 0 0 2 0 0 0 0.2 1 1 0.2 1 2 0.2 1 0 0.4 2 1 0.4 2 2 0.4 2'/></IndexedFaceSet>")
+    r = 0.1
+    n = np.array([0, 1, -0.2]) / math.hypot(1, 0.2)
+    centre = np.array([1, 0.2, 1]) + (r - 1e-4) * n
+    for ground in (grid, faces):
+        body = collection(ball("B", centre[1], r).replace("position='0 ", f"position='{centre[0]} ").replace(
+            f"{centre[1]} 0'", f"{centre[1]} {centre[2]}'"), shape(ground, "Ground") + "<CollidableShape USE='BS'/>")
+        sim = BACKEND.build(scene_worlds(tmp_path, body)[0], DT)
+        sim.step()
+        c = sim.contacts()
+        assert len(c.depth) >= 1
+        ground_first = c.geometry1[0] == 0  # the collider's order: Ground, then the ball
+        assert c.normal[0] == pytest.approx(n if ground_first else -n, abs=1e-5)  # from geometry1 towards geometry2
