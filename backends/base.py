@@ -41,7 +41,7 @@ from x3d_core.world import World
 
 GROUP = "x3drbp.backends"  # the entry point group of backends
 # the backends x3drbp ships (pyproject.toml declares each): listed first, in this order
-IN_TREE = ("bullet", "mujoco", "dart", "ode", "pymunk")
+IN_TREE = ("bullet", "mujoco", "dart", "ode", "pymunk", "physx")
 
 
 class Support(Enum):

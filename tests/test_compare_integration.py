@@ -36,6 +36,9 @@ def _fall(backend: base.Backend, frame_rate: float, duration: float = 0.5) -> Tr
     return TraceView(run(worlds(load(case_scene("free_fall"))), backend, RunSettings(duration, H, frame_rate)).rows)
 
 
+SINGLE_PRECISION = ("physx",)
+
+
 @pytest.mark.parametrize("name", base.IN_TREE)
 def test_free_fall_lands_where_the_declared_integration_order_puts_it(name):
     """Semi-implicit Euler (v += h a, then x += h v): y_n = y0 - g h^2 n(n+1)/2; position first
@@ -45,7 +48,9 @@ def test_free_fall_lands_where_the_declared_integration_order_puts_it(name):
     t, p = view.series("Ball", "position")
     n = np.rint(t / H)
     later = {base.SEMI_IMPLICIT: 1, base.POSITION_FIRST: -1}[backend.integration]
-    np.testing.assert_allclose(p[:, 1], Y0 - G * H * H * n * (n + later) / 2, rtol=0, atol=1e-12)
+    # PhysX holds its state in single precision: a second of fall rounds to ~1e-5 m
+    atol = 3e-5 if name in SINGLE_PRECISION else 1e-12
+    np.testing.assert_allclose(p[:, 1], Y0 - G * H * H * n * (n + later) / 2, rtol=0, atol=atol)
 
 
 @pytest.fixture(scope="module")
