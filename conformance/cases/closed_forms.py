@@ -85,11 +85,11 @@ SINGLE = 2.0 ** -23  # single precision's unit roundoff
 
 
 def single(bound: float, scale: float, operations: float) -> float:
-    """The tolerance of a measure that is exact but for rounding (its bound: ROUNDING, double
-    precision's), for an engine that keeps state in single precision, which the clause does not
-    rule out (PhysX, Ammo's Bullet): `operations` roundings of a quantity of size `scale`,
-    never less than the bound. The bound stays the grade."""
-    return max(bound, SINGLE * scale * operations)
+    """The tolerance of a measure held to its bound up to rounding (double precision's, in the
+    bound), for an engine that keeps state in single precision, which the clause does not rule
+    out (PhysX, Ammo's Bullet): the bound plus `operations` roundings of a quantity of size
+    `scale`. The bound stays the grade."""
+    return bound + SINGLE * scale * operations
 
 
 def honoured(bound: float, *misreadings: float) -> float:
