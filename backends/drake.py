@@ -350,7 +350,7 @@ class DrakeSimulation:
                 body = self.bodies[i]
                 Rm = plant.EvalBodyPoseInWorld(ctx, body).rotation().matrix()
                 v_origin = linear[i] - np.cross(angular[i], Rm @ b.com[i])
-                plant.SetFreeBodySpatialVelocity(body, SpatialVelocity(angular[i], v_origin), ctx)
+                plant.SetFreeBodySpatialVelocity(ctx, body, SpatialVelocity(angular[i], v_origin))
             return
         jac = np.zeros((6 * len(self.moving), nv))
         target = np.zeros(6 * len(self.moving))
