@@ -48,7 +48,9 @@ contact model (compliant contact with Hunt-Crossley dissipation): bounce is refu
 from __future__ import annotations
 
 import numpy as np
-from pydrake.geometry import (AddCompliantHydroelasticProperties, AddContactMaterial, AddRigidHydroelasticProperties, Box, CollisionFilterDeclaration, Cylinder, GeometrySet, ProximityProperties,
+from pydrake.common import MemoryFile
+from pydrake.geometry import (AddCompliantHydroelasticProperties, AddContactMaterial, AddRigidHydroelasticProperties, Box,
+                              Convex, InMemoryMesh, MeshSource, CollisionFilterDeclaration, Cylinder, GeometrySet, ProximityProperties,
                               Sphere)
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.common.eigen_geometry import Quaternion
@@ -74,6 +76,7 @@ MOTOR_STEPS = 0.5  # a hinge2 motor's servo closes this fraction of its speed ga
 HYDROELASTIC_MODULUS = 1e7  # Pa: a box 0.2 m thick sinks about p/E * 0.1 m under pressure p (1e-7 m at 100 Pa)
 HYDRO_RESOLUTION = 0.25  # a sphere's or cylinder's hydroelastic mesh resolution, as a fraction of its least size
 RESTING_DEPTH = 1e-4  # point contact stiffness: the world's whole weight on one contact rests this deep
+CONE_EDGES = 64  # a cone collides as the hull of its apex and a 64-gon: radius 0.12 % short between corners
 _FULL_TURN = np.pi - 1e-9
 _Z_TO_Y = RotationMatrix.MakeXRotation(-np.pi / 2)  # Drake's cylinder axis z onto X3D's y
 
@@ -92,6 +95,18 @@ def _frame(axes: list[np.ndarray]) -> RotationMatrix:
         y = np.cross(x, [1.0, 0, 0] if abs(x[0]) < 0.9 else [0, 1.0, 0])
     y /= np.linalg.norm(y)
     return RotationMatrix(np.column_stack([x, y, np.cross(x, y)]))
+
+
+def _cone(r: float, h: float, name: str) -> Convex:
+    """X3D's cone (axis y, centred halfway up) as Drake's Convex: the hull of its apex and a
+    CONE_EDGES-gon, from an OBJ written in memory."""
+    a = 2 * np.pi * np.arange(CONE_EDGES) / CONE_EDGES
+    lines = [f"v {r * np.cos(t):.17g} {-h / 2:.17g} {r * np.sin(t):.17g}" for t in a] + [f"v 0 {h / 2:.17g} 0"]
+    n = CONE_EDGES
+    lines += [f"f {k + 1} {(k + 1) % n + 1} {n + 1}" for k in range(n)]
+    lines += ["f " + " ".join(str(k + 1) for k in reversed(range(n)))]
+    mesh = InMemoryMesh(mesh_file=MemoryFile("\n".join(lines) + "\n", ".obj", f"{name}.obj"))
+    return Convex(MeshSource(mesh))
 
 
 def _limited(world: World) -> bool:
@@ -285,6 +300,8 @@ class DrakeSimulation:
             return Sphere(float(g.size[0])), X
         if g.kind == "cylinder":
             return Cylinder(float(g.size[0]), float(g.size[1])), X @ RigidTransform(_Z_TO_Y, np.zeros(3))
+        if g.kind == "cone":
+            return _cone(float(g.size[0]), float(g.size[1]), g.name), X
         raise Unsupported(f"CollidableShape {g.name}: a {g.kind} is not built by the drake backend")
 
     def _filter(self, col: Collisions) -> None:
@@ -432,8 +449,11 @@ class DrakeBackend(Backend):
         # alone (without SLIP-n, SPEED-n, ERROR_REDUCTION, CONSTANT_FORCE, refused above) these have no effect
         **native("CollisionCollection.slipFactors", "CollisionCollection.surfaceSpeed",
                  "CollisionCollection.softnessErrorCorrection", "CollisionCollection.softnessConstantForceMix"),
-        **unsupported("Drake has no cone primitive and this backend builds no convex hull for one",
-                      "CollidableShape.geometry.Cone"),
+        **approximate(f"Drake has no cone primitive: a Convex, the hull of the apex and a {CONE_EDGES}-gon (radius "
+                      "0.12 % short between its corners)", "CollidableShape.geometry.Cone"),
+        **approximate("Drake's BallRpyJoint (roll, pitch, yaw from the start): singular where the pitch reaches "
+                      "90 degrees from the starting pose (Drake has no quaternion ball joint); a run that reaches it "
+                      "stops as blown up", "BallJoint"),
         **unsupported("meshes and height fields are not built by this backend",
                       "CollidableShape.geometry.IndexedFaceSet", "CollidableShape.geometry.IndexedTriangleSet",
                       "CollidableShape.geometry.TriangleSet", "CollidableShape.geometry.ElevationGrid"),
