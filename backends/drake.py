@@ -17,7 +17,10 @@ Finalize, its default pose the X3D one). Every other body gets its tree joint to
 (x3d_core's forest): RevoluteJoint (SingleAxisHingeJoint), PrismaticJoint (SliderJoint),
 BallRpyJoint (BallJoint), Drake's UniversalJoint (UniversalJoint with perpendicular axes),
 and two RevoluteJoints through a link of negligible mass (DoubleAxisHingeJoint, and a
-UniversalJoint whose axes are not perpendicular). Each joint's frames sit at the anchor with
+UniversalJoint whose axes are not perpendicular); a DoubleAxisHingeJoint with a suspension has
+a PrismaticJoint along axis 1 between them, ODE's spring k = ERP/(h CFM) as a PrismaticSpring
+and its damper (1-ERP)/CFM as the joint's damping. BallRpyJoint is singular where its pitch
+reaches 90 degrees (Drake has no quaternion ball joint). Each joint's frames sit at the anchor with
 the child's starting orientation, so every joint coordinate starts at zero. Drake measures
 the child relative to the parent; x3d_core's outputs measure body1 relative to body2, so
 limits are mirrored where the child is body2 (as backends/mujoco.py). Joints closing loops
@@ -41,7 +44,9 @@ gets Coulomb friction mu (Drake combines two as 2 mu1 mu2 / (mu1 + mu2), so each
 exactly mu; its discrete solver uses the dynamic one). The plant filters joined (adjacent)
 bodies; x3d_core's excluded pairs are filtered through SceneGraph as well. contacts() reports
 SceneGraph's point-pair penetrations at the current state (a point, a normal, a depth per
-touching pair), not the hydroelastic surfaces the dynamics used. Restitution is not in Drake's
+touching pair), not the hydroelastic surfaces the dynamics used. Boxes, spheres and cylinders
+are Drake's own shapes; a cone is a Convex (the hull of its apex and a 64-gon, an OBJ written
+in memory); meshes and elevation grids are refused. Restitution is not in Drake's
 contact model (compliant contact with Hunt-Crossley dissipation): bounce is refused.
 """
 
@@ -58,7 +63,7 @@ from pydrake.multibody.math import SpatialForce, SpatialVelocity
 from pydrake.multibody.plant import (AddMultibodyPlantSceneGraph, ContactModel, CoulombFriction,
                                      DiscreteContactApproximation, ExternallyAppliedSpatialForce, MultibodyPlant)
 from pydrake.multibody.tree import (BallRpyJoint, FixedOffsetFrame, JacobianWrtVariable, PrismaticJoint,
-                                    RevoluteJoint, RotationalInertia, SpatialInertia, UniversalJoint)
+                                    PrismaticSpring, RevoluteJoint, RotationalInertia, SpatialInertia, UniversalJoint)
 from pydrake.systems.analysis import ResetIntegratorFromFlags, Simulator
 from pydrake.systems.framework import DiagramBuilder
 
@@ -243,18 +248,33 @@ class DrakeSimulation:
                 F, M = self._joint_frames(child, parent_body, X_WP, X, name)
                 plant.AddJoint(UniversalJoint(name, F, M))
                 return
-            # two revolutes through a link of negligible mass at the anchor
+            # two revolutes (and a hinge2's suspension, a sprung slide along axis 1) through links of
+            # negligible mass at the anchor, in the order ODE's hinge2 chains them from body1
+            prm = j.params
+            sprung = j.type == "DoubleAxisHingeJoint" and prm["suspensionForce"] > 0
+            chain = [("rev", 0), ("slide", 0), ("rev", 1)] if sprung else [("rev", 0), ("rev", 1)]
+            if child != j.body2:
+                chain = chain[::-1]
             m = float(b.mass[child]) * LINK_MASS
             r = max(float(np.sqrt(np.max(np.linalg.eigvalsh(b.inertia[child])) / max(b.mass[child], 1e-300))), 1e-3)
-            link = plant.AddRigidBody(f"{name}:link", SpatialInertia.SolidSphereWithMass(m, r))
-            F = plant.AddFrame(FixedOffsetFrame(f"{name}:F", parent_body.body_frame(), X_WP.inverse() @ X_WJ))
-            j1 = plant.AddJoint(RevoluteJoint(f"{name}:1", F, link.body_frame(), local[first]))
+            outer = plant.AddFrame(FixedOffsetFrame(f"{name}:F", parent_body.body_frame(), X_WP.inverse() @ X_WJ))
             X_WC = _pose(b.position[child], q)
             M = plant.AddFrame(FixedOffsetFrame(f"{name}:M", self.bodies[child].body_frame(), X_WC.inverse() @ X_WJ))
-            j2 = plant.AddJoint(RevoluteJoint(f"{name}:2", link.body_frame(), M, local[second]))
+            by_axis = {}
+            for n, (kind, k) in enumerate(chain):
+                if n + 1 < len(chain):
+                    inner = plant.AddRigidBody(f"{name}:link{n}", SpatialInertia.SolidSphereWithMass(m, r)).body_frame()
+                else:
+                    inner = M
+                if kind == "rev":
+                    by_axis[k] = plant.AddJoint(RevoluteJoint(f"{name}:{k + 1}", outer, inner, local[k]))
+                else:  # ODE's soft row: k = ERP/(h CFM), c = (1 - ERP)/CFM
+                    cfm, erp = prm["suspensionForce"], prm["suspensionErrorCorrection"]
+                    slide = plant.AddJoint(PrismaticJoint(f"{name}:s", outer, inner, local[0],
+                                                          damping=max(1.0 - erp, 0.0) / cfm))
+                    plant.AddForceElement(PrismaticSpring(slide, 0.0, erp / (self.dt * cfm)))
+                outer = inner
             if j.type == "DoubleAxisHingeJoint":
-                prm = j.params
-                by_axis = {first: j1, second: j2}
                 self._limits(by_axis[0], prm["minAngle1"], prm["maxAngle1"], sign)
                 com = b.com[child]
                 for k in (0, 1):
@@ -430,8 +450,10 @@ class DrakeBackend(Backend):
                       "speed gap a step, clipped to maxTorque, for ODE's velocity constraint",
                       "DoubleAxisHingeJoint.desiredAngularVelocity1", "DoubleAxisHingeJoint.desiredAngularVelocity2",
                       "DoubleAxisHingeJoint.maxTorque1", "DoubleAxisHingeJoint.maxTorque2"),
-        **unsupported("no suspension: the two revolutes are rigid", "DoubleAxisHingeJoint.suspensionForce",
-                      "DoubleAxisHingeJoint.suspensionErrorCorrection", native_at=0.0),
+        **approximate("a PrismaticJoint along axis 1 between the two revolutes, with ODE's spring k = ERP/(h CFM) "
+                      "as a PrismaticSpring (explicit in Drake's discrete step) and damping c = (1-ERP)/CFM as the "
+                      "joint's damping (implicit), through links of 1e-9 the child's mass",
+                      "DoubleAxisHingeJoint.suspensionForce", "DoubleAxisHingeJoint.suspensionErrorCorrection"),
         **unsupported("Drake's contact model (compliant hydroelastic or point contact, Hunt-Crossley "
                       "dissipation) has no coefficient of restitution", "CollisionCollection.bounce", native_at=0.0),
         **approximate("no effect: bounce above 0 is refused (CollisionCollection.bounce), and with bounce 0 BOUNCE "
