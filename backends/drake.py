@@ -54,8 +54,9 @@ from __future__ import annotations
 
 import numpy as np
 from pydrake.common import MemoryFile
-from pydrake.geometry import (AddCompliantHydroelasticProperties, AddContactMaterial, AddRigidHydroelasticProperties, Box,
-                              Convex, InMemoryMesh, MeshSource, CollisionFilterDeclaration, Cylinder, GeometrySet, ProximityProperties,
+from pydrake.geometry import (AddCompliantHydroelasticProperties, AddContactMaterial, AddRigidHydroelasticProperties,
+                              Box, CollisionFilterDeclaration, Convex, Cylinder, GeometrySet, InMemoryMesh,
+                              MeshSource, ProximityProperties,
                               Sphere)
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.common.eigen_geometry import Quaternion
@@ -72,7 +73,7 @@ from x3d_core.collision import Collisions, ContactPoints, Geometry
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
-from .base import BODIES, JOINTS, SEMI_IMPLICIT, Backend, approximate, native, unsupported
+from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
 
 ACCURACY = 1e-9  # the continuous integrator's target accuracy (Drake's relative error norm)
 PERPENDICULAR = 1e-9  # |axis1 . axis2| under which a UniversalJoint is Drake's own
