@@ -12,7 +12,7 @@ x3d_core.engine.Simulation: step, read state in bulk, set velocities.
 Backends are found through the entry point group `x3drbp.backends` (registry()): each
 entry point names a backend and the module attribute that is its instance. To add an
 engine: write a module with BACKEND against this one and declare it as an entry point,
-in-tree (pyproject.toml's `[project.entry-points."x3drbp.backends"]`, as the five here) or
+in-tree (pyproject.toml's `[project.entry-points."x3drbp.backends"]`, as the six here) or
 in any installed package (docs/example_adapter is one). Nothing else changes: the runner,
 the CLI and the pytest plugin (conformance/pytest_plugin.py) take every registered name.
 Listing the registry imports no engine; load() imports the one asked for, and an entry
@@ -41,7 +41,7 @@ from x3d_core.world import World
 
 GROUP = "x3drbp.backends"  # the entry point group of backends
 # the backends x3drbp ships (pyproject.toml declares each): listed first, in this order
-IN_TREE = ("bullet", "mujoco", "dart", "ode", "pymunk", "physx")
+IN_TREE = ("bullet", "mujoco", "dart", "ode", "pymunk", "physx", "drake")
 
 
 class Support(Enum):
