@@ -21,7 +21,7 @@ from x3d_core.engine import Unsupported  # noqa: E402
 def test_registered_under_its_name_after_the_others():
     assert base.load("drake") is BACKEND
     assert BACKEND.version().startswith("1.")
-    assert base.IN_TREE.index("drake") == base.IN_TREE.index("pymunk") + 1
+    assert base.IN_TREE.index("drake") > base.IN_TREE.index("pymunk")  # after the engines x3drbp began with
 
 
 def test_centre_of_mass_offset_and_orientation_read_back_as_given(tmp_path):
