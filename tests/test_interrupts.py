@@ -44,7 +44,7 @@ STUBBORN = f"""case "$*" in
 esac
 """
 # runs that take minutes: 10^6 steps and more of a real engine
-LONG = {"stability": ["--cases", "thin_wall_impact", "--dts", "1e-6"],
+LONG = {"stability": ["--cases", "thin_wall_impact", "--dts", "1e-7"],
         "sweep": ["--scenes", "projectile", "--dts", "1e-7", "--iterations", "10,50", "--accuracy", "false", "-q"],
         "compare": [case_scene("free_fall"), "--dt", "1e-6", "--duration", "20"],
         "advise": [case_scene("free_fall"), "--dts", "1e-6", "--duration", "20", "-q"]}
