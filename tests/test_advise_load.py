@@ -23,7 +23,9 @@ def _recommended(tmp_path, scene: str, name: str) -> list:
                         "--dts", "1/60,1/240", "--duration", "1", "--window", "1", "-q", "--json", str(out)],
                        cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
-    return [(s["recommended"], s["said"]) for s in json.loads(out.read_text())["scenes"]]
+    # the recommendation and the rule that chose it; how it says the speed may differ (a run's
+    # spread widens under load, and a speed the busy machine cannot tell apart is said as a tie)
+    return [(s["recommended"], s["rule"]) for s in json.loads(out.read_text())["scenes"]]
 
 
 @pytest.mark.skipif(len(INSTALLED) < 2, reason="advice between two installed backends or more")
