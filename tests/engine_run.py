@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from x3d_core import rotation as R
@@ -20,6 +22,21 @@ ODD_BODY = ("position='1 2 3' orientation='0.2 1 0.3 0.9' centerOfMass='0.3 -0.1
             "inertia='0.3 0.02 -0.01 0.02 0.4 0.03 -0.01 0.03 0.5'")
 ODD_SCENE = (f"<RigidBodyCollection gravity='0 -9.81 0'><RigidBody DEF='B' {ODD_BODY} "
              "linearVelocity='0.5 0 -1' angularVelocity='0 2 1'/></RigidBodyCollection>")
+
+
+# A bob on a massless rod of 1 m, hinged about z to a fixed anchor: the backends' hinge tests
+PENDULUM = """<RigidBodyCollection gravity='0 -9.81 0'>
+  <RigidBody DEF='Anchor' fixed='true'/>
+  <RigidBody DEF='Bob' position='{x} {y} 0' inertia='1e-6 0 0 0 1e-6 0 0 0 1e-6'/>
+  <SingleAxisHingeJoint DEF='H' axis='0 0 1' forceOutput='"ALL"' {limits}>
+    <RigidBody USE='{first}' containerField='body1'/><RigidBody USE='{second}' containerField='body2'/>
+  </SingleAxisHingeJoint></RigidBodyCollection>"""
+
+
+def pendulum(theta0: float, limits: str = "", bob_is_body1: bool = False) -> str:
+    """The PENDULUM released theta0 from the downward vertical, with the hinge's limit fields."""
+    first, second = ("Bob", "Anchor") if bob_is_body1 else ("Anchor", "Bob")
+    return PENDULUM.format(x=math.sin(theta0), y=-math.cos(theta0), limits=limits, first=first, second=second)
 
 
 def scene_worlds(tmp_path, body: str) -> list:

@@ -15,7 +15,7 @@ pytest.importorskip("pybullet")
 
 from backends import base  # noqa: E402
 from backends.bullet import BACKEND  # noqa: E402
-from engine_run import DT, G, last, run_x3d, scene_worlds, values  # noqa: E402
+from engine_run import DT, G, last, pendulum, run_x3d, scene_worlds, values  # noqa: E402
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
 
@@ -95,17 +95,6 @@ def test_auto_damp_on_jointed_bodies_goes_through_the_joints(tmp_path):
     assert np.abs(values(s, "H1", "body1AnchorPoint")).max() < 1e-12
 
 
-PENDULUM = """<RigidBodyCollection gravity='0 -9.81 0'>
-  <RigidBody DEF='Anchor' fixed='true'/>
-  <RigidBody DEF='Bob' position='{x} {y} 0' inertia='1e-6 0 0 0 1e-6 0 0 0 1e-6'/>
-  <SingleAxisHingeJoint DEF='H' axis='0 0 1' forceOutput='"ALL"' {limits}>
-    <RigidBody USE='{first}' containerField='body1'/><RigidBody USE='{second}' containerField='body2'/>
-  </SingleAxisHingeJoint></RigidBodyCollection>"""
-
-
-def pendulum(theta0: float, limits: str = "", bob_is_body1: bool = False) -> str:
-    first, second = ("Bob", "Anchor") if bob_is_body1 else ("Anchor", "Bob")
-    return PENDULUM.format(x=math.sin(theta0), y=-math.cos(theta0), limits=limits, first=first, second=second)
 
 
 @pytest.mark.parametrize("bob_is_body1", [False, True])

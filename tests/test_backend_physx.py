@@ -17,7 +17,7 @@ pytest.importorskip("sapien")
 
 from backends.physx import BACKEND  # noqa: E402
 from conformance.cases.closed_forms import ellipk  # noqa: E402
-from engine_run import DT, G, last, run_x3d, scene_worlds, shape, values  # noqa: E402
+from engine_run import DT, G, last, pendulum, run_x3d, scene_worlds, shape, values  # noqa: E402
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
 
@@ -70,17 +70,6 @@ def test_gravity_off_and_forces_in_the_world_frame(tmp_path):
     assert last(s, "F", "angularVelocity") == pytest.approx([0, 0, 0], abs=F32)
 
 
-PENDULUM = """<RigidBodyCollection gravity='0 -9.81 0'>
-  <RigidBody DEF='Anchor' fixed='true'/>
-  <RigidBody DEF='Bob' position='{x} {y} 0' inertia='1e-6 0 0 0 1e-6 0 0 0 1e-6'/>
-  <SingleAxisHingeJoint DEF='H' axis='0 0 1' forceOutput='"ALL"' {limits}>
-    <RigidBody USE='{first}' containerField='body1'/><RigidBody USE='{second}' containerField='body2'/>
-  </SingleAxisHingeJoint></RigidBodyCollection>"""
-
-
-def pendulum(theta0: float, limits: str = "", bob_is_body1: bool = False) -> str:
-    first, second = ("Bob", "Anchor") if bob_is_body1 else ("Anchor", "Bob")
-    return PENDULUM.format(x=math.sin(theta0), y=-math.cos(theta0), limits=limits, first=first, second=second)
 
 
 def test_hinge_pendulum_period_and_length(tmp_path):
