@@ -173,6 +173,11 @@ class Measure:
         """The measure only grades accuracy: it never changes a verdict."""
         return self.kind == ACCURACY
 
+    @property
+    def fails(self) -> bool:
+        """The measure is judged (not only graded) and its error is beyond its tolerance."""
+        return not self.graded and not self.ok
+
     def to_json(self) -> dict:
         return {"quantity": self.quantity, "error": _finite_or_str(self.error),
                 "tolerance": _finite_or_str(self.tolerance), "unit": self.unit, "ok": self.ok,
@@ -193,9 +198,6 @@ class Result:
     wall_s: float = 0.0
     dt: float | None = None  # the step of the (first) run
 
-    def worst(self) -> Measure | None:
-        return max(self.measures, key=lambda m: m.ratio) if self.measures else None
-
     def measure(self, quantity: str) -> Measure | None:
         return next((m for m in self.measures if m.quantity == quantity), None)
 
@@ -209,18 +211,22 @@ class Result:
     def failing(self, kind: str | None = None) -> list[Measure]:
         """The judged measures beyond tolerance (accuracy measures are graded, not failed); of
         one kind: SPEC, or CONVENTION (conventions and descriptions both)."""
-        return [m for m in self.measures if not m.ok and not m.graded
-                and (kind is None or m.convention == (kind == CONVENTION))]
+        return [m for m in self.measures if m.fails and (kind is None or m.convention == (kind == CONVENTION))]
 
     def graded(self) -> list[Measure]:
         """The measures that grade accuracy (accuracy measures, and judged ones with a bound)."""
         return [m for m in self.measures if m.accuracy is not None]
 
+    def _worst_graded(self) -> Measure | None:
+        """The graded measure furthest beyond its bound (None: none graded, or not judged)."""
+        worst = max(self.graded(), key=lambda m: m.accuracy, default=None)
+        return worst if self.verdict in JUDGED else None
+
     def accuracy(self) -> float | None:
         """The worst graded error over its bound (None: the case grades none, or the run was
         not judged)."""
-        ratios = [m.accuracy for m in self.graded()]
-        return max(ratios) if ratios and self.verdict in JUDGED else None
+        worst = self._worst_graded()
+        return None if worst is None else worst.accuracy
 
     def over_bound(self) -> list[Measure]:
         """The graded measures beyond their accuracy bound."""
@@ -228,8 +234,8 @@ class Result:
 
     def accuracy_text(self) -> str:
         """'accuracy within the bound' or 'accuracy 3.1x the bound (QUANTITY)'; '' where none is graded."""
-        worst = max(self.graded(), key=lambda m: m.accuracy, default=None)
-        if worst is None or self.verdict not in JUDGED:
+        worst = self._worst_graded()
+        if worst is None:
             return ""
         return "accuracy " + grade(worst.accuracy) + ("" if worst.accuracy <= 1 else f" ({worst.quantity})")
 
@@ -254,7 +260,7 @@ class Result:
 def judge(measures: Sequence[Measure]) -> str:
     """PASS when every judged measure holds; CONVENTIONS when only convention or description
     measures fail; else FAIL. Accuracy measures do not count."""
-    failing = [m for m in measures if not m.ok and not m.graded]
+    failing = [m for m in measures if m.fails]
     if not failing:
         return PASS
     return CONVENTIONS if all(m.convention for m in failing) else FAIL

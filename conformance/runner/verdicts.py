@@ -56,9 +56,10 @@ def evaluate(case: Case, backend: str, traces: Sequence[TraceView], settings: Se
         return Result(case.name, backend, ERROR,
                       f"the expectation failed: {type(e).__name__}: {e} "
                       f"({os.path.basename(where.filename)}:{where.lineno})", dt=dt)
-    reason = "; ".join(("[convention] " if m.convention else "") + f"{m.quantity}: {m.figure()}"
-                       for m in measures if not m.ok and not m.graded)
-    return Result(case.name, backend, judge(measures), reason, measures, dt=dt)
+    result = Result(case.name, backend, judge(measures), "", measures, dt=dt)
+    result.reason = "; ".join(("[convention] " if m.convention else "") + f"{m.quantity}: {m.figure()}"
+                              for m in result.failing())
+    return result
 
 
 def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
