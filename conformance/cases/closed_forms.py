@@ -62,6 +62,11 @@ G_DEFAULT = 9.8
 # the spec's sentences more than one case enforces (ISO/IEC 19775-1 V3.3, clause 37.4)
 GRAVITY = spec("37.4.11 RigidBodyCollection: The gravity field indicates direction and strength (in acceleration "
                "base units) of the local gravity vector for this collection of bodies.", "V3.3")
+AT_REST = spec("37.4.10 RigidBody: These values define tolerances for which the physics model should start to ignore "
+               "this object in any calculation, thus resulting in them being actually at rest and not subject to "
+               "these instability conditions. Once any one of these values is achieved, the body is considered as "
+               "being at rest unless acted upon by an external force (e. g., collision or action of connected "
+               "joint).", "V3.3")
 FORCES = spec("37.4.10 RigidBody: The torques and forces fields define zero or more sets of torque and force "
               "values that are applied to the object every frame. These are continuously applied until reset to "
               "zero by the user.", "V3.3")

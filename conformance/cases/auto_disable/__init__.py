@@ -22,9 +22,9 @@ from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
-from conformance.cases.closed_forms import (ROUNDING, ROUNDING_ANGLE, G, CFM_DEFAULT, ERP_DEFAULT, ballistic,
-                                            max_norm, steps, stops_at)
-from conformance.results import Measure, Settings, convention, spec
+from conformance.cases.closed_forms import (AT_REST, CFM_DEFAULT, ERP_DEFAULT, ROUNDING, ROUNDING_ANGLE, G,
+                                            ballistic, max_norm, steps, stops_at)
+from conformance.results import Measure, Settings, convention
 
 
 # auto_disable.x3d: thresholds 0.1 m/s, 0.1 rad/s, 0.25 s on every autoDisable body; 1 kg bodies
@@ -36,11 +36,6 @@ AD_STRIKER_U = np.array([2.0, 0.0, 0.0])
 AD_PUSH = np.array([0.02, 0.0, 0.0])  # Pushed's force / mass
 AD_DRIFT_P0, AD_DRIFT_V0, AD_DRIFT_W0 = np.array([0.0, 2.0, 0.0]), np.array([0.05, 0.0, 0.0]), np.array([0.0, 0.0, 0.5])
 
-AT_REST = ("37.4.10 RigidBody: These values define tolerances for which the physics model should start to ignore "
-           "this object in any calculation, thus resulting in them being actually at rest and not subject to "
-           "these instability conditions. Once any one of these values is achieved, the body is considered as "
-           "being at rest unless acted upon by an external force (e. g., collision or action of connected "
-           "joint).")
 ANY_ONE = ("any one speed under its threshold, held for disableTime, stops a body (x3drbp, the literal reading of "
            "'Once any one of these values is achieved'); ODE, Xj3D: both speeds under their thresholds for the "
            "time (never here: it spins at 0.5 rad/s); X_ITE: Bullet's sleeping thresholds and its own 2 s")
@@ -90,7 +85,7 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     held = (n >= np.ceil(AD_TIME / h - 1e-9)) & (t <= AD_HELD[1])
     depth = G * h * h + CFM_DEFAULT * AD_M * G * h / ERP_DEFAULT
     first = int(np.flatnonzero(held)[0])
-    rest = spec(AT_REST)
+    rest = AT_REST
     out += [Measure("Resting held: |linearVelocity|", max_norm(v[held]), ROUNDING, "m/s", rest),
             Measure("Resting held: |angularVelocity|", max_norm(w[held]), ROUNDING, "rad/s", rest),
             Measure("Resting held: position moved", max_norm(p[held] - p[first]), depth + ROUNDING, "m", rest),
