@@ -3,6 +3,8 @@
 #                scenes, then x3drbp report (conformance, comparisons, sweeps, stability and
 #                the feature tables) into out/report/index.html and report.md
 #   make test    installs into .venv (with the dev tools) and runs the tests
+# The documentation (README.md and docs/, as a site: mkdocs.yml):
+#   make docs    builds it into out/site, failing on any warning (tests/test_docs.py too)
 # Opt-in, for the X_ITE browser (Debian's chromium and nodejs, npm packages pinned in
 # conformance/browsers/x_ite/package-lock.json; no browser download):
 #   make x-ite   installs them, then runs the main job with X_ITE's column (report --x-ite)
@@ -11,7 +13,7 @@ PYTHON ?= python3
 VENV := .venv
 STAMP := $(VENV)/.installed
 
-.PHONY: report test bench x-ite x-ite-install test-x-ite
+.PHONY: report test docs bench x-ite x-ite-install test-x-ite
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -25,6 +27,9 @@ report: $(STAMP)
 
 test: $(STAMP)
 	$(VENV)/bin/python -m pytest -q
+
+docs: $(STAMP)
+	$(VENV)/bin/python -m mkdocs build --strict --site-dir out/site
 
 SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 X_ITE := conformance/browsers/x_ite

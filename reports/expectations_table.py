@@ -1,7 +1,8 @@
-"""The pinned verdicts (conformance/expectations) as one markdown table: README's matrix.
+"""The pinned verdicts (conformance/expectations) as one markdown table: the conformance
+matrix (docs/conformance-matrix.md).
 
-Generated, never typed: `x3drbp expectations` writes it between README's markers, and a
-test holds README to it.
+Generated, never typed: `x3drbp expectations` writes it between the page's markers, and a
+test (tests/test_expectations.py) holds the page to it.
 """
 
 from __future__ import annotations
@@ -57,7 +58,7 @@ def markdown(cases: Sequence[str], pins: Mapping[str, Mapping[str, Expected]]) -
 
 
 def replace_section(text: str, table: str) -> str:
-    """README's text with the generated table between the markers; ValueError without them."""
+    """The page's text with the generated table between the markers; ValueError without them."""
     start, end = text.find(BEGIN), text.find(END)
     if start < 0 or end < start:
         raise ValueError(f"no matrix markers ({BEGIN} ... {END})")

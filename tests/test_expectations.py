@@ -1,4 +1,5 @@
-"""The pinned verdicts: their files, how a result is held to its pin, and README's matrix."""
+"""The pinned verdicts: their files, how a result is held to its pin, and the matrix page
+(docs/conformance-matrix.md)."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from backends import base
 from conformance import cases as C
 from conformance import expectations as E
 from conformance.cli import main as cli_main
-from conformance.cli.expectations import write_readme
+from conformance.cli.expectations import MATRIX, write_matrix
 from conformance.results import CONVENTIONS, FAIL, PASS, UNSUPPORTED, Expected, Measure, Result, accuracy, spec
 from reports.expectations_table import BEGIN, END, markdown, replace_section
 
@@ -74,18 +75,19 @@ def test_files_round_trip_and_bad_files_are_named(tmp_path):
         E.load("bad", str(tmp_path))
 
 
-def test_readme_matrix_is_the_pins_rendered(tmp_path):
-    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
-        readme = f.read()
+def test_the_matrix_page_is_the_pins_rendered(tmp_path):
+    assert MATRIX == os.path.join(ROOT, "docs", "conformance-matrix.md")
+    with open(MATRIX, encoding="utf-8") as f:
+        page = f.read()
     table = markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.IN_TREE})
-    assert replace_section(readme, table) == readme, "README's matrix is stale: run `x3drbp expectations`"
-    copy = tmp_path / "README.md"
-    copy.write_text(readme.replace(table, "typed by hand\n"))
-    write_readme(str(copy))
-    assert copy.read_text() == readme
+    assert replace_section(page, table) == page, "docs/conformance-matrix.md is stale: run `x3drbp expectations`"
+    copy = tmp_path / "conformance-matrix.md"
+    copy.write_text(page.replace(table, "typed by hand\n"))
+    write_matrix(str(copy))
+    assert copy.read_text() == page
     with pytest.raises(ValueError, match="no matrix markers"):
         replace_section("no markers", table)
-    assert BEGIN in readme and END in readme
+    assert BEGIN in page and END in page
 
 
 def test_check_reports_a_verdict_that_left_its_pin(tmp_path, capsys):

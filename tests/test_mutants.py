@@ -3,7 +3,7 @@
 Each mutant (conformance/mutants/table.py) runs, as a plug-in backend in its own child process,
 on the cases its row says kill it; its base runs on them too, live (its pins may be in flux),
 and so does the identity mutant, which must give the base's verdict on every one of them. The
-full score, over every case, is `python -m conformance.mutants` (README.md, Mutation score).
+full score, over every case, is `python -m conformance.mutants` (docs/mutation-score.md).
 """
 
 from __future__ import annotations

@@ -248,7 +248,7 @@ def test_a_recording_to_dev_null_is_discarded(tmp_path):
 
 
 def test_names_that_spreadsheets_read_as_formulas_are_written_as_they_are(tmp_path):
-    # the trace is a contract read by programs: a name is never rewritten (README: "Traces and spreadsheets")
+    # the trace is a contract read by programs: a name is never rewritten (docs/commands/run.md: "Traces and spreadsheets")
     trace = Trace()
     trace.add_text(0.0, "=HYPERLINK(1)", "isActive", "TRUE")
     trace.add(0.0, "@Body", "position", "SFVec3f", [-1.0, 2.0, 3.0])

@@ -21,7 +21,19 @@ def test_readme_gives_the_two_commands_and_ci_runs_the_test_one():
     assert re.search(r"^make test$", ci, re.M)
 
 
-# What each part of the project may import of the others (README's Layout: x3d_core <-
+def test_readme_says_how_long_the_two_commands_take_and_at_what_load():
+    readme = read("README.md")
+    timings = readme[readme.index("<!-- timings:"):readme.index("<!-- end of timings -->")]
+    rows = [r for r in timings.splitlines() if r.startswith("| `")]
+    for command in ("`make test`", "`.ci/run`", "`make report`"):
+        mine = [r for r in rows if r.startswith(f"| {command}")]
+        assert mine, f"README states no time for {command}"
+        for r in mine:  # | command | took | load average |
+            took, load = [c.strip() for c in r.strip("|").split("|")][-2:]
+            assert re.search(r"\d+ min( \d+ s)?", took) and re.search(r"\d", load), r
+
+
+# What each part of the project may import of the others (docs/layout.md: x3d_core <-
 # backends <- conformance; reports read results). A module's own package may always
 # import itself.
 ALLOWED = {

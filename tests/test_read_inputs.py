@@ -2,7 +2,7 @@
 (x3d_core.inputs: a regular file of bounded size; x3d_core.documents: nesting past what a
 parser recurses into said at its line): advise's --verdicts, the pins of `expectations --pins DIR` and
 --x3drbp-expectations DIR (a folder that is missing is an error, not "no pins"), and
-README. Each is refused in one line naming the file (and line), in bounded memory and CPU.
+expectations' --matrix page. Each is refused in one line naming the file (and line), in bounded memory and CPU.
 """
 
 from __future__ import annotations
@@ -89,16 +89,16 @@ def test_expectations_refuses_a_pin_file_that_is_a_pipe(tmp_path):
     assert not leftovers(str(tmp_path))
 
 
-def test_expectations_refuses_a_readme_that_does_not_read(tmp_path):
-    """--readme is read to regenerate its matrix, as any input: a folder, or text that is not
+def test_expectations_refuses_a_matrix_page_that_does_not_read(tmp_path):
+    """--matrix is read to regenerate its table, as any input: a folder, or text that is not
     UTF-8, is one line naming it (and the line), not an OSError or UnicodeDecodeError."""
-    from conformance.cli.expectations import write_readme
+    from conformance.cli.expectations import write_matrix
     with pytest.raises(ValueError, match=f"^{tmp_path}: a folder, not a regular file$"):
-        write_readme(str(tmp_path))
-    latin = tmp_path / "README.md"
+        write_matrix(str(tmp_path))
+    latin = tmp_path / "conformance-matrix.md"
     latin.write_bytes(b"# x3drbp\n\nCaf\xe9\n")
     with pytest.raises(ValueError, match=f"^{latin}:3: not UTF-8 text"):
-        write_readme(str(latin))
+        write_matrix(str(latin))
 
 
 def _plugin(tmp_path, pins: str):

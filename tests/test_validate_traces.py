@@ -1,4 +1,4 @@
-"""`x3drbp validate` takes a trace in either form every trace reader takes (README): the CSV,
+"""`x3drbp validate` takes a trace in either form every trace reader takes (docs/commands/run.md): the CSV,
 and x3drbp's own .npz, which it once refused as a CSV that did not parse. And a trace starts
 at t = 0, the initial state: one whose first rows were at t = -1e308 "conformed", its
 initial state never checked; now that is one line naming the file (and line), exit 2.

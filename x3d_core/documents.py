@@ -1,5 +1,5 @@
 """Reading a small data file a command is given (a conformance matrix.json, BACKEND.toml pins,
-a README): every problem one line, `FILE:LINE: why`, never a traceback.
+the conformance matrix page): every problem one line, `FILE:LINE: why`, never a traceback.
 
 The file comes through x3d_core.inputs (a named pipe or a device is refused before a byte is
 read, a file over its limit from fstat) and is read as UTF-8. json and tomllib recurse once

@@ -7,8 +7,8 @@ A trace is written whole or not at all: to a temporary name, then renamed.
 Reading one (read_trace, read_view) goes through x3d_core.inputs: a named pipe or a device
 is refused, not waited on, and so is a file larger than TRACE_LIMIT bytes. A trace is the
 contract between x3drbp and other implementations, so its names are written as they are:
-a DEF name that starts with =, +, - or @ is not escaped for spreadsheets (README: "Traces
-and spreadsheets").
+a DEF name that starts with =, +, - or @ is not escaped for spreadsheets
+(docs/commands/run.md: "Traces and spreadsheets").
 """
 
 from __future__ import annotations

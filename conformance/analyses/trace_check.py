@@ -1,7 +1,7 @@
 """Reads a trace written by someone else and says, line by line, what is wrong with it.
 
 `x3drbp validate` judges a browser's trace only once it reads as the trace contract says
-(docs/implementers.md; README's `x3drbp run`): a problem here is the file's, not the
+(docs/implementers.md; docs/commands/run.md): a problem here is the file's, not the
 physics', so it is reported with its line and stops the validation (exit 2). Checked:
 
 - the header `time,node,field,value`, and four columns on every row;

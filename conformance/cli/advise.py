@@ -11,7 +11,7 @@ exercise them: the pinned ones, or those of a conformance run's matrix.json with
 against one common reference over the first --window seconds (the most accurate run
 available, with its own error), its speed (the engine's steps' CPU time in the child, so
 that other load does not reorder the backends; median of --repeats timed runs), and how long it stays within 1 mm / 1 mrad of each other backend at that step; then
-the recommendation by the rule conformance/analyses/advice.py states (README too): of the
+the recommendation by the rule conformance/analyses/advice.py states (docs/commands/advise.md too): of the
 runs that fit --budget (CPU seconds per simulated second, default 1: real time), the
 fastest within --tolerance of the reference (default 1 mm), else the most accurate; a tie
 said as one, with the tie-break that settled it.

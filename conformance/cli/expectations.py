@@ -1,14 +1,14 @@
 """`x3drbp expectations`: pin every conformance verdict from a run, or check the pins.
 
     x3drbp expectations [--backends LIST] [--cases NAMES] [--check] [--pins DIR]
-                        [--readme FILE] [--timeout S] [--jobs N]
+                        [--matrix FILE] [--timeout S] [--jobs N]
 
 Runs the cases on the backends and rewrites conformance/expectations/BACKEND.toml for
 each backend that ran (a `why` is kept while its verdict holds; cases not run keep their
-pins), then README's matrix from every file. Prints each pin that changed. With --check
-it writes nothing and exits 1 when any verdict differs from its pin: what CI of an
-engine's adapter runs. Exit 2 on bad usage: a --pins DIR that is no folder, a pin file that
-does not read (one line, FILE:LINE: why, before any run), a --readme that is not one.
+pins), then the conformance matrix page (docs/conformance-matrix.md) from every file.
+Prints each pin that changed. With --check it writes nothing and exits 1 when any verdict
+differs from its pin: what CI of an engine's adapter runs. Exit 2 on bad usage: a --pins DIR that is no folder, a pin file that
+does not read (one line, FILE:LINE: why, before any run), a --matrix that is not one.
 """
 
 from __future__ import annotations
@@ -29,12 +29,13 @@ from conformance.results import PASS, Expected
 from conformance.runner import children, verdicts
 
 EXIT_OK, EXIT_CHANGED, EXIT_USAGE = 0, 1, 2
-README = os.path.join(C.ROOT, "README.md")
+MATRIX = os.path.join(C.ROOT, "docs", "conformance-matrix.md")
 
 
-def write_readme(path: str) -> None:
-    """README's matrix from the pinned verdicts of every backend x3drbp ships; ValueError naming
-    the file (and line) where README or a pin file does not read, or README has no markers."""
+def write_matrix(path: str) -> None:
+    """The matrix page's table from the pinned verdicts of every backend x3drbp ships; ValueError
+    naming the file (and line) where the page or a pin file does not read, or the page has no
+    markers."""
     text = read_text(path)
     table = markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.IN_TREE})
     try:
@@ -78,11 +79,11 @@ def cmd_expectations(args: argparse.Namespace) -> int:
     print(f"{changed} verdict(s) differ from their pins on {', '.join(backends) or 'no backend'}")
     if args.check:
         return EXIT_CHANGED if changed else EXIT_OK
-    if args.readme and args.pins is None:  # README shows x3drbp's own pins
+    if args.matrix and args.pins is None:  # the matrix page shows x3drbp's own pins
         try:
-            write_readme(args.readme)
+            write_matrix(args.matrix)
         except ValueError as e:  # not a regular file, not UTF-8, or without the matrix's markers
-            print(f"x3drbp expectations: --readme {e}", file=sys.stderr)
+            print(f"x3drbp expectations: --matrix {e}", file=sys.stderr)
             return EXIT_USAGE
     return EXIT_OK
 
@@ -94,6 +95,7 @@ def add_command(sub) -> None:
     p.add_argument("--check", action="store_true", help="write nothing; exit 1 when a verdict differs from its pin")
     p.add_argument("--pins", metavar="DIR", help="the folder of BACKEND.toml pins (default conformance/expectations): "
                    "an adapter outside x3drbp keeps its own")
-    p.add_argument("--readme", default=README if os.path.exists(README) else None, metavar="FILE",
-                   help="the README whose matrix to regenerate (default: the project's)")
+    p.add_argument("--matrix", default=MATRIX if os.path.exists(MATRIX) else None, metavar="FILE",
+                   help="the page whose conformance matrix to regenerate, between its markers "
+                   "(default: the project's docs/conformance-matrix.md)")
     p.set_defaults(func=cmd_expectations)

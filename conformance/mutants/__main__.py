@@ -5,7 +5,7 @@
 
 Installs every mutant as a plug-in (DIR/site, put first on PYTHONPATH for the runs), runs each
 base on every case and each mutant, the identity mutants too, on the cases its base passes,
-and writes DIR/score.md (the markdown table README.md quotes, also printed) and DIR/score.json
+and writes DIR/score.md (the markdown table docs/mutation-score.md quotes, also printed) and DIR/score.json
 (DIR: out/mutants). Exit status 0 whatever the score; 1 where an identity mutant was killed
 (the wrapping changed a verdict: the score means nothing); 2 on bad usage.
 """

@@ -1,4 +1,4 @@
-"""The mutation score as people read it (a markdown table, to paste into README.md) and as
+"""The mutation score as people read it (a markdown table, to paste into docs/mutation-score.md) and as
 other tools read it (JSON)."""
 
 from __future__ import annotations
