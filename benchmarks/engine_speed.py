@@ -3,18 +3,22 @@
 Three scenes, generated here: run_overhead.py's hinge chain with 10 links (no contacts),
 car.py's car (a box chassis on four sphere wheels joined by DoubleAxisHingeJoints, rolling
 on a floor) and pile.py's pit with 100 boxes falling into a pile (no spheres). Each runs
-for --duration simulated seconds (DART's pile at most DART_PILE: its Dantzig solver on a
-settled pile is slow alike on both sides) at dt = 1/240 s with a frame every 1/60 s. Both
-sides are whole processes, cold interpreter to exit, taking turns (native, x3drbp, for
-every scene and backend, --repeat rounds) so that a load shifts both alike:
+for --duration simulated seconds (a case in CAPPED at most its cap: an engine slow alike on
+both sides) at dt = 1/240 s with a frame every 1/60 s. Both sides are whole processes, cold
+interpreter to exit, taking turns (native, x3drbp, for every scene and backend, --repeat
+rounds) so that a load shifts both alike:
 
 - x3drbp: `x3drbp run SCENE --backend B --dt 1/240 --duration D --trace OUT.npz`;
 - native: benchmarks/native_run.py, which builds the same model in the engine's own API
-  (the native_* builds of run_overhead.py, pile.py and car.py: same step, solver settings,
-  shapes, masses, inertias and contact parameters as the backend sets them), steps it, reads
+  (the native_* builds of run_overhead.py, pile.py and car.py, and native_physx.py's and
+  native_drake.py's: same step, solver settings, shapes, masses, inertias and contact
+  parameters as the backend sets them, Drake in the mode its backend picks), steps it, reads
   every body's pose and velocity at every frame, and saves the positions; it imports no
   x3drbp code.
 
+Both sides run with Python's bytecode cache (measure.compiled_env, filled by an untimed
+one-frame run of every command first), as an installed package runs: an environment with
+PYTHONDONTWRITEBYTECODE set would have each process compile its Python from source.
 Each side's time is the median over the rounds of its process's CPU time (user + system,
 from the kernel's accounting of the child: a load beside it barely moves it), start-up,
 imports, load and trace writing included; the ratio is x3drbp's over the native one, and
@@ -27,9 +31,9 @@ The traces are checked to agree (exit status 1 where one does not): the chain's 
 car's positions to SAME at every compared frame (the car's every frame, the chain's last);
 the pile, being chaotic, as pile.py checks it (every body to pile.AGREE at pile.CHECK_T,
 before any contact, and the final mean height to PILE_HEIGHT_SAME, 1 cm). A backend without a
-native build of a scene (no `NATIVE` entry) is listed as such; pymunk (2D) has none.
+native build of a scene (native_run.SCENES) is listed as such; pymunk (2D) has none.
 
-    python benchmarks/engine_speed.py [--duration 2] [--repeat 5] [--backends mujoco,bullet,dart,ode]
+    python benchmarks/engine_speed.py [--duration 2] [--repeat 5] [--backends mujoco,bullet,dart,ode,physx,drake]
                                       [--scenes chain,car,pile]
 """
 
@@ -38,9 +42,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import resource
 import statistics
-import subprocess
 import sys
 import tempfile
 
@@ -51,6 +53,7 @@ sys.path[:0] = [os.path.dirname(HERE), HERE]
 
 import car  # noqa: E402  (benchmarks/car.py, beside this script)
 import native_run  # noqa: E402
+from measure import compiled_env, process_cpu  # noqa: E402
 import pile  # noqa: E402
 import run_overhead  # noqa: E402
 from x3d_core.trace import read_view  # noqa: E402
@@ -60,28 +63,20 @@ TARGET = 1.15
 SAME = 1e-6  # m: the chain's and the car's positions on the two sides
 # pile.py's HEIGHT_SAME is for its 200 bodies: one body landing elsewhere moves the mean of 100 twice as far
 PILE_HEIGHT_SAME = 2 * pile.HEIGHT_SAME
-DART_PILE = 1.0  # s: DART's pile runs this long at most (its 2 s take ~20 s a side, measured)
-NATIVE = {"chain": run_overhead.NATIVE, "car": car.NATIVE, "pile": pile.NATIVE}
+# s: the longest run of a case whose engine is slow alike on both sides: DART's Dantzig solver on the
+# settled pile (its 2 s take ~20 s a side, measured), Drake's SAP on 100 compliant boxes (2 s: 24 s)
+CAPPED = {("pile", "dart"): 1.0, ("pile", "drake"): 1.0}
 
 
 def scene_files(folder: str) -> dict[str, str]:
     """The three scenes written into folder, as native_run.py builds them."""
-    run_overhead.LINKS = native_run.CHAIN_LINKS
-    pile.SPHERES, pile.BOXES, pile.LAYERS = 0, native_run.PILE_BOXES, native_run.PILE_LAYERS
+    native_run.sized()
     paths = {}
     for name, text in (("chain", run_overhead.chain_x3d()), ("car", car.car_x3d()), ("pile", pile.pile_x3d(False))):
         paths[name] = os.path.join(folder, f"{name}.x3d")
         with open(paths[name], "w", encoding="utf-8") as f:
             f.write(text)
     return paths
-
-
-def process_cpu(cmd: list[str], env: dict[str, str]) -> float:
-    """One whole process's CPU seconds, its output discarded (CalledProcessError if it fails)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def agreement(scene: str, trace: str, native: str) -> tuple[float, bool, str]:
@@ -103,48 +98,59 @@ def agreement(scene: str, trace: str, native: str) -> tuple[float, bool, str]:
     return early, ok, f"at {pile.CHECK_T:g} s; mean height {height:+.1e} m at the end"
 
 
+def _load(averages: tuple[float, float, float]) -> str:
+    return " ".join(f"{x:.2f}" for x in averages)
+
+
 def _ratio(ours: float, native: float) -> str:
     return f"{ours / native:.2f}x" + ("" if ours / native <= TARGET else f" (over {TARGET}x)")
+
+
+def _commands(scene: str, backend: str, path: str, duration: float, out: str) -> tuple[list[str], list[str]]:
+    """The native and the x3drbp command of one case, writing OUT.npy, OUT-native.json, OUT.npz and OUT.json."""
+    x3drbp = os.path.join(os.path.dirname(sys.executable), "x3drbp")
+    return ([sys.executable, os.path.join(HERE, "native_run.py"), backend, scene, repr(duration), out + ".npy",
+             out + "-native.json"],
+            [x3drbp, "run", path, "--backend", backend, "--dt", repr(DT), "--duration", repr(duration),
+             "--trace", out + ".npz", "--timing", out + ".json"])
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--duration", type=float, default=2.0)
     ap.add_argument("--repeat", type=int, default=5)
-    ap.add_argument("--backends", default="mujoco,bullet,dart,ode")
+    ap.add_argument("--backends", default="mujoco,bullet,dart,ode,physx,drake")
     ap.add_argument("--scenes", default="chain,car,pile")
     args = ap.parse_args(argv)
-    x3drbp = os.path.join(os.path.dirname(sys.executable), "x3drbp")
-    env = dict(os.environ, MUJOCO_GL=os.environ.get("MUJOCO_GL", "disable"))  # what x3drbp sets for itself
     cases, missing = [], []
     for scene in args.scenes.split(","):
         for backend in args.backends.split(","):
-            (cases if backend in NATIVE[scene] else missing).append((scene, backend))
-    load_before = os.getloadavg()[0]
+            (cases if scene in native_run.SCENES.get(backend, ()) else missing).append((scene, backend))
+    load_before = os.getloadavg()
     with tempfile.TemporaryDirectory(prefix="x3drbp-engine-speed-") as tmp:
+        env = compiled_env(tmp, MUJOCO_GL=os.environ.get("MUJOCO_GL", "disable"))  # what x3drbp sets for itself
         paths = scene_files(tmp)
         commands = {}
         for scene, backend in cases:
-            duration = min(args.duration, DART_PILE) if (scene, backend) == ("pile", "dart") else args.duration
+            duration = min(args.duration, CAPPED.get((scene, backend), args.duration))
             out = os.path.join(tmp, f"{scene}-{backend}")
-            commands[scene, backend] = (
-                [sys.executable, os.path.join(HERE, "native_run.py"), backend, scene, repr(duration), out + ".npy",
-                 out + "-native.json"],
-                [x3drbp, "run", paths[scene], "--backend", backend, "--dt", repr(DT), "--duration", repr(duration),
-                 "--trace", out + ".npz", "--timing", out + ".json"], duration, out)
+            commands[scene, backend] = (*_commands(scene, backend, paths[scene], duration, out), duration, out)
+            for cmd in _commands(scene, backend, paths[scene], 1 / FRAME_RATE, out):  # the bytecode cache filled
+                process_cpu(cmd, env=env)
         # per case, per side (native, x3drbp): per round (process CPU, simulation CPU, steps CPU)
         times = {case: ([], []) for case in cases}
         for _ in range(args.repeat):
             for case, (native, ours, _, out) in commands.items():
                 for side, cmd, timing in ((0, native, out + "-native.json"), (1, ours, out + ".json")):
-                    cpu = process_cpu(cmd, env)
+                    cpu = process_cpu(cmd, env=env)
                     with open(timing, encoding="utf-8") as f:
                         own = json.load(f)
                     times[case][side].append((cpu, own["simulation_cpu_s"], own.get("step_cpu_s", 0.0)))
         checks = {case: agreement(case[0], out + ".npz", out + ".npy") for case, (_, _, _, out) in commands.items()}
-    load_after = os.getloadavg()[0]
+    load_after = os.getloadavg()
     print(f"dt 1/240 s, frames at {FRAME_RATE}/s; whole processes taking turns, median of {args.repeat}; "
-          f"2 cores, load average {load_before:.1f} before, {load_after:.1f} after\n")
+          f"{os.cpu_count()} CPUs, load average (1, 5, 15 min) {_load(load_before)} before, {_load(load_after)} "
+          "after\n")
     print("| scene | backend | simulated s | process CPU s native / x3drbp | ratio | simulation CPU s native / x3drbp "
           "| ratio | x3drbp steps CPU s | max position difference |")
     print("|---|---|---:|---:|---:|---:|---:|---:|---|")

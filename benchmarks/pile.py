@@ -143,9 +143,10 @@ def pile_x3d(sensor: bool) -> str:
             f"inertia='{_vec(np.diag([moment] * 3).ravel())}'>"
             f"<CollidableShape DEF='S{k}' containerField='geometry'><Shape containerField='shape'>{geometry}"
             "</Shape></CollidableShape></RigidBody>")
-        shapes.append(f"<CollidableShape USE='S{k}'/>")
+        shapes.append(f"<CollidableShape USE='S{k}' containerField='collidables'/>")
     for name, size, centre in STATIC:
-        shapes.append(f"<CollidableShape DEF='{name}' translation='{_vec(centre)}'><Shape containerField='shape'>"
+        shapes.append(f"<CollidableShape DEF='{name}' containerField='collidables' translation='{_vec(centre)}'>"
+                      f"<Shape containerField='shape'>"
                       f"<Box size='{_vec(size)}'/></Shape></CollidableShape>")
     collision = (f"<CollisionCollection DEF='Contacts' frictionCoefficients='{_vec([MU, MU])}' bounce='0'>\n"
                  + "\n".join(shapes) + "\n</CollisionCollection>")
