@@ -39,3 +39,18 @@ def test_help_still_lists_every_command():
     done = subprocess.run([sys.executable, "-m", "conformance.cli", "nope"], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
     assert done.returncode == 2 and "invalid choice: 'nope'" in done.stderr and "Traceback" not in done.stderr
+
+
+def test_a_run_reads_no_entry_points_and_its_help_still_names_every_backend(tmp_path):
+    """Reading the registry (every package's entry points and metadata) is for --help and plug-ins:
+    a run on x3drbp's own backend does without it."""
+    probe = ("import json, sys\nfrom conformance.cli import main\ncode = main(sys.argv[1:])\n"
+             "print(json.dumps([code, 'importlib.metadata' in sys.modules]))\n")
+    done = subprocess.run([sys.executable, "-c", probe, "run", "scenes/examples/pendulum.x3d", "--backend", "ode",
+                           "--duration", repr(1 / 240), "--trace", str(tmp_path / "t.csv"), "-q"],
+                          cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert json.loads(done.stdout.strip().splitlines()[-1]) == [0, False]
+    from backends import base
+    done = subprocess.run([sys.executable, "-m", "conformance.cli", "run", "--help"], cwd=ROOT, capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0 and f"one of {', '.join(base.engines())}" in " ".join(done.stdout.split())
