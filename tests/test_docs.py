@@ -9,6 +9,8 @@ reference page, linked from the README's table.
 
 from __future__ import annotations
 
+import argparse
+import importlib
 import os
 import re
 import subprocess
@@ -103,6 +105,29 @@ def test_every_command_has_its_reference_page_linked_from_the_readme():
         assert usage.startswith(f"`x3drbp {command}"), (page, usage)
     documented = {name[:-3] for name in os.listdir(os.path.join(ROOT, "docs", "commands"))}
     assert documented == set(COMMANDS), f"pages for no command: {sorted(documented - set(COMMANDS))}"
+
+
+def _options(parser: argparse.ArgumentParser) -> set[str]:
+    """Every long option of a command, its subcommands' included (x-ite cases, x-ite record)."""
+    out = set()
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                out |= _options(sub)
+        out.update(o for o in action.option_strings if o.startswith("--") and o != "--help")
+    return out
+
+
+def test_every_option_of_a_command_is_on_its_page():
+    from conformance.cli import COMMANDS
+    parser = argparse.ArgumentParser()
+    sub = parser.add_subparsers()
+    for module in set(COMMANDS.values()):
+        importlib.import_module(f"conformance.cli.{module}").add_command(sub)
+    for command in COMMANDS:
+        page = _read(f"docs/commands/{command}.md")
+        missing = sorted(o for o in _options(sub.choices[command]) if not re.search(re.escape(o) + r"(?![\w-])", page))
+        assert not missing, f"docs/commands/{command}.md does not name {missing}"
 
 
 def test_the_readme_stays_a_page_read_in_ten_minutes():
