@@ -27,7 +27,7 @@ def _reference(scene: dict) -> str:
     ref = scene["reference"]
     if ref["backend"] is None:
         return f"no reference: {ref['why_none']}"
-    return f"reference: {ref['backend']} at dt {dt_label(ref['dt'])}, its own error {num(ref['error'])} m"
+    return f"reference: {ref['said']}"
 
 
 def _agreement(o: dict, duration: float) -> str:
@@ -72,8 +72,8 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
             f"{settings['budget']:g}" if fastest else ""))
     else:
         j = scene["judged"][best["backend"]]
-        own = (" (the reference is this backend's own finer run, which favours it: weigh its agreement with "
-               "the others)" if scene["reference"]["backend"] == best["backend"] else "")
+        own = (f" (the reference is this backend's own run ({scene['reference']['method']}), which favours it: "
+               "weigh its agreement with the others)" if scene["reference"]["backend"] == best["backend"] else "")
         ref_error = scene["reference"]["error"]
         if ref_error > settings["tolerance"]:
             own += (f"; the reference's own error ({num(ref_error)} m) exceeds the tolerance: errors under it "

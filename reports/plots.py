@@ -26,7 +26,9 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     info = next(s for s in doc["scenes"] if s["name"] == scene)
     points = measured([p for p in doc["points"] if p["scene"] == scene])
     fig, ax = plt.subplots(figsize=(10, 6))
-    title = f"{scene}: {info['reference']}, {info['quantity']}"
+    method = info.get("reference_method")
+    title = f"{scene}: {info['reference']}" + (f" ({info['reference_backend']}'s {method} run)" if method else "")
+    title += f", {info['quantity']}"
     if points:
         title += _draw(ax, doc, points, info["unit"])
     else:

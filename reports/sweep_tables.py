@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from collections import Counter
 
-from conformance.results import dt_label
-
 from .text import escape, link, num
 
 NO_RESULTS = "no run gave both an error and a speed"  # what "no results" means, wherever it is said
@@ -52,9 +50,7 @@ def reference(scene: dict) -> str:
         return f"closed form ({escape(scene['quantity'])})"
     if scene.get("reference_backend") is None:
         return f"none: {escape(scene.get('reference_why_none', ''))}"
-    return (f"{scene['reference_backend']}'s run at dt {dt_label(scene['reference_dt'])} s, the most accurate available "
-            f"(its own error {num(scene['reference_error'])} m, from the same run at twice the step); "
-            f"{escape(scene['quantity'])}")
+    return f"{escape(scene['reference_said'])}; {escape(scene['quantity'])}"
 
 
 def markdown(doc: dict) -> str:

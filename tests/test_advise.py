@@ -13,6 +13,7 @@ import pytest
 from conftest import ROOT, case_scene
 
 from conformance.analyses import advice as A
+from conformance.analyses import sweep as S
 from conformance.analyses.sweep_metrics import Cost, Positions
 from conformance.cli import main as cli_main
 
@@ -149,7 +150,9 @@ def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
     assert all("set_position.routed" in j["refused"][0] for j in routed["judged"].values())
     assert "routed.x3d (free bodies): no recommendation: every backend refuses a use the scene makes" in captured.out
     for scene in doc["scenes"]:
-        assert scene["reference"]["backend"] in ("mujoco", "ode")
+        # a free fall and a pendulum: Drake's error-controlled run is the reference, though drake is not compared
+        assert (scene["reference"]["backend"], scene["reference"]["method"]) == ("drake", S.ERROR_CONTROLLED)
+        assert scene["reference"]["said"] in captured.out
         best = next(o for o in scene["options"] if o["backend"] == scene["recommended"]["backend"]
                     and o["dt"] == scene["recommended"]["dt"])
         ok = [o for o in scene["options"] if o["error"] is not None]
@@ -176,15 +179,17 @@ def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_
               "self_error": 2e-3, "parts": {"ode": None}, "cpu_per_sim_s": 0.01, "cpu_low": 0.009, "cpu_high": 0.011}
     scene = {"scene": "s.x3d", "kind": "contacts", "rule": A.CANNOT_RANK, "said": A.CANNOT_RANK_SAID + ": the fastest",
              "options": [option],
-             "reference": {"backend": "mujoco", "dt": 1 / 8000, "error": 3.5e-3},
+             "reference": {"backend": "mujoco", "method": S.FINE_RUN, "dt": 1 / 8000, "error": 3.5e-3,
+                           "said": "mujoco's run at dt 1/8000 s, own error 0.0035 m"},
              "judged": {"mujoco": {"refused": [], "approximated": [], "failing": {}, "passing": 2}},
              "recommended": {"backend": "mujoco", "dt": 1 / 240}, "runners_up": []}
     settings = {"budget": 1.0, "tolerance": 1e-3, "window": 1.0, "duration": 5.0}
     text = "\n".join(scene_lines(scene, settings))
-    assert "the reference is this backend's own finer run, which favours it" in text
+    assert "the reference is this backend's own run (fine run), which favours it" in text
     assert "the reference's own error (0.0035 m) exceeds the tolerance" in text
     assert text.startswith("s.x3d (contacts): mujoco at dt 1/240 (accuracy cannot be ranked on this scene")
-    scene.update(reference={"backend": "ode", "dt": 1 / 8000, "error": 1e-9}, rule=A.MOST_ACCURATE, said=A.MOST_ACCURATE)
+    scene.update(reference={"backend": "drake", "method": S.ERROR_CONTROLLED, "dt": 1 / 240, "error": 1e-9,
+                            "said": "drake's error-controlled RK3"}, rule=A.MOST_ACCURATE, said=A.MOST_ACCURATE)
     text = "\n".join(scene_lines(scene, settings))
     assert "favours" not in text and "exceeds" not in text
     assert "within 1 mm / 1 mrad of ode for all 5 s" in text and "100x real time" in text

@@ -13,9 +13,9 @@ import pytest
 pytest.importorskip("pydrake")
 
 from backends import base  # noqa: E402
-from backends.drake import BACKEND  # noqa: E402
+from backends.drake import ACCURACY, ACCURATE, BACKEND  # noqa: E402
 from engine_run import DT, G, ODD_SCENE, assert_odd_body_reads_back, run_x3d, scene_worlds  # noqa: E402
-from x3d_core.engine import Unsupported  # noqa: E402
+from x3d_core.engine import Unsupported, target_accuracy  # noqa: E402
 
 
 def test_registered_under_its_name_after_the_others():
@@ -103,6 +103,17 @@ def test_hinge_pendulum_period_is_the_elliptic_closed_form(tmp_path):
     assert abs((crossings[1] - crossings[0]) - period) < 1e-6 * period
     # energy kept to the integrator's accuracy: the bob swings back to its release height
     assert abs(xs.max() - 0.5) < 1e-4
+
+
+def test_the_simulation_says_its_target_accuracy_which_prefer_accuracy_tightens(tmp_path):
+    """What the sweep's child reports, so that a discrete run is never taken for an error-controlled reference."""
+    (w,) = scene_worlds(tmp_path, _pendulum())
+    assert target_accuracy(BACKEND.build(w, DT)) == ACCURACY
+    (w,) = scene_worlds(tmp_path, _pendulum().replace("<RigidBodyCollection ",
+                                                      "<RigidBodyCollection preferAccuracy='true' "))
+    assert target_accuracy(BACKEND.build(w, DT)) == ACCURATE < ACCURACY
+    (w,) = scene_worlds(tmp_path, _pendulum("minAngle='-0.2' maxAngle='0.2'"))
+    assert target_accuracy(BACKEND.build(w, DT)) is None  # discrete mode: stepped at the fixed step
 
 
 def test_stops_make_the_world_discrete_and_hold(tmp_path):

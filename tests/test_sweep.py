@@ -173,12 +173,13 @@ def test_common_reference_is_the_first_fine_run_of_the_order_with_its_own_error(
     assert isinstance(why, str) and "mujoco: crashed (signal 11)" in why and "bullet: crashed" in why
 
 
-def test_every_backend_is_measured_against_one_reference(tmp_path):
+def test_without_drake_every_backend_is_measured_against_one_fine_run(tmp_path):
     chosen = S.targets([case_scene("double_pendulum_energy")], [1 / 60, 1 / 240])
     plans, _ = S.backend_plans([BACKEND, "bullet"])
-    sweep = S.run_sweep(chosen, plans, [1 / 60, 1 / 240], [], [], workers=2, repeats=2)
+    sweep = S.run_sweep(chosen, plans, [1 / 60, 1 / 240], [], [], workers=2, repeats=2, controlled=False)
     ref = sweep.references["double_pendulum_energy"]
     assert ref.backend in plans and ref.error >= 0 and ref.dt == pytest.approx(1 / 1920)
+    assert ref.method == S.FINE_RUN and ref.instead == "the drake backend is not available" and not sweep.controlled
     for p in sweep.points:
         assert p.verdict == "measured" and p.iterations is None and p.prefer_accuracy is None
         # the reference backend's points: its own fine run is the common reference
@@ -210,3 +211,102 @@ def test_an_unreachable_scheduler_fails_within_the_connect_timeout(tmp_path, mon
     assert code == 1
     last = capsys.readouterr().err.strip().splitlines()[-1]
     assert last.startswith(f"x3drbp sweep: cannot reach the Dask scheduler at {address} within 1 s"), last
+
+
+DROP = """<X3D profile='Full' version='4.0'><Scene>
+<RigidBodyCollection DEF='World' gravity='0 -9.81 0'>
+  <RigidBody DEF='Box' mass='1' position='0 0.4 0' inertia='0.00667 0 0 0 0.00667 0 0 0 0.00667'>
+    <CollidableShape DEF='BoxShape' containerField='geometry'>
+      <Shape containerField='shape'><Box size='0.2 0.2 0.2'/></Shape>
+    </CollidableShape>
+  </RigidBody>
+  <CollisionCollection containerField='collider'>
+    <CollidableShape containerField='collidables' USE='BoxShape'/>
+    <CollidableShape containerField='collidables' DEF='Floor' translation='0 -0.1 0'>
+      <Shape containerField='shape'><Box size='2 0.2 2'/></Shape>
+    </CollidableShape>
+  </CollisionCollection>
+</RigidBodyCollection></Scene></X3D>
+"""  # a box dropped 0.3 m onto a floor, no bounce: Drake runs it, in its discrete (fixed-step) mode
+
+
+def _drake() -> None:
+    if not S.drake_usable({}, 60):
+        pytest.skip("the drake backend is not usable here")
+
+
+def test_a_joint_scene_is_measured_against_drake_s_error_controlled_reference():
+    _drake()
+    dts = [1 / 60, 1 / 240]
+    chosen = S.targets([case_scene("double_pendulum_energy")], dts)
+    plans, _ = S.backend_plans([BACKEND])  # drake is not compared: its reference is run all the same
+    sweep = S.run_sweep(chosen, plans, dts, [], [], workers=2, repeats=1)
+    ref = sweep.references["double_pendulum_energy"]
+    assert (ref.method, ref.backend, ref.dt) == (S.ERROR_CONTROLLED, "drake", pytest.approx(1 / 240))
+    assert ref.accuracy == pytest.approx(1e-11)  # the child's word: preferAccuracy TRUE, every world continuous
+    # its own error: the distance from the run at the 100x looser target 1e-9, which error control holds
+    # near that target (relative, on positions of order 1 m): within 10x of it over the 1 s window, and
+    # not nothing (two targets 100x apart give two runs)
+    assert 0 < ref.own_error < 1e-8
+    assert "error-controlled RK3 at target accuracy 1e-11" in ref.said and "1e-09" in ref.said
+    # two independent engines converge to one motion: MuJoCo's fine run (RK4 at 1/1920) lies within the
+    # sum of the two runs' stated own errors of Drake's reference
+    _, fine, check = sweep.fine[("double_pendulum_energy", BACKEND)]
+    mujoco_own = window_error(check.positions, fine.positions, 1.0)
+    assert window_error(fine.positions, ref.runs, 1.0) <= mujoco_own + ref.own_error
+    coarse, finer = sorted(sweep.points, key=lambda p: -p.dt)
+    for p in (coarse, finer):  # each point measured against Drake's run, not its own engine's
+        assert p.error == window_error(sweep.positions[("double_pendulum_energy", BACKEND, p.dt)], ref.runs, 1.0)
+    # MuJoCo's default semi-implicit Euler is first order: a quarter of the step, a quarter of the error,
+    # against a reference some 1e8 times closer to the motion than either
+    assert finer.error / coarse.error == pytest.approx(0.25, rel=0.05)
+    assert ref.own_error < 1e-6 * finer.error
+
+
+def test_a_contact_scene_keeps_the_fine_run_reference_and_says_why(tmp_path):
+    _drake()
+    scene = tmp_path / "drop.x3d"
+    scene.write_text(DROP)
+    dts = [1 / 60, 1 / 240]
+    chosen = S.targets([str(scene), "bounce_apex"], dts, window=0.5)
+    plans, _ = S.backend_plans([BACKEND])
+    sweep = S.run_sweep(chosen, plans, dts, [], [], workers=2, repeats=1)
+    drop, bounce = sweep.references["drop"], sweep.references["bounce_apex"]
+    # drake ran the drop but, by its own child's word, at the fixed step: no error-controlled reference
+    job, run, _ = sweep.controlled["drop"]
+    assert run.verdict == "measured" and run.target_accuracy is None
+    assert (drop.method, drop.backend, drop.accuracy) == (S.FINE_RUN, BACKEND, None)
+    assert "discrete mode" in drop.instead and "not Drake's error-controlled run" in drop.said
+    # drake refuses a bounce: said as its refusal
+    assert bounce.method == S.FINE_RUN and bounce.instead.startswith("drake: unsupported")
+
+
+def test_the_error_controlled_reference_needs_both_runs_error_controlled():
+    times = np.array([0.0, 0.5, 1.0])
+    job = S.Job("scene.x3d", "drake", results.Settings(1.0, 1 / 240))
+
+    def ran(offset: float, accuracy: float | None) -> S.JobResult:
+        return S.JobResult("measured", positions=_positions(times, np.full((3, 2, 3), offset)),
+                           target_accuracy=accuracy)
+
+    ref = S.error_controlled(job, ran(0.0, 1e-11), ran(1e-9, 1e-9))
+    assert (ref.method, ref.own_error, ref.accuracy) == (S.ERROR_CONTROLLED, pytest.approx(1e-9 * np.sqrt(3)), 1e-11)
+    assert "discrete mode" in S.error_controlled(job, ran(0.0, 1e-11), ran(0.0, None))
+    assert "did not tighten" in S.error_controlled(job, ran(0.0, 1e-9), ran(0.0, 1e-9))
+    assert S.error_controlled(job, ran(0.0, 1e-11), S.JobResult("crashed", "signal 11")) == "drake: crashed (signal 11)"
+
+
+def test_sweep_json_and_markdown_say_which_reference(tmp_path):
+    _drake()
+    out = tmp_path / "sweep"
+    assert cli_main(["sweep", "--scenes", case_scene("double_pendulum_energy"), "--backends", BACKEND, "--dts",
+                     "1/60,1/240", "--iterations", "10", "--accuracy", "false", "--repeats", "1", "--out", str(out),
+                     "--workers", "2", "-q"]) == 0
+    doc = json.loads((out / "sweep.json").read_text())
+    (scene,) = doc["scenes"]
+    assert (scene["reference_method"], scene["reference_backend"], scene["reference_accuracy"]) == \
+        (S.ERROR_CONTROLLED, "drake", 1e-11)
+    assert scene["reference_error"] == scene["reference_own_error"] > 0
+    (drake,) = doc["error_controlled_runs"]
+    assert (drake["target_accuracy"], drake["check_target_accuracy"]) == (1e-11, 1e-9)
+    assert "Reference: drake's error-controlled RK3 at target accuracy 1e-11" in (out / "sweep.md").read_text()

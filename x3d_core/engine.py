@@ -110,6 +110,15 @@ class Simulation(Protocol):
         now on, world frame; a build starts with the world's forces and torques fields."""
 
 
+def target_accuracy(sim: Simulation) -> float | None:
+    """The target accuracy of the error-controlled integrator a simulation steps by (an
+    attribute target_accuracy, which a fixed-step simulation need not have); None where it
+    steps by the fixed step. An engine may pick its mode per world (Drake's continuous plant
+    only where nothing collides), so only the simulation can say whether a run was
+    error-controlled: the sweep's reference must be (conformance/analyses/sweep.py)."""
+    return getattr(sim, "target_accuracy", None)
+
+
 class Engine(Protocol):
     name: str
 

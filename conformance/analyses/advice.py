@@ -3,8 +3,10 @@
 Per scene: what each backend makes of the features the scene uses (refused, approximated,
 and the verdicts of the conformance cases that exercise them), then a small sweep
 (conformance/analyses/sweep.py) of the scene as the file gives it on every backend that can
-run it, at a few steps, against one common reference, with each run's speed the median of
-repeats; and how long each run stays within 1 mm / 1 mrad of each other backend's run at
+run it, at a few steps, against one common reference (Drake's error-controlled run where
+Drake runs the scene in continuous mode, whether or not it is compared; else one backend's
+fine run; sweep.py says which and how its own error is estimated), with each run's speed
+the median of repeats; and how long each run stays within 1 mm / 1 mrad of each other backend's run at
 the same step. The recommendation is a rule, stated here and in README, not a score:
 
 1. Out: a backend that refuses a feature the scene uses, and every run that did not end
@@ -195,8 +197,8 @@ class Advice:
         ref, c = self.reference, self.choice
         return {
             "scene": self.scene, "kind": self.kind, "rule": c.rule, "said": c.said,
-            "reference": ({"backend": ref.backend, "dt": ref.dt, "error": ref.error} if isinstance(ref, S.Reference)
-                          else {"backend": None, "why_none": ref}),
+            "reference": ref.to_json() if isinstance(ref, S.Reference) else {"backend": None, "method": None,
+                                                                             "why_none": ref},
             "judged": {b: vars(j) for b, j in self.judged.items()},
             "options": [_option_json(o) for o in self.options],
             "recommended": None if c.chosen is None else _key(c.chosen),
@@ -304,10 +306,12 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
            workers: int | None = None, progress: bool = False, repeats: int = S.REPEATS) -> list[Advice]:
     """Advice for each scene (loaded, with something to simulate), in the order given."""
     out = []
+    controlled = S.drake_usable(plans, timeout)  # Drake's error-controlled reference wherever it can run
     for path in paths:
         able = {b: p for b, p in plans.items() if not judged[path][b].refused}  # a refusal needs no run
         (target,) = S.targets([path], dts, window, duration)
-        swept = S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, repeats) if able else None
+        swept = (S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, repeats, controlled)
+                 if able else None)
         options = [] if swept is None else [
             Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cpu, wall=p.cost) for p in swept.points]
         if swept is not None:

@@ -6,15 +6,35 @@ Error, against one reference per scene, common to every backend:
   (the case's own expectation, run at the swept step);
 - common reference: any other scene (a case without such a measure, or a scene file); the
   error is the largest distance of a body from where the reference run puts it over the
-  first `window` seconds (sweep_metrics says why one window). The reference run is the most
-  accurate available: every backend runs the scene at a step REFINEMENT times finer than the
-  finest swept, with the most iterations swept and preferAccuracy on (MuJoCo's selects RK4,
-  fourth order where the others are first), and again at twice that step; the difference
-  estimates the fine run's own error (for an integrator of order p >= 1, |run(2h) - run(h)|
-  = (2^p - 1) |run(h) - exact| >= that error, asymptotically). The reference is the fine run
-  of the first backend of REFERENCE_ORDER that ran both; its own error is stated, and errors
-  within it tie. On contacts MuJoCo's soft constraint is tuned to the step, so refining it
-  moves it: its own error is then large, and so is what the comparison cannot tell apart.
+  first `window` seconds (sweep_metrics says why one window). Which run that is, in order:
+  1. Drake's error-controlled integration, wherever the drake backend is usable (whether or
+     not it is among the backends compared) and runs the scene in its continuous mode (no
+     collisions, no joint stops, no loops, nothing refused): RK3 at its tighter target
+     accuracy (preferAccuracy TRUE, 1e-11), steps capped at the finest swept step. Why Drake:
+     a backend's own finer run favours that backend (its scheme, its reading of the scene),
+     where an error-controlled integrator converges to the equations of motion themselves,
+     and Drake's joints are exact generalized coordinates (no constraint drift). Its own
+     error: the distance from the same run at the looser target (preferAccuracy FALSE, 100x
+     looser). Where the global error scales with the target (measured on the double
+     pendulum: 7e-11 m at 1e-9, 7e-13 m at 1e-11), |run(100 a) - run(a)| >= |e(100 a)| -
+     |e(a)| >= |e(a)| as long as e(100 a) >= 2 e(a): an upper bound. The cap leaves it so
+     where the integrator, not the cap, sets the step (3,300 steps at 1e-9 and 14,600 at
+     1e-11 against 240 boundaries at 1/240; 5,000 against 4,000 at 1/4000, so at finer swept
+     steps the looser run is capped and the bound is looser still, never tighter). The mode is
+     picked per world inside the backend, so the child says whether every world was
+     error-controlled (x3d_core.engine.target_accuracy, in `run --timing`'s file): a run
+     Drake stepped in discrete mode is never taken for this reference.
+  2. Else, the fine run (what stood for every scene before): every backend runs the scene at
+     a step REFINEMENT times finer than the finest swept, with the most iterations swept and
+     preferAccuracy on (MuJoCo's selects RK4, fourth order where the others are first), and
+     again at twice that step; the difference estimates the fine run's own error (for an
+     integrator of order p >= 1, |run(2h) - run(h)| = (2^p - 1) |run(h) - exact| >= that
+     error, asymptotically). The reference is the fine run of the first backend of
+     REFERENCE_ORDER that ran both, and it says why Drake's was not used. On contacts
+     MuJoCo's soft constraint is tuned to the step, so refining it moves it: its own error is
+     then large, and so is what the comparison cannot tell apart.
+  Each Reference states which (method, said, to_json), and so do sweep.json, sweep.md and
+  advise's text and JSON.
 Self-consistency, beside it: each backend against its own run at that fine step, as a
 backend's convergence says nothing of whether it converges to what the others do.
 
@@ -51,10 +71,12 @@ from conformance.analyses.sweep_metrics import Cost, Positions, comparison_inter
 
 REFINEMENT = 8  # the fine-step reference's step: the finest swept over this
 REPEATS = 3  # timed runs of each point, in its child: the median and the spread
-# whose fine run is the common reference, the first that ran it: MuJoCo's RK4 is fourth
-# order where the others integrate to first order; then ODE, the engine the spec's parameters
-# come from
-REFERENCE_ORDER = ("mujoco", "ode", "dart", "bullet", "pymunk")
+# whose fine run is the common reference where Drake's error-controlled one is not, the first
+# that ran it: MuJoCo's RK4 is fourth order where the others integrate to first order; then
+# ODE, the engine the spec's parameters come from; the two newest last
+REFERENCE_ORDER = ("mujoco", "ode", "dart", "bullet", "pymunk", "drake", "physx")
+DRAKE = "drake"  # whose error-controlled run is the reference wherever it runs the scene as one
+ERROR_CONTROLLED, FINE_RUN = "error-controlled", "fine run"  # a common reference's method
 DEFAULT_SCENES = ("pendulum_period", "projectile", "bounce_apex",
                   os.path.join("conformance", "cases", "double_pendulum_energy", "double_pendulum_energy.x3d"))
 DEFAULT_DTS = (1 / 60, 1 / 240, 1 / 1000, 1 / 4000)
@@ -229,11 +251,46 @@ def variations(plan: BackendPlan, iterations: Sequence[int], accuracy: Sequence[
 
 @dataclass(frozen=True)
 class Reference:
-    """A scene's common reference (no closed form): whose run it is and its own error."""
+    """A scene's common reference (no closed form): whose run, how it was made, and its own error."""
     backend: str
-    dt: float
-    error: float  # m: the estimate of its own error (module docstring)
+    dt: float  # s: its step (Drake's: the largest its integrator may take)
+    own_error: float  # m: the estimate of its own error (module docstring)
     runs: Positions
+    accuracy: float | None = None  # Drake's target accuracy (error-controlled); None: a fine fixed-step run
+    check: str = ""  # what its own error is the distance from
+    instead: str = ""  # a fine run: why Drake's error-controlled run is not the reference
+
+    @property
+    def method(self) -> str:
+        return FINE_RUN if self.accuracy is None else ERROR_CONTROLLED
+
+    @property
+    def error(self) -> float:
+        """m: how far the reference may be from the truth: what errors tie within."""
+        return self.own_error
+
+    @property
+    def said(self) -> str:
+        """The reference in words: what it is, its own error and how that was estimated."""
+        if self.accuracy is not None:
+            return (f"{self.backend}'s error-controlled RK3 at target accuracy {self.accuracy:g} (steps of at most "
+                    f"{results.dt_label(self.dt)} s), own error {self.own_error:.3g} m ({self.check})")
+        return (f"{self.backend}'s run at dt {results.dt_label(self.dt)} s, own error {self.own_error:.3g} m "
+                f"({self.check})" + (f"; not Drake's error-controlled run: {self.instead}" if self.instead else ""))
+
+    def to_json(self) -> dict:
+        return {"method": self.method, "backend": self.backend, "dt": self.dt, "accuracy": self.accuracy,
+                "own_error": self.own_error, "check": self.check, "instead": self.instead or None,
+                "error": self.error, "said": self.said}
+
+
+def _controlled_jobs(t: Target, dts: Sequence[float], timeout: float) -> tuple[Job, Job]:
+    """Drake's run of the target over the window at its tighter target accuracy
+    (preferAccuracy TRUE), and at its looser one (FALSE), for its own error; its steps capped
+    at the finest swept step (module docstring)."""
+    window = Settings(t.window, min(dts), t.settings.frame_rate)
+    return (Job(t.scene, DRAKE, window, None, True, None, timeout, repeats=1),
+            Job(t.scene, DRAKE, window, None, False, None, timeout, repeats=1))
 
 
 def _fine_jobs(t: Target, plan: BackendPlan, dts: Sequence[float], iterations: Sequence[int],
@@ -252,6 +309,7 @@ class Sweep:
     points: list[Point]
     fine: dict[tuple[str, str], tuple[Job, JobResult, JobResult]]  # (scene, backend) -> fine run, at 2x its step
     references: dict[str, Reference | str]  # scene (no closed form) -> its common reference, or why there is none
+    controlled: dict[str, tuple[Job, JobResult, JobResult]]  # scene -> Drake's reference run, at the looser target
     units: dict[str, str]  # scene -> the error's unit
     positions: dict[tuple[str, str, float], Positions]  # (scene, backend, dt) -> a run's poses (no variation asked)
 
@@ -259,49 +317,85 @@ class Sweep:
 def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequence[float],
               iterations: Sequence[int], accuracy: Sequence[bool], timeout: float = children.DEFAULT_TIMEOUT,
               scheduler: str | None = None, workers: int | None = None, progress: bool = False,
-              repeats: int = REPEATS) -> Sweep:
-    """Every target on every planned backend at every step and variation, on the executor.
-    Empty iterations or accuracy: the scene's own."""
-    keyed: list[tuple[Point | tuple[str, str], Job | tuple[Job, Job]]] = []
-    jobs: list[Job] = []
-    for t in chosen:
-        for plan in plans.values():
-            if t.case is None:
-                pair = _fine_jobs(t, plan, dts, iterations, timeout)
-                keyed.append(((t.name, plan.name), pair))
-                jobs += pair
-            for dt in dts:
-                for its, acc in variations(plan, iterations, accuracy):
-                    job = Job(t.scene, plan.name, t.settings.with_dt(dt), its, acc, t.case, timeout, repeats)
-                    keyed.append((Point(t.name, plan.name, dt, its, acc), job))
-                    jobs.append(job)
-    done = iter(execute(jobs, scheduler, workers, progress))
-    ran = [(key, job, (next(done), next(done)) if isinstance(job, tuple) else next(done)) for key, job in keyed]
-    fine = {key: (job[0], *res) for key, job, res in ran if isinstance(key, tuple)}
-    references = {t.name: common_reference(t.name, plans, fine) for t in chosen if t.case is None}
+              repeats: int = REPEATS, controlled: bool | None = None) -> Sweep:
+    """Every target on every planned backend at every step and variation, on the executor, and
+    each target without a closed form's reference runs: every backend's fine run and, where
+    `controlled` (None: wherever the drake backend is usable, compared or not), Drake's
+    error-controlled one. Empty iterations or accuracy: the scene's own."""
+    if controlled is None:
+        controlled = drake_usable(plans, timeout)
+    common = [t for t in chosen if t.case is None]
+    fine_jobs = {(t.name, b): _fine_jobs(t, plan, dts, iterations, timeout) for t in common for b, plan in plans.items()}
+    drake_jobs = {t.name: _controlled_jobs(t, dts, timeout) for t in common} if controlled else {}
+    keyed = [(Point(t.name, plan.name, dt, its, acc),
+              Job(t.scene, plan.name, t.settings.with_dt(dt), its, acc, t.case, timeout, repeats))
+             for t in chosen for plan in plans.values() for dt in dts
+             for its, acc in variations(plan, iterations, accuracy)]
+    pairs = [*fine_jobs.values(), *drake_jobs.values()]
+    done = iter(execute([*(j for pair in pairs for j in pair), *(job for _, job in keyed)], scheduler, workers,
+                        progress))
+    ran = [(pair[0], next(done), next(done)) for pair in pairs]
+    fine, drake = dict(zip(fine_jobs, ran[:len(fine_jobs)])), dict(zip(drake_jobs, ran[len(fine_jobs):]))
+    references = {t.name: common_reference(t.name, plans, fine, drake.get(t.name)) for t in common}
     points, units, poses = [], {}, {}
-    for key, job, res in ran:
-        if isinstance(key, Point):
-            _fill(key, job, res, references.get(key.scene), fine.get((key.scene, key.backend)))
-            points.append(key)
-            if res.unit:
-                units.setdefault(key.scene, res.unit)
-            if res.positions is not None and job.iterations is None and job.prefer_accuracy is None:
-                poses[(key.scene, key.backend, key.dt)] = res.positions
+    for key, job in keyed:
+        res = next(done)
+        _fill(key, job, res, references.get(key.scene), fine.get((key.scene, key.backend)))
+        points.append(key)
+        if res.unit:
+            units.setdefault(key.scene, res.unit)
+        if res.positions is not None and job.iterations is None and job.prefer_accuracy is None:
+            poses[(key.scene, key.backend, key.dt)] = res.positions
     for t in chosen:
         units.setdefault(t.name, "m" if t.case is None else "")
     tolerances = {s: r.error if isinstance(r, Reference) else 0.0 for s, r in references.items()}
     mark_pareto(points, tolerances)
-    return Sweep(points, fine, references, units, poses)
+    return Sweep(points, fine, references, drake, units, poses)
+
+
+def drake_usable(plans: dict[str, BackendPlan], timeout: float) -> bool:
+    """Whether the drake backend can run here: planned, or found usable by the probe (in a child)."""
+    return DRAKE in plans or probe.backend_table(timeout, [DRAKE])[DRAKE].usable
 
 
 def common_reference(scene: str, plans: dict[str, BackendPlan],
-                     fine: dict[tuple[str, str], tuple[Job, JobResult, JobResult]]) -> Reference | str:
-    """The scene's common reference: the fine run of the first backend in REFERENCE_ORDER
-    whose fine run and its check at twice the step both ran, with its own error; else why
-    none could be. Not the smallest own error: that measures how fast an engine converges to
-    its own contact model, not how close it is to the others, and on a contact scene it chose
-    pymunk, whose coarse runs then beat four engines that agreed with each other."""
+                     fine: dict[tuple[str, str], tuple[Job, JobResult, JobResult]],
+                     controlled: tuple[Job, JobResult, JobResult] | None = None) -> Reference | str:
+    """The scene's common reference: Drake's error-controlled run where it ran as one
+    (controlled: its run and its check at the looser target), else the fine run of the first
+    backend in REFERENCE_ORDER that ran both it and its check, saying why not Drake's. Else
+    why none could be."""
+    ref = error_controlled(*controlled) if controlled is not None else "the drake backend is not available"
+    return fine_reference(scene, plans, fine, ref) if isinstance(ref, str) else ref
+
+
+def error_controlled(job: Job, run: JobResult, check: JobResult) -> Reference | str:
+    """Drake's run at its tighter target accuracy as the reference, its own error the distance
+    from the same at the looser one; or why it cannot be: a run that did not end well, or one
+    that the child says stepped a world at the fixed step (Drake's discrete mode)."""
+    for r in (run, check):
+        if r.positions is None:
+            return f"drake: {r.verdict}" + (f" ({r.reason})" if r.reason else "")
+    if run.target_accuracy is None or check.target_accuracy is None:
+        return "drake stepped it at the fixed step (discrete mode: the scene collides or has a stop)"
+    if run.target_accuracy >= check.target_accuracy:
+        return (f"drake's preferAccuracy TRUE did not tighten its target accuracy ({run.target_accuracy:g}, "
+                f"{check.target_accuracy:g} without)")
+    try:
+        own = window_error(check.positions, run.positions, job.settings.duration)
+    except ValueError as e:
+        return f"drake: {e}"
+    return Reference(DRAKE, job.settings.dt, own, run.positions, run.target_accuracy,
+                     f"its distance from the same at target accuracy {check.target_accuracy:g}")
+
+
+def fine_reference(scene: str, plans: dict[str, BackendPlan],
+                   fine: dict[tuple[str, str], tuple[Job, JobResult, JobResult]], instead: str) -> Reference | str:
+    """The fine run of the first backend in REFERENCE_ORDER whose fine run and its check at
+    twice the step both ran, with its own error; else why none could be. Not the smallest own
+    error: that measures how fast an engine converges to its own contact model, not how close
+    it is to the others, and on a contact scene it chose pymunk, whose coarse runs then beat
+    four engines that agreed with each other."""
     order = [b for b in REFERENCE_ORDER if b in plans] + [b for b in plans if b not in REFERENCE_ORDER]
     why = []
     for b in order:
@@ -312,10 +406,10 @@ def common_reference(scene: str, plans: dict[str, BackendPlan],
             continue
         try:
             return Reference(b, job.settings.dt, window_error(check.positions, run.positions, job.settings.duration),
-                             run.positions)
+                             run.positions, check="its distance from the same at twice the step", instead=instead)
         except ValueError as e:
             why.append(f"{b}: {e}")
-    return "no backend's fine-step run ended well: " + "; ".join(why)
+    return f"not Drake's error-controlled run ({instead}), and no backend's fine-step run ended well: " + "; ".join(why)
 
 
 def _fill(p: Point, job: Job, res: JobResult, reference: Reference | str | None,

@@ -53,6 +53,9 @@ class JobResult:
     unit: str = ""
     positions: Positions | None = None
     cpu_s: tuple[float, ...] = ()  # the child's CPU time in the engine's steps, each repeat: what load does not inflate
+    # the target accuracy of the error-controlled integrator every world stepped by (the loosest);
+    # None where a world stepped at the fixed step (the engine picks per world: only the child knows)
+    target_accuracy: float | None = None
 
 
 def with_collection_fields(src: str, dst: str, iterations: int | None, prefer_accuracy: bool | None) -> None:
@@ -83,6 +86,13 @@ def positions(view: TraceView) -> Positions:
                      np.stack([v for _, v in series[n:]], axis=1))
 
 
+def _controlled(per_world: list[float | None]) -> float | None:
+    """The run's target accuracy where every world was error-controlled (the loosest), else None."""
+    if not per_world or any(a is None for a in per_world):
+        return None
+    return max(float(a) for a in per_world)
+
+
 def run_job(job: Job) -> JobResult:
     """Run the job's scene once in a child process and judge or sample its trace."""
     scene = job.scene if os.path.isabs(job.scene) else os.path.join(C.ROOT, job.scene)
@@ -105,12 +115,14 @@ def run_job(job: Job) -> JobResult:
             step_s = tuple(float(x) for x in times["repeats"]["step_wall_s"])
             cpu_s = tuple(float(x) for x in times["repeats"].get("step_cpu_s", ()))
             simulation_s = float(times["simulation_wall_s"])
+            accuracy = _controlled(times.get("target_accuracy", []))
             view = read_view(trace)
         except (OSError, ValueError, KeyError) as e:
             return JobResult(results.ERROR, f"unreadable trace or timing: {e}")
     if job.case is None:
         try:
-            return JobResult(MEASURED, "", step_s, simulation_s, cpu_s=cpu_s, positions=positions(view))
+            return JobResult(MEASURED, "", step_s, simulation_s, cpu_s=cpu_s, positions=positions(view),
+                             target_accuracy=accuracy)
         except ValueError as e:
             return JobResult(results.ERROR, str(e), step_s, simulation_s)
     case = C.BY_NAME[job.case]

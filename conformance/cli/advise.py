@@ -8,8 +8,9 @@ For each scene (folders are searched for .x3d, .x3dv, .x3dj): what each backend 
 features it uses (refused, approximated, and the verdicts of the conformance cases that
 exercise them: the pinned ones, or those of a conformance run's matrix.json with
 --verdicts), then the scene on every backend that can run it at each step, each run's error
-against one common reference over the first --window seconds (the most accurate run
-available, with its own error), its speed (the engine's steps' CPU time in the child, so
+against one common reference over the first --window seconds (Drake's error-controlled run
+where Drake runs the scene in continuous mode, else one backend's fine run; said, with its
+own error), its speed (the engine's steps' CPU time in the child, so
 that other load does not reorder the backends; median of --repeats timed runs), and how long it stays within 1 mm / 1 mrad of each other backend at that step; then
 the recommendation by the rule conformance/analyses/advice.py states (docs/commands/advise.md too): of the
 runs that fit --budget (CPU seconds per simulated second, default 1: real time), the

@@ -16,7 +16,7 @@ import numpy as np
 
 from backends import base
 from x3d_core import atomic
-from x3d_core.engine import Engine, Simulation, Stopped, TimedOut, Unsupported, on_engine_abort
+from x3d_core.engine import Engine, Simulation, Stopped, TimedOut, Unsupported, on_engine_abort, target_accuracy
 from x3d_core.analysis import Use
 from x3d_core.evaluator import RunSettings, run
 from x3d_core.model import Scene
@@ -34,13 +34,17 @@ STUCK_GRACE = 5.0  # s an engine call may run past --timeout before the process 
 
 class _StepClock:
     """An engine whose simulations add the wall time of their steps to `step_s`: the engine's
-    own integration cost, apart from its model build and the evaluator's per-frame reads."""
+    own integration cost, apart from its model build and the evaluator's per-frame reads; and
+    that keeps each world's target accuracy (x3d_core.engine.target_accuracy) for --timing."""
 
     def __init__(self, engine: Engine):
         self.engine, self.name, self.step_s, self.step_cpu_s = engine, engine.name, 0.0, 0.0
+        self.target_accuracy: list[float | None] = []
 
     def build(self, world: World, dt: float) -> Simulation:
-        return _TimedSteps(self.engine.build(world, dt), self)
+        sim = self.engine.build(world, dt)
+        self.target_accuracy.append(target_accuracy(sim))
+        return _TimedSteps(sim, self)
 
 
 class _TimedSteps:
@@ -197,7 +201,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                 step_s.append(clock.step_s if clock else 0.0)
                 step_cpu_s.append(clock.step_cpu_s if clock else 0.0)
                 if k == 0:
-                    trace = ran
+                    trace, accuracies = ran, clock.target_accuracy if clock else []
     except Unsupported as e:
         print(f"{args.scene}: unsupported by {args.backend}: {e}", file=sys.stderr)
         return EXIT_UNSUPPORTED
@@ -216,6 +220,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                                         "simulation_cpu_s": float(np.median(simulation_cpu_s)),
                                         "step_wall_s": float(np.median(step_s)),
                                         "step_cpu_s": float(np.median(step_cpu_s)),
+                                        "target_accuracy": accuracies,
                                         "repeats": {"simulation_wall_s": simulation_s,
                                                     "simulation_cpu_s": simulation_cpu_s, "step_wall_s": step_s,
                                                     "step_cpu_s": step_cpu_s}},
@@ -295,8 +300,9 @@ def add_command(sub) -> None:
     r.add_argument("--timing", metavar="FILE", help="write the simulation's wall time (plan, engine build, "
                    "steps, state readback; not the load or the trace writing) to FILE as JSON "
                    "{\"simulation_wall_s\": S, \"simulation_cpu_s\": ..., \"step_wall_s\": T, \"step_cpu_s\": ..., "
-                   "\"repeats\": {...}}, T the engine's steps alone, each also as the process's CPU time, "
-                   "the medians of the repeats, each listed under repeats")
+                   "\"target_accuracy\": [...], \"repeats\": {...}}, T the engine's steps alone, each also as the "
+                   "process's CPU time, the medians of the repeats, each listed under repeats; target_accuracy per "
+                   "world: its error-controlled integrator's target (null: stepped at the fixed step)")
     r.add_argument("--repeat", type=options.repeats, default=1, metavar="N",
                    help="run the simulation N times, for --timing's medians and spread (the trace, recording "
                    "and verdict are the first run's: a run is deterministic; default 1)")

@@ -6,18 +6,19 @@ preferAccuracy (conformance/sweep.py says what is measured).
                  [--scheduler ADDRESS] [--workers N] [--timeout S] [--quiet]
 
 Writes DIR/sweep.json (every point), DIR/sweep.md (the Pareto fronts, ties merged) and
-DIR/sweep_SCENE.png (error against the scene's one reference, closed form or the most
-accurate run, over the median wall time per simulated second with its spread, one line per
-backend and variation); DIR
+DIR/sweep_SCENE.png (error against the scene's one reference, closed form, Drake's
+error-controlled run or a backend's fine run, each scene saying which, over the median wall
+time per simulated second with its spread, one line per backend and variation); DIR
 defaults to out/sweep. Runs on local threads (each waits on its run), or on a Dask cluster with
 --scheduler SCHEME://HOST:PORT (tcp://host:8786), given up on where it does not answer in time.
 Exit status 0 whatever the verdicts (where no run gave a result, the files and one line on
 stderr say "no results"); 1 where the scheduler cannot be reached; 2 on bad usage; 130 or 143
 when interrupted by SIGINT or SIGTERM (every run stopped).
 
-The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, every
-installed backend: 288 points, each timed 3 times in its child, and 20 fine-step runs) takes
-205 s on 2 cores (163 s with --repeats 1); a long sweep names more:
+The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, the
+seven backends: 384 points, each timed 3 times in its child, 28 fine-step runs and Drake's 4
+error-controlled reference runs) took 205 s on 2 cores when it held 288 points (163 s with
+--repeats 1); a long sweep names more:
     x3drbp sweep --dts 1/60,1/120,1/240,1/500,1/1000,1/2000,1/4000,1/8000 \\
                  --iterations 5,10,20,50,100 --scenes pendulum_period,projectile,torque_free,...
 """
@@ -90,8 +91,10 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], planned: dict[str, S.Backend
                               "spread); not start-up, loading, the model build, per-frame reads or trace writing "
                               "(simulation_per_sim_s: the whole simulation, build and reads included)",
                      "error": "closed form: the case's convergence measure; common reference: the largest distance "
-                              "of a body from the scene's reference run (one backend's most accurate run, the same "
-                              "for every backend) over the window",
+                              "of a body from the scene's reference run (the same for every backend: Drake's "
+                              "error-controlled run where Drake runs the scene in continuous mode, else one "
+                              "backend's fine run; each scene's reference_method and reference_said say which) "
+                              "over the window",
                      "self_error": "the largest distance of a body from the same backend's run at the fine step, "
                                    "over the window (scenes without a closed form)",
                      "ties": "points whose speed spreads overlap and whose errors differ by less than the "
@@ -103,22 +106,30 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], planned: dict[str, S.Backend
                     "quantity": t.quantity, "unit": sweep.units.get(t.name, ""), "duration": t.settings.duration,
                     "frame_rate": t.settings.frame_rate, **_reference(sweep.references.get(t.name))}
                    for t in chosen],
-        "fine_runs": [{"scene": scene, "backend": backend, "dt": job.settings.dt, "iterations": job.iterations,
-                       "prefer_accuracy": job.prefer_accuracy, "verdict": res.verdict, "reason": res.reason,
-                       "check_verdict": check.verdict, "check_reason": check.reason}
-                      for (scene, backend), (job, res, check) in sweep.fine.items()],
+        "fine_runs": [_reference_run(scene, job, res, check) for (scene, _), (job, res, check) in sweep.fine.items()],
+        "error_controlled_runs": [_reference_run(scene, job, res, check)
+                                  for scene, (job, res, check) in sweep.controlled.items()],
         "points": [p.to_json() for p in sweep.points],
         "wall_s": round(wall_s, 1),
     }
 
 
+def _reference_run(scene: str, job: S.Job, res: S.JobResult, check: S.JobResult) -> dict:
+    """A run that may be a scene's reference, and its check, as sweep.json lists them."""
+    return {"scene": scene, "backend": job.backend, "dt": job.settings.dt, "iterations": job.iterations,
+            "prefer_accuracy": job.prefer_accuracy, "verdict": res.verdict, "reason": res.reason,
+            "target_accuracy": res.target_accuracy, "check_verdict": check.verdict, "check_reason": check.reason,
+            "check_target_accuracy": check.target_accuracy}
+
+
 def _reference(ref: S.Reference | str | None) -> dict:
-    """A scene's common reference as sweep.json states it (nothing for a closed form)."""
+    """A scene's common reference as sweep.json states it (nothing for a closed form): its
+    fields (Reference.to_json) prefixed reference_."""
     if ref is None:
         return {}
     if isinstance(ref, str):
-        return {"reference_backend": None, "reference_why_none": ref}
-    return {"reference_backend": ref.backend, "reference_dt": ref.dt, "reference_error": ref.error}
+        return {"reference_backend": None, "reference_method": None, "reference_why_none": ref}
+    return {f"reference_{k}": v for k, v in ref.to_json().items()}
 
 
 @children.interruptible
