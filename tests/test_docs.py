@@ -13,6 +13,7 @@ import argparse
 import importlib
 import os
 import re
+import shlex
 import subprocess
 import sys
 
@@ -118,16 +119,32 @@ def _options(parser: argparse.ArgumentParser) -> set[str]:
     return out
 
 
-def test_every_option_of_a_command_is_on_its_page():
+def _commands() -> argparse._SubParsersAction:
+    """Every command's parser, as `x3drbp` builds them."""
     from conformance.cli import COMMANDS
-    parser = argparse.ArgumentParser()
-    sub = parser.add_subparsers()
+    sub = argparse.ArgumentParser(prog="x3drbp").add_subparsers()
     for module in set(COMMANDS.values()):
         importlib.import_module(f"conformance.cli.{module}").add_command(sub)
+    return sub
+
+
+def test_every_option_of_a_command_is_on_its_page():
+    from conformance.cli import COMMANDS
+    sub = _commands()
     for command in COMMANDS:
         page = _read(f"docs/commands/{command}.md")
         missing = sorted(o for o in _options(sub.choices[command]) if not re.search(re.escape(o) + r"(?![\w-])", page))
         assert not missing, f"docs/commands/{command}.md does not name {missing}"
+
+
+def test_the_readmes_command_lines_parse():
+    """The worked example's commands are real: each `.venv/bin/x3drbp ...` line of README parses."""
+    sub = _commands()
+    lines = [line for line in _read("README.md").splitlines() if line.startswith(".venv/bin/x3drbp ")]
+    assert lines
+    for line in lines:
+        command, *args = shlex.split(line)[1:]
+        sub.choices[command].parse_args(args)  # a SystemExit (exit 2) names what does not parse
 
 
 def test_the_readme_stays_a_page_read_in_ten_minutes():
