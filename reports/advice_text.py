@@ -108,7 +108,7 @@ def render(doc: dict) -> str:
         out += scene_lines(scene, s) + [""]
     out.append(f"steps {', '.join(dt_label(d) for d in s['dts'])}; runs of {s['duration']:g} s, error over the first "
                f"{s['window']:g} s; tolerance {s['tolerance']:g} m; budget {s['budget']:g} CPU s per simulated s; "
-               f"speed the engine's steps' CPU time, the median of {s['repeats']} repeats; the rule: README, `x3drbp advise`")
+               f"speed the engine's steps' CPU time, the median of {s['repeats']} repeats; the rule: docs/commands/advise.md")
     return "\n".join(out) + "\n"
 
 
@@ -129,7 +129,7 @@ def markdown(doc: dict, details: bool = True) -> str:
                      f"| {num(best['cpu_per_sim_s'])} | {escape(_versus(runner, best)) if runner else '-'} |")
     lines += ["", f"Budget {s['budget']:g} CPU s per simulated second, tolerance {s['tolerance']:g} m over the first "
                   f"{s['window']:g} s, steps {', '.join(dt_label(d) for d in s['dts'])}, runs of {s['duration']:g} s. "
-                  "The rule (README, `x3drbp advise`): the fastest run within the tolerance of the scene's reference; "
+                  "The rule (docs/commands/advise.md): the fastest run within the tolerance of the scene's reference; "
                   "if none, the most accurate; only runs that fit the budget, of backends that refuse nothing "
                   "the scene uses."]
     if details:

@@ -7,7 +7,7 @@ run it, at a few steps, against one common reference (Drake's error-controlled r
 Drake runs the scene in continuous mode, whether or not it is compared; else one backend's
 fine run; sweep.py says which and how its own error is estimated), with each run's speed
 the median of repeats; and how long each run stays within 1 mm / 1 mrad of each other backend's run at
-the same step. The recommendation is a rule, stated here and in README, not a score:
+the same step. The recommendation is a rule, stated here and in docs/commands/advise.md, not a score:
 
 1. Out: a backend that refuses a feature the scene uses, and every run that did not end
    well (blew up, crashed, timed out). Set aside: a backend that fails (violates the spec
