@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import ctypes
 import sys
+from typing import NamedTuple
 
 import numpy as np
 
@@ -259,6 +260,21 @@ def _near(centres: np.ndarray, radius: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return i[near], j[near]
 
 
+class _Candidates(NamedTuple):
+    """The pairs a small scene's contacts are tested on, with what their tests compare that no
+    step changes (worked out once at build: computed every step, they cost a car's step more
+    than its bounding-volume tests)."""
+    a: np.ndarray  # moving pairs: rows into _Contacts.moving
+    b: np.ndarray
+    reach: np.ndarray  # each moving pair's squared distance of touching: (r_a + r_b + _SLACK)^2
+    m: np.ndarray  # moving-static pairs: the moving side's row into _Contacts.moving
+    low: np.ndarray  # the static side's box, widened by _SLACK
+    high: np.ndarray
+    rest: np.ndarray  # the moving side's squared radius
+    order: np.ndarray  # the order that puts the pairs (moving pairs first) in index order
+    pairs: np.ndarray  # (lower, higher) geom indices, in that order
+
+
 class _Contacts:
     """The world's geoms and, each step, their contact joints (see the module's docstring)."""
 
@@ -311,8 +327,7 @@ class _Contacts:
         self._grow(256)
         self.group = lib.dJointGroupCreate(0)
         self.count = 0
-        self.first = np.zeros(0, dtype=int)
-        self.second = np.zeros(0, dtype=int)
+        self.touching: tuple[list[int], list[int], list[int]] = ([], [], [])  # each pair's geoms, its count
 
     def _grow(self, capacity: int) -> None:
         """A contact buffer with room for capacity contacts, the surface already in every slot."""
@@ -321,10 +336,10 @@ class _Contacts:
         self.buffer[:len(old)] = old
         self.address = self.buffer.ctypes.data
 
-    def _candidates(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    def _candidates(self) -> _Candidates:
         """Every allowed pair with a moving side, once: moving pairs (rows a, b into self.moving),
-        moving-static pairs (rows m into self.moving, f into self.fixed), and the order that
-        puts both lists' (lower, higher) geom indices, kept by may_touch, in index order."""
+        moving-static pairs (rows m into self.moving, each with its static geom's box), and the
+        order that puts both lists' (lower, higher) geom indices, kept by may_touch, in index order."""
         a, b = np.triu_indices(len(self.moving), 1)
         m, f = (x.ravel() for x in np.meshgrid(np.arange(len(self.moving)), np.arange(len(self.fixed)),
                                                 indexing="ij"))
@@ -335,7 +350,10 @@ class _Contacts:
         kept_mm, kept_mf = kept[:len(a)], kept[len(a):]
         both = both[kept]
         order = np.lexsort((both[:, 1], both[:, 0]))
-        return a[kept_mm], b[kept_mm], m[kept_mf], f[kept_mf], (order, both[order])
+        a, b, m, f = a[kept_mm], b[kept_mm], m[kept_mf], f[kept_mf]
+        r = self.radius
+        return _Candidates(a, b, (r[a] + r[b] + _SLACK) ** 2, m, self.low[f], self.high[f], r[m] ** 2, order,
+                           both[order])
 
     def pairs(self, centres: np.ndarray) -> list[tuple[int, int]]:
         """The allowed pairs whose bounding volumes overlap, lower index first, in index order."""
@@ -361,16 +379,15 @@ class _Contacts:
     def _listed_pairs(self, centres: np.ndarray) -> list[tuple[int, int]]:
         """pairs() over the candidates listed at build: the same tests as _near's and the
         grid's AABB test, on every listed pair at once."""
-        a, b, m, f, (order, both) = self.candidates
-        r = self.radius
+        k = self.candidates
         with np.errstate(invalid="ignore"):  # a state gone non-finite: the evaluator reports it at the frame
-            d = centres[a] - centres[b]
-            near = np.einsum("ij,ij->i", d, d) <= (r[a] + r[b] + _SLACK) ** 2
-            c = centres[m]
-            gap = np.maximum(self.low[f] - c, 0) + np.maximum(c - self.high[f], 0)
-            touching = np.einsum("ij,ij->i", gap, gap) <= r[m] ** 2
-        hit = np.concatenate([near, touching])[order]
-        return self.static_pairs + [tuple(p) for p in both[hit].tolist()]
+            d = centres[k.a] - centres[k.b]
+            near = np.einsum("ij,ij->i", d, d) <= k.reach
+            c = centres[k.m]
+            gap = np.maximum(k.low - c, 0) + np.maximum(c - k.high, 0)
+            touching = np.einsum("ij,ij->i", gap, gap) <= k.rest
+        hit = np.concatenate([near, touching])[k.order]
+        return self.static_pairs + [tuple(p) for p in k.pairs[hit].tolist()]
 
     def collide(self, position: np.ndarray, orientation: np.ndarray) -> None:
         """This step's contacts as contact joints (last step's joints go first)."""
@@ -390,20 +407,21 @@ class _Contacts:
                 second.append(j)
                 counts.append(k)
         self.count = found
-        self.first = np.repeat(np.array(first, dtype=int), counts)
-        self.second = np.repeat(np.array(second, dtype=int), counts)
+        self.touching = (first, second, counts)  # as arrays only for points(): a step needs none
         world, group, handle = self.sim.ode_world, self.group, self.body_handle
-        for n, (i, j) in enumerate(zip(self.first.tolist(), self.second.tolist())):
+        at = self.address
+        for i, j, k in zip(first, second, counts):
             b1, b2 = handle[i], handle[j]
-            if b1 is None and b2 is None:
-                continue  # two unmoving geoms: reported, nothing to push
-            joint = lib.dJointCreateContact(world, group, self.address + n * 248)
-            lib.dJointAttach(joint, b1, b2)
+            if b1 is not None or b2 is not None:  # two unmoving geoms: reported, nothing to push
+                for contact in range(at, at + k * 248, 248):
+                    lib.dJointAttach(lib.dJointCreateContact(world, group, contact), b1, b2)
+            at += k * 248
 
     def points(self) -> ContactPoints:
         c = self.buffer[:self.count]
-        return ContactPoints(c["pos"][:, :3].copy(), -c["normal"][:, :3], c["depth"].copy(), self.first.copy(),
-                             self.second.copy())
+        first, second, counts = (np.array(x, dtype=int) for x in self.touching)
+        return ContactPoints(c["pos"][:, :3].copy(), -c["normal"][:, :3], c["depth"].copy(), np.repeat(first, counts),
+                             np.repeat(second, counts))
 
     def destroy(self) -> None:
         lib.dJointGroupDestroy(self.group)
