@@ -7,7 +7,6 @@ UNITs apply) is written once for the three encodings.
 
 from __future__ import annotations
 
-import difflib
 import math
 import re
 from dataclasses import dataclass, field
@@ -180,6 +179,7 @@ class Builder:
             for decl in node.interface:
                 if decl.name == name:
                     return None
+            import difflib  # here: only a misspelt field needs it (every `x3drbp run` imported it)
             near = difflib.get_close_matches(name, list(node.spec.fields), n=1, cutoff=0.7)
             hint = f"; did you mean {near[0]!r}?" if near else ""
             self.error(loc, f"{node.label}.{name}", f"{node.type_name} has no field {name!r}{hint}")

@@ -7,13 +7,13 @@ import functools
 import math
 import re
 from dataclasses import dataclass, field
+from collections.abc import Iterator, Mapping
 from typing import Any
 
 import numpy as np
 
 from . import fields as F
 from .node_defs import DEFINITIONS
-from .standard_nodes import DEFINITIONS as STANDARD
 
 ACCESS_TYPES = ("initializeOnly", "inputOnly", "outputOnly", "inputOutput")
 
@@ -156,13 +156,39 @@ def _read(block: str) -> NodeType:
     return t
 
 
-# The hand-written types (with ranges and units), read at import
-NODE_TYPES: dict[str, NodeType] = {name: _read(block) for name, block in _blocks(DEFINITIONS).items()}
+class _Types(Mapping[str, NodeType]):
+    """Types by name, each read from its definition on first use (then always the same object):
+    a run reads the few its scene uses, where reading node_defs.py's every type at import cost
+    each `x3drbp run` 3 ms."""
+
+    def __init__(self, text: str):
+        self._blocks = _blocks(text)
+        self._read: dict[str, NodeType] = {}
+
+    def __getitem__(self, name: str) -> NodeType:
+        t = self._read.get(name)
+        if t is None:
+            t = self._read[name] = _read(self._blocks[name])
+        return t
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._blocks
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._blocks)
+
+    def __len__(self) -> int:
+        return len(self._blocks)
+
+
+# The hand-written types (with ranges and units)
+NODE_TYPES: Mapping[str, NodeType] = _Types(DEFINITIONS)
 
 
 @functools.cache
 def _standard_blocks() -> dict[str, str]:
     """Every other X3D 4.0 type's definition, generated from the UOM: split on first use."""
+    from .standard_nodes import DEFINITIONS as STANDARD  # 100 kB of text a run rarely needs
     return _blocks(STANDARD)
 
 

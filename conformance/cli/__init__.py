@@ -8,7 +8,6 @@ and importing every command's analyses cost it 0.3 s of its 0.7 s start.
 from __future__ import annotations
 
 import argparse
-import difflib
 import importlib
 import os
 import select
@@ -137,6 +136,7 @@ def _parsed(parser: argparse.ArgumentParser, sub: argparse._SubParsersAction, ar
 
 def _meant(command: argparse.ArgumentParser, extras: list[str]) -> str:
     """'; did you mean --duration?' for each unknown option close to one the command has."""
+    import difflib  # here: only a mistyped option needs it (every `x3drbp run` imported it)
     known = [o for action in command._actions for o in action.option_strings]
     meant = [close[0] for word in extras if word.startswith("-")
              for close in [difflib.get_close_matches(word.split("=", 1)[0], known, n=1)] if close]
