@@ -76,7 +76,7 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
                "weigh its agreement with the others)" if scene["reference"]["backend"] == best["backend"] else "")
         ref_error = scene["reference"]["error"]
         if ref_error > settings["tolerance"]:
-            own += (f"; the reference's own error ({num(ref_error)} m) exceeds the tolerance: errors under it "
+            own += (f"; the reference's uncertainty ({num(ref_error)} m) exceeds the tolerance: errors under it "
                     "cannot be told apart")
         lines += [head + f"{_run(best)} ({scene['said']})",
                   f"  error {num(best['error'])} m from the reference over the first {settings['window']:g} s "

@@ -90,7 +90,7 @@ def test_speed_ties_go_to_fewer_approximations_then_agreement_then_the_coarser_s
 def test_within_the_tolerance_is_never_said_beside_an_error_above_it():
     """1.2 mm passes within 1 mm plus a reference 0.5 mm off: said with the reference's error, not as within."""
     c = A.choose([_option("ode", 1 / 60, 1.2e-3, 0.01)], _judged(ode=0), 1.0, TOL, 5e-4)
-    assert c.rule == A.WITHIN and c.said.startswith("within the tolerance and the reference's own error (0.0005 m)")
+    assert c.rule == A.WITHIN and c.said.startswith("within the tolerance and the reference's uncertainty (0.0005 m)")
 
 
 def test_a_backend_failing_a_case_another_passes_is_not_recommended():
@@ -186,7 +186,7 @@ def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_
     settings = {"budget": 1.0, "tolerance": 1e-3, "window": 1.0, "duration": 5.0}
     text = "\n".join(scene_lines(scene, settings))
     assert "the reference is this backend's own run (fine run), which favours it" in text
-    assert "the reference's own error (0.0035 m) exceeds the tolerance" in text
+    assert "the reference's uncertainty (0.0035 m) exceeds the tolerance" in text
     assert text.startswith("s.x3d (contacts): mujoco at dt 1/240 (accuracy cannot be ranked on this scene")
     scene.update(reference={"backend": "drake", "method": S.ERROR_CONTROLLED, "dt": 1 / 240, "error": 1e-9,
                             "said": "drake's error-controlled RK3"}, rule=A.MOST_ACCURATE, said=A.MOST_ACCURATE)
@@ -210,3 +210,25 @@ def test_settings_past_a_run_s_bounds_are_bad_usage(args, says):
                        text=True, timeout=300)
     assert r.returncode == 2 and says in r.stderr and "Traceback" not in r.stderr, r.stderr
     assert r.stdout == ""
+
+
+def test_a_bouncing_ball_s_accuracy_cannot_be_ranked_and_is_ranked_by_speed(tmp_path, capsys):
+    """bounce_apex: Drake refuses its bounce, so MuJoCo's fine run is the reference, and Bullet's
+    fine run lies centimetres from it: the reference's uncertainty holds that spread, exceeds the
+    1 mm tolerance, and the advice says so and takes the fastest run it cannot place beyond it."""
+    out = tmp_path / "advice.json"
+    assert cli_main(["advise", case_scene("bounce_apex"), "--backends", "mujoco,bullet", "--dts", "1/60,1/240",
+                     "--duration", "1", "--repeats", "1", "--json", str(out), "-q"]) == 0
+    text = capsys.readouterr().out
+    (scene,) = json.loads(out.read_text())["scenes"]
+    ref = scene["reference"]
+    assert (ref["method"], ref["backend"], ref["events"], ref["spread_backend"]) == (S.FINE_RUN, "mujoco", True,
+                                                                                    "bullet")
+    assert ref["instead"].startswith("drake: unsupported")
+    assert ref["error"] == max(ref["own_error"], ref["spread"]) > TOL
+    assert scene["rule"] == A.CANNOT_RANK and "accuracy cannot be ranked on this scene" in text
+    assert ref["said"] in text
+    best = next(o for o in scene["options"] if (o["backend"], o["dt"]) == tuple(scene["recommended"].values()))
+    within = [o for o in scene["options"] if o["error"] is not None and o["error"] <= TOL + ref["error"]]
+    fastest = min(o["cpu_per_sim_s"] for o in within)  # one repeat: no spread, so a tie is the margins alone
+    assert best in within and best["cpu_per_sim_s"] - fastest <= max(A.SPEED_RESOLUTION, A.SPEED_RELATIVE * fastest)

@@ -19,13 +19,15 @@ the same step. The recommendation is a rule, stated here and in docs/commands/ad
    steps' CPU time in the child, not wall time: other load on the machine does not
    reorder them.
 3. Of the affordable runs, those within `tolerance` of the reference (error <= tolerance +
-   the reference's own error): the fastest by median. Accuracy beyond the tolerance is
-   not asked for, so a coarser step that is accurate enough wins. Where the reference's
-   own error exceeds the tolerance, accuracy cannot be ranked on the scene, and the
-   advice says so: of the runs the reference cannot tell from within the tolerance, the
-   fastest.
+   the reference's uncertainty: its own error, and on a scene with contacts or stops the
+   other backends' spread around it where larger, sweep.py): the fastest by median.
+   Accuracy beyond the tolerance is not asked for, so a coarser step that is accurate
+   enough wins. Where the reference's uncertainty exceeds the tolerance (a bouncing ball,
+   whose engines' fine runs lie centimetres apart), accuracy cannot be ranked on the scene,
+   and the advice says so: of the runs the reference cannot tell from within the
+   tolerance, the fastest.
 4. No affordable run within the tolerance: the most accurate affordable run (errors within
-   the reference's own error or rounding tie; the fastest of those).
+   the reference's uncertainty or rounding tie; the fastest of those).
 5. Nothing affordable: no recommendation; the fastest run is named with its cost. No
    recommendation either where no run ended well, or where every backend refuses a use
    the scene makes (a routed input, say: each refusal is listed).
@@ -67,7 +69,7 @@ JOINTS = ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJo
 WITHIN, CANNOT_RANK, MOST_ACCURATE, NONE_AFFORDABLE, NONE_RAN, NONE_CAN = (
     "within the tolerance", "accuracy cannot be ranked", "none within the tolerance: the most accurate",
     "nothing fits the budget", "no run ended well", "every backend refuses a use the scene makes")
-CANNOT_RANK_SAID = ("accuracy cannot be ranked on this scene (the reference's own error exceeds the tolerance); "
+CANNOT_RANK_SAID = ("accuracy cannot be ranked on this scene (the reference's uncertainty exceeds the tolerance); "
                     "ranked by speed among the runs it cannot place beyond the tolerance")
 # CPU s per simulated s: speeds closer than this are ties. Runs this cheap (1,000x real time)
 # are resolved by no measure under load (a busy sibling hyperthread doubled a 0.3 ms run's CPU
@@ -282,7 +284,7 @@ def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, 
             o, speed = _fastest(accurate, judged)
             rule = WITHIN if reference_error <= tolerance else CANNOT_RANK
             within = ("within the tolerance" if o.error <= tolerance else
-                      f"within the tolerance and the reference's own error ({reference_error:.3g} m)")
+                      f"within the tolerance and the reference's uncertainty ({reference_error:.3g} m)")
             return o, rule, f"{within if rule == WITHIN else CANNOT_RANK_SAID}: {speed}"
         least = min(o.error for o in group)
         o, speed = _fastest([o for o in group if same_error(o.error, least, reference_error)], judged)

@@ -35,6 +35,24 @@ Error, against one reference per scene, common to every backend:
      then large, and so is what the comparison cannot tell apart.
   Each Reference states which (method, said, to_json), and so do sweep.json, sweep.md and
   advise's text and JSON.
+  Scenes with events (contacts, joint stops; has_events): the trajectory is not smooth, a
+  run does not converge to the others' contact model by refining its own, and no engine's
+  contact model is the spec's (it names none), so a finer run of one engine is no truth for
+  the others. What accuracy can mean there is agreement: the reference's uncertainty
+  (Reference.error) is the larger of its own error and the spread of the compared backends'
+  fine runs around it (the farthest one's distance over the window), each such run being
+  as good a reading of the scene as the reference's. Errors within it tie on the fronts
+  (mark_pareto), and advise says accuracy cannot be ranked where it exceeds the tolerance,
+  ranking by speed what it cannot tell apart. Measured (1 s, mujoco reference at 1/1920):
+  bounce_apex, own error 21 mm, Bullet's fine run 27 mm from it, ODE's 20, PhysX's 19;
+  a 0.2 m box dropped 0.3 m onto a floor, own error 3.4 mm, DART's 5.5 mm, Drake's 5.2,
+  PhysX's and pymunk's 4.7, ODE's 63 mm (ODE's run at 1/960 is as far from its own: not
+  settled, but still what ODE makes of the scene at that step, so it is not discounted).
+  A scene with events and one backend has no spread, and its reference says so. Event
+  measures (first impact time, rebound apex, rest pose) are not taken: the pose error over
+  the window already holds each (a late impact leaves the body elsewhere, a low apex or a
+  wrong rest pose is a distance), where an event measure would need to know, per scene,
+  which body's which contact is the event.
 Self-consistency, beside it: each backend against its own run at that fine step, as a
 backend's convergence says nothing of whether it converges to what the others do.
 
@@ -60,6 +78,9 @@ import math
 import os
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, replace
+
+from x3d_core.analysis import run_features
+from x3d_core.load import load
 
 from conformance import cases as C
 from conformance import results
@@ -95,6 +116,7 @@ class Target:
     case: str | None  # closed form: this case's convergence measure; None: the common reference
     quantity: str
     window: float = DEFAULT_WINDOW  # s compared with the common reference
+    events: bool = False  # contacts or joint stops: its trajectory is not smooth (common reference only)
 
     @property
     def reference(self) -> str:
@@ -125,9 +147,18 @@ def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_
             raise ValueError(f"{name} is neither a case ({', '.join(C.BY_NAME)}) nor a scene file")
         label = name if case is not None else os.path.splitext(os.path.basename(path))[0]
         out.append(Target(label, _relative(path), fine, None,
-                          f"max |position - reference position| over the first {window:g} s", window))
+                          f"max |position - reference position| over the first {window:g} s", window, has_events(path)))
     # two scene files of one stem: numbered, as their plots are named after them
     return [replace(t, name=name) for t, name in zip(out, numbered([t.name for t in out]))]
+
+
+def has_events(path: str) -> bool:
+    """Whether a run of the scene has events (contacts or joint stops), where its trajectory is
+    not smooth; False where it does not load (its runs will say why)."""
+    scene = load(path)
+    if scene.errors:
+        return False
+    return any(f.startswith("CollisionCollection") or f.endswith(".limits") for f in run_features(scene))
 
 
 def numbered(names: Sequence[str]) -> list[str]:
@@ -251,7 +282,8 @@ def variations(plan: BackendPlan, iterations: Sequence[int], accuracy: Sequence[
 
 @dataclass(frozen=True)
 class Reference:
-    """A scene's common reference (no closed form): whose run, how it was made, and its own error."""
+    """A scene's common reference (no closed form): whose run, how it was made, its own error,
+    and on a scene with events the backends' spread around it."""
     backend: str
     dt: float  # s: its step (Drake's: the largest its integrator may take)
     own_error: float  # m: the estimate of its own error (module docstring)
@@ -259,6 +291,9 @@ class Reference:
     accuracy: float | None = None  # Drake's target accuracy (error-controlled); None: a fine fixed-step run
     check: str = ""  # what its own error is the distance from
     instead: str = ""  # a fine run: why Drake's error-controlled run is not the reference
+    events: bool = False  # the scene has contacts or joint stops: its trajectory is not smooth
+    spread: float = 0.0  # m: scenes with events: the farthest other backend's fine run from it
+    spread_backend: str | None = None  # ... whose it is; None: no other backend's fine run
 
     @property
     def method(self) -> str:
@@ -266,21 +301,31 @@ class Reference:
 
     @property
     def error(self) -> float:
-        """m: how far the reference may be from the truth: what errors tie within."""
-        return self.own_error
+        """m: how far the reference may be from what the scene means, what errors tie within: its
+        own error, or on a scene with events the backends' spread around it where larger."""
+        return max(self.own_error, self.spread)
 
     @property
     def said(self) -> str:
-        """The reference in words: what it is, its own error and how that was estimated."""
-        if self.accuracy is not None:
+        """The reference in words: what it is, its own error and how that was estimated, and
+        what bounds it on a scene with events."""
+        if self.accuracy is not None:  # never on a scene with events: Drake steps those at a fixed step
             return (f"{self.backend}'s error-controlled RK3 at target accuracy {self.accuracy:g} (steps of at most "
                     f"{results.dt_label(self.dt)} s), own error {self.own_error:.3g} m ({self.check})")
-        return (f"{self.backend}'s run at dt {results.dt_label(self.dt)} s, own error {self.own_error:.3g} m "
+        text = (f"{self.backend}'s run at dt {results.dt_label(self.dt)} s, own error {self.own_error:.3g} m "
                 f"({self.check})" + (f"; not Drake's error-controlled run: {self.instead}" if self.instead else ""))
+        if not self.events:
+            return text
+        if self.spread_backend is None:
+            return text + "; the scene has events (contacts or stops), and no other backend's fine run to measure it by"
+        return (text + f"; the scene has events (contacts or stops): the other backends' fine runs lie up to "
+                f"{self.spread:.3g} m from it ({self.spread_backend}), so errors within {self.error:.3g} m of "
+                "each other tie")
 
     def to_json(self) -> dict:
         return {"method": self.method, "backend": self.backend, "dt": self.dt, "accuracy": self.accuracy,
                 "own_error": self.own_error, "check": self.check, "instead": self.instead or None,
+                "events": self.events, "spread": self.spread, "spread_backend": self.spread_backend,
                 "error": self.error, "said": self.said}
 
 
@@ -336,7 +381,7 @@ def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequ
                         progress))
     ran = [(pair[0], next(done), next(done)) for pair in pairs]
     fine, drake = dict(zip(fine_jobs, ran[:len(fine_jobs)])), dict(zip(drake_jobs, ran[len(fine_jobs):]))
-    references = {t.name: common_reference(t.name, plans, fine, drake.get(t.name)) for t in common}
+    references = {t.name: common_reference(t.name, plans, fine, drake.get(t.name), t.events) for t in common}
     points, units, poses = [], {}, {}
     for key, job in keyed:
         res = next(done)
@@ -360,13 +405,36 @@ def drake_usable(plans: dict[str, BackendPlan], timeout: float) -> bool:
 
 def common_reference(scene: str, plans: dict[str, BackendPlan],
                      fine: dict[tuple[str, str], tuple[Job, JobResult, JobResult]],
-                     controlled: tuple[Job, JobResult, JobResult] | None = None) -> Reference | str:
+                     controlled: tuple[Job, JobResult, JobResult] | None = None, events: bool = False
+                     ) -> Reference | str:
     """The scene's common reference: Drake's error-controlled run where it ran as one
     (controlled: its run and its check at the looser target), else the fine run of the first
-    backend in REFERENCE_ORDER that ran both it and its check, saying why not Drake's. Else
-    why none could be."""
+    backend in REFERENCE_ORDER that ran both it and its check, saying why not Drake's; on a
+    scene with events, with the other backends' spread around it. Else why none could be."""
     ref = error_controlled(*controlled) if controlled is not None else "the drake backend is not available"
-    return fine_reference(scene, plans, fine, ref) if isinstance(ref, str) else ref
+    if isinstance(ref, str):
+        ref = fine_reference(scene, plans, fine, ref)
+    if isinstance(ref, str) or not events:
+        return ref
+    others = {b: (job.settings.duration, run.positions) for (s, b), (job, run, _) in fine.items()
+              if s == scene and b != ref.backend and run.positions is not None}
+    return with_spread(ref, others)
+
+
+def with_spread(ref: Reference, fine: dict[str, tuple[float, Positions]]) -> Reference:
+    """The reference of a scene with events, with the spread of the other backends' fine runs
+    (backend -> window, poses) around it: the largest distance of one from it over the window
+    (module docstring: what accuracy means on a scene with contacts). A run with other bodies
+    or frames says nothing of it and is left out."""
+    spread, whose = 0.0, None
+    for b, (window, runs) in sorted(fine.items()):
+        try:
+            gap = window_error(runs, ref.runs, window)
+        except ValueError:
+            continue
+        if whose is None or gap > spread:
+            spread, whose = gap, b
+    return replace(ref, events=True, spread=spread, spread_backend=whose)
 
 
 def error_controlled(job: Job, run: JobResult, check: JobResult) -> Reference | str:

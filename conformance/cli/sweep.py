@@ -98,7 +98,9 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], planned: dict[str, S.Backend
                      "self_error": "the largest distance of a body from the same backend's run at the fine step, "
                                    "over the window (scenes without a closed form)",
                      "ties": "points whose speed spreads overlap and whose errors differ by less than the "
-                             "reference's own error (or rounding) are one front point: the fastest stands for them"},
+                             "reference's uncertainty (its own error; on a scene with events, the other backends' "
+                             "spread around it where larger) or rounding are one front point: the fastest stands "
+                             "for them"},
         "settings": {**settings, "reference_refinement": S.REFINEMENT},
         "backends": {n: {"version": p.version, "iterations": p.iterations, "preferAccuracy": p.prefer_accuracy}
                      for n, p in planned.items()},
