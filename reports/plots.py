@@ -19,18 +19,18 @@ _MARKERS = "os^Dv<>p*h"
 def sweep_plot(doc: dict, scene: str, path: str) -> None:
     """Error against wall time per simulated second for one scene of a sweep (sweep.json's
     document), both axes logarithmic: a colour per backend, a line per (iterations,
-    preferAccuracy) through its steps in order, the scene's Pareto front ringed in black.
-    Points without an error (refused, crashed...) are not drawn; errors of exactly 0 are
+    preferAccuracy) through its steps in order, the scene's Pareto front ringed in black, and
+    a common reference's uncertainty as a dotted line (errors below it tie). Points without an error (refused, crashed...) are not drawn; errors of exactly 0 are
     drawn at a tenth of the smallest nonzero one, and the title says so. A scene with no
     point to draw gets a plot that says so (log axes of nothing are matplotlib's error)."""
     info = next(s for s in doc["scenes"] if s["name"] == scene)
     points = measured([p for p in doc["points"] if p["scene"] == scene])
     fig, ax = plt.subplots(figsize=(10, 6))
     method = info.get("reference_method")
-    title = f"{scene}: {info['reference']}" + (f" ({info['reference_backend']}'s {method} run)" if method else "")
+    title = f"{scene}: {info['reference']}" + (f" ({info['reference_backend']}, {method})" if method else "")
     title += f", {info['quantity']}"
     if points:
-        title += _draw(ax, doc, points, info["unit"])
+        title += _draw(ax, doc, points, info["unit"], info.get("reference_error"))
     else:
         ax.axis("off")
         ax.text(0.5, 0.5, f"no results: {NO_RESULTS}", ha="center", va="center", transform=ax.transAxes)
@@ -42,8 +42,9 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     plt.close(fig)
 
 
-def _draw(ax, doc: dict, points: list[dict], unit: str) -> str:
-    """The points on log axes; what the title adds (the floor that errors of 0 are drawn at)."""
+def _draw(ax, doc: dict, points: list[dict], unit: str, uncertainty: float | None) -> str:
+    """The points on log axes, and the reference's uncertainty where it has one above 0; what
+    the title adds (the floor that errors of 0 are drawn at)."""
     nonzero = [p["error"] for p in points if p["error"] > 0]
     floor = min(nonzero) / 10 if nonzero else 1e-16
     for b, backend in enumerate(doc["backends"]):  # a backend keeps its colour in every plot
@@ -63,6 +64,9 @@ def _draw(ax, doc: dict, points: list[dict], unit: str) -> str:
     for p in front:
         ax.annotate(p["dt_label"], (p["wall_per_sim_s"], max(p["error"], floor)), textcoords="offset points",
                     xytext=(6, 6), fontsize=8)
+    if uncertainty:
+        ax.axhline(uncertainty, color="black", linestyle=":", linewidth=1,
+                   label=f"the reference's uncertainty ({uncertainty:.3g} {unit}): errors below it tie")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time in the engine's steps per simulated second (s), median of the repeats and spread")

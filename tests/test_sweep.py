@@ -349,3 +349,19 @@ def test_the_spread_is_the_farthest_comparable_fine_run():
     alone = S.with_spread(ref, {})
     assert (alone.events, alone.spread_backend, alone.error) == (True, None, 1e-3)
     assert "no other backend's fine run to measure it by" in alone.said
+
+
+def test_the_plot_draws_the_reference_s_uncertainty_below_which_errors_tie():
+    import matplotlib.pyplot as plt
+    from reports.plots import _draw
+    point = {"backend": BACKEND, "dt": 1 / 60, "dt_label": "1/60", "iterations": None, "prefer_accuracy": None,
+             "error": 0.05, "wall_per_sim_s": 1e-3, "wall_low": 1e-3, "wall_high": 1e-3, "pareto_scene": True,
+             "tie_scene": None}
+    fig, ax = plt.subplots()
+    _draw(ax, {"backends": {BACKEND: {}}}, [point], "m", 0.0268)
+    (line,) = [ln for ln in ax.get_lines() if "uncertainty" in ln.get_label()]
+    assert list(line.get_ydata()) == [0.0268, 0.0268] and "errors below it tie" in line.get_label()
+    ax.clear()
+    _draw(ax, {"backends": {BACKEND: {}}}, [point], "m", None)  # a closed form: no line
+    assert not [ln for ln in ax.get_lines() if "uncertainty" in ln.get_label()]
+    plt.close(fig)
