@@ -21,9 +21,10 @@ Error, against one reference per scene, common to every backend:
      cap, sets the step at 1/240 (3,300 steps at 1e-9 and 14,600 at 1e-11 against 240
      boundaries); at 1/4000 the cap binds the looser run in part (5,000 steps against 4,000),
      which makes it more accurate than its target and the estimate smaller (2.9e-11 m against
-     7e-11), yet still some 40 times the tighter run's error. A finest swept step fine enough
-     to bind both runs (below about 1/15,000 s there, the tighter run's own step) would make
-     the estimate too small; the default steps (finest 1/4000) do not. The mode is
+     7e-11), yet still some 40 times the tighter run's error. A cap fine enough to bind both
+     runs (below about 1/15,000 s there, the tighter run's own step) may make the estimate too
+     small, but only where the tighter run then steps finer than its target asks, so its error
+     is at most what the target gives (7e-13 m there, rounding). The mode is
      picked per world inside the backend, so the child says whether every world was
      error-controlled (x3d_core.engine.target_accuracy, in `run --timing`'s file): a run
      Drake stepped in discrete mode is never taken for this reference.
