@@ -33,8 +33,11 @@ the pile, being chaotic, as pile.py checks it (every body to pile.AGREE at pile.
 before any contact, and the final mean height to PILE_HEIGHT_SAME, 1 cm). A backend without a
 native build of a scene (native_run.SCENES) is listed as such; pymunk (2D) has none.
 
+With --against REV, a third side: `x3drbp run` of revision REV (its files from git archive,
+run with `python -m conformance.cli` in that tree), for a before and after in one run.
+
     python benchmarks/engine_speed.py [--duration 2] [--repeat 5] [--backends mujoco,bullet,dart,ode,physx,drake]
-                                      [--scenes chain,car,pile]
+                                      [--scenes chain,car,pile] [--against REV]
 """
 
 from __future__ import annotations
@@ -49,11 +52,12 @@ import tempfile
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path[:0] = [os.path.dirname(HERE), HERE]
+ROOT = os.path.dirname(HERE)
+sys.path[:0] = [ROOT, HERE]
 
 import car  # noqa: E402  (benchmarks/car.py, beside this script)
 import native_run  # noqa: E402
-from measure import compiled_env, process_cpu  # noqa: E402
+from measure import compiled_env, process_cpu, tree_at  # noqa: E402
 import pile  # noqa: E402
 import run_overhead  # noqa: E402
 from x3d_core.trace import read_view  # noqa: E402
@@ -103,16 +107,23 @@ def _load(averages: tuple[float, float, float]) -> str:
 
 
 def _ratio(ours: float, native: float) -> str:
-    return f"{ours / native:.2f}x" + ("" if ours / native <= TARGET else f" (over {TARGET}x)")
+    return f"{ours / native:.3f}x" + ("" if ours / native <= TARGET else f" (over {TARGET}x)")
 
 
-def _commands(scene: str, backend: str, path: str, duration: float, out: str) -> tuple[list[str], list[str]]:
-    """The native and the x3drbp command of one case, writing OUT.npy, OUT-native.json, OUT.npz and OUT.json."""
-    x3drbp = os.path.join(os.path.dirname(sys.executable), "x3drbp")
-    return ([sys.executable, os.path.join(HERE, "native_run.py"), backend, scene, repr(duration), out + ".npy",
-             out + "-native.json"],
-            [x3drbp, "run", path, "--backend", backend, "--dt", repr(DT), "--duration", repr(duration),
-             "--trace", out + ".npz", "--timing", out + ".json"])
+def _commands(scene: str, backend: str, path: str, duration: float, out: str,
+              before: str | None) -> list[tuple[list[str], str, str]]:
+    """Each side's command of one case, the folder it runs in and the timing JSON it writes: the native
+    script (OUT.npy, OUT-native.json), `x3drbp run` (OUT.npz, OUT.json) and, with before (a tree of an
+    earlier revision), that revision's (OUT-before.npz, OUT-before.json)."""
+    run = ["run", path, "--backend", backend, "--dt", repr(DT), "--duration", repr(duration), "--trace"]
+    sides = [([sys.executable, os.path.join(HERE, "native_run.py"), backend, scene, repr(duration), out + ".npy",
+               out + "-native.json"], ROOT, out + "-native.json"),
+             ([os.path.join(os.path.dirname(sys.executable), "x3drbp"), *run, out + ".npz", "--timing",
+               out + ".json"], ROOT, out + ".json")]
+    if before:
+        sides.append(([sys.executable, "-m", "conformance.cli", *run, out + "-before.npz", "--timing",
+                       out + "-before.json"], before, out + "-before.json"))
+    return sides
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -121,6 +132,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--backends", default="mujoco,bullet,dart,ode,physx,drake")
     ap.add_argument("--scenes", default="chain,car,pile")
+    ap.add_argument("--against", metavar="REV", help="also time `x3drbp run` of this revision (git archive), "
+                    "as a third side taking turns with the others")
     args = ap.parse_args(argv)
     cases, missing = [], []
     for scene in args.scenes.split(","):
@@ -129,42 +142,45 @@ def main(argv: list[str] | None = None) -> int:
     load_before = os.getloadavg()
     with tempfile.TemporaryDirectory(prefix="x3drbp-engine-speed-") as tmp:
         env = compiled_env(tmp, MUJOCO_GL=os.environ.get("MUJOCO_GL", "disable"))  # what x3drbp sets for itself
+        before = tree_at(args.against, ROOT, tmp) if args.against else None
         paths = scene_files(tmp)
         commands = {}
         for scene, backend in cases:
             duration = min(args.duration, CAPPED.get((scene, backend), args.duration))
             out = os.path.join(tmp, f"{scene}-{backend}")
-            commands[scene, backend] = (*_commands(scene, backend, paths[scene], duration, out), duration, out)
-            for cmd in _commands(scene, backend, paths[scene], 1 / FRAME_RATE, out):  # the bytecode cache filled
-                process_cpu(cmd, env=env)
-        # per case, per side (native, x3drbp): per round (process CPU, simulation CPU, steps CPU)
-        times = {case: ([], []) for case in cases}
+            commands[scene, backend] = (_commands(scene, backend, paths[scene], duration, out, before), duration, out)
+            for cmd, cwd, _ in _commands(scene, backend, paths[scene], 1 / FRAME_RATE, out, before):
+                process_cpu(cmd, cwd=cwd, env=env)  # the bytecode cache filled
+        # per case, per side (native, x3drbp, x3drbp before): per round (process CPU, simulation CPU, steps CPU)
+        times = {case: [[] for _ in sides] for case, (sides, _, _) in commands.items()}
         for _ in range(args.repeat):
-            for case, (native, ours, _, out) in commands.items():
-                for side, cmd, timing in ((0, native, out + "-native.json"), (1, ours, out + ".json")):
-                    cpu = process_cpu(cmd, env=env)
+            for case, (sides, _, _) in commands.items():
+                for k, (cmd, cwd, timing) in enumerate(sides):
+                    cpu = process_cpu(cmd, cwd=cwd, env=env)
                     with open(timing, encoding="utf-8") as f:
                         own = json.load(f)
-                    times[case][side].append((cpu, own["simulation_cpu_s"], own.get("step_cpu_s", 0.0)))
-        checks = {case: agreement(case[0], out + ".npz", out + ".npy") for case, (_, _, _, out) in commands.items()}
+                    times[case][k].append((cpu, own["simulation_cpu_s"], own.get("step_cpu_s", 0.0)))
+        checks = {case: agreement(case[0], out + ".npz", out + ".npy") for case, (_, _, out) in commands.items()}
     load_after = os.getloadavg()
     print(f"dt 1/240 s, frames at {FRAME_RATE}/s; whole processes taking turns, median of {args.repeat}; "
           f"{os.cpu_count()} CPUs, load average (1, 5, 15 min) {_load(load_before)} before, {_load(load_after)} "
           "after\n")
+    earlier = f" | process CPU s x3drbp at {args.against} | ratio" if args.against else ""
     print("| scene | backend | simulated s | process CPU s native / x3drbp | ratio | simulation CPU s native / x3drbp "
-          "| ratio | x3drbp steps CPU s | max position difference |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---|")
+          f"| ratio | x3drbp steps CPU s | max position difference{earlier} |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---|" + ("---:|---:|" if args.against else ""))
     failed = False
-    for case, (native, ours) in times.items():
-        (n_cpu, n_sim, _), (o_cpu, o_sim, o_steps) = ([statistics.median(t[k] for t in side) for k in (0, 1, 2)]
-                                                      for side in (native, ours))
+    for case, sides in times.items():
+        (n_cpu, n_sim, _), (o_cpu, o_sim, o_steps), *rest = ([statistics.median(t[k] for t in side)
+                                                              for k in (0, 1, 2)] for side in sides)
         gap, ok, what = checks[case]
         failed |= not ok
-        print(f"| {case[0]} | {case[1]} | {commands[case][2]:g} | {n_cpu:.3f} / {o_cpu:.3f} | {_ratio(o_cpu, n_cpu)} | "
+        then = "".join(f" | {b_cpu:.3f} | {_ratio(b_cpu, n_cpu)}" for b_cpu, _, _ in rest)
+        print(f"| {case[0]} | {case[1]} | {commands[case][1]:g} | {n_cpu:.3f} / {o_cpu:.3f} | {_ratio(o_cpu, n_cpu)} | "
               f"{n_sim:.3f} / {o_sim:.3f} | {_ratio(o_sim, n_sim)} | {o_steps:.3f} | "
-              f"{gap:.1e} m ({what}){'' if ok else ' NOT THE SAME'} |")
+              f"{gap:.1e} m ({what}){'' if ok else ' NOT THE SAME'}{then} |")
     for scene, backend in missing:
-        print(f"| {scene} | {backend} | no native build written | | | | | | |")
+        print(f"| {scene} | {backend} | no native build written | | | | | | |" + (" | |" if args.against else ""))
     return 1 if failed else 0
 
 

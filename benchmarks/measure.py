@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import gc
+import io
 import os
 import resource
 import subprocess
+import tarfile
 import time
 import tracemalloc
 from typing import Any, Callable
@@ -62,3 +64,13 @@ def compiled_env(folder: str, **extra: str) -> dict[str, str]:
     env = dict(os.environ, PYTHONPYCACHEPREFIX=os.path.join(folder, "pycache"), **extra)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     return env
+
+
+def tree_at(rev: str, root: str, folder: str) -> str:
+    """The files of revision rev of the git checkout at root (git archive), unpacked under folder:
+    a command run there with `python -m` (cwd the tree) runs that revision's x3drbp."""
+    data = subprocess.run(["git", "-C", root, "archive", rev], check=True, capture_output=True).stdout
+    out = os.path.join(folder, f"tree-{rev}")
+    with tarfile.open(fileobj=io.BytesIO(data)) as tar:
+        tar.extractall(out, filter="data")
+    return out

@@ -22,12 +22,9 @@ of each over --repeat runs, and what x3drbp adds over numpy and lxml.
 from __future__ import annotations
 
 import argparse
-import io
 import os
 import statistics
-import subprocess
 import sys
-import tarfile
 import tempfile
 import time
 
@@ -37,7 +34,7 @@ sys.path.insert(0, ROOT)
 from conformance.results import Settings  # noqa: E402
 from conformance.runner import children, fork_server  # noqa: E402
 
-from measure import compiled_env, process_cpu  # noqa: E402  (benchmarks/measure.py, beside this script)
+from measure import compiled_env, process_cpu, tree_at  # noqa: E402  (benchmarks/measure.py, beside this script)
 
 SCENE = os.path.join("scenes", "examples", "pendulum.x3d")
 
@@ -48,15 +45,6 @@ def _warm(backend: str, trace: str) -> float:
     if out.verdict is not None:
         raise SystemExit(f"the warm run on {backend} failed: {out.verdict}: {out.reason}")
     return time.perf_counter() - started
-
-
-def _tree(rev: str, folder: str) -> str:
-    """REV's files (git archive) unpacked under folder: its x3drbp, run from there."""
-    data = subprocess.run(["git", "-C", ROOT, "archive", rev], check=True, capture_output=True).stdout
-    out = os.path.join(folder, "tree")
-    with tarfile.open(fileobj=io.BytesIO(data)) as tar:
-        tar.extractall(out, filter="data")
-    return out
 
 
 def main() -> int:
@@ -71,7 +59,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as tmp:
         env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1") if args.no_cache else compiled_env(tmp)
         trace = os.path.join(tmp, "t.csv")
-        trees = {"": ROOT} | ({f" at {args.against}": _tree(args.against, tmp)} if args.against else {})
+        trees = {"": ROOT} | ({f" at {args.against}": tree_at(args.against, ROOT, tmp)} if args.against else {})
         commands = {"python -c pass": ([sys.executable, "-c", "pass"], ROOT),
                     "import numpy, lxml": ([sys.executable, "-c", "import numpy, lxml.etree"], ROOT)}
         for b in backends:
