@@ -20,9 +20,10 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     """Error against wall time per simulated second for one scene of a sweep (sweep.json's
     document), both axes logarithmic: a colour per backend, a line per (iterations,
     preferAccuracy) through its steps in order, the scene's Pareto front ringed in black, and
-    a common reference's uncertainty as a dotted line (errors below it tie). Points without an error (refused, crashed...) are not drawn; errors of exactly 0 are
-    drawn at a tenth of the smallest nonzero one, and the title says so. A scene with no
-    point to draw gets a plot that says so (log axes of nothing are matplotlib's error)."""
+    a common reference's uncertainty as a dotted line (errors below it tie). Points without
+    an error (refused, crashed...) are not drawn; errors of exactly 0 are drawn at a tenth of
+    the smallest nonzero one, and the title says so. A scene with no point to draw gets a
+    plot that says so (log axes of nothing are matplotlib's error)."""
     info = next(s for s in doc["scenes"] if s["name"] == scene)
     points = measured([p for p in doc["points"] if p["scene"] == scene])
     fig, ax = plt.subplots(figsize=(10, 6))

@@ -217,14 +217,16 @@ def test_a_bouncing_ball_s_accuracy_cannot_be_ranked_and_is_ranked_by_speed(tmp_
     fine run lies centimetres from it: the reference's uncertainty holds that spread, exceeds the
     1 mm tolerance, and the advice says so and takes the fastest run it cannot place beyond it."""
     out = tmp_path / "advice.json"
-    assert cli_main(["advise", case_scene("bounce_apex"), "--backends", "mujoco,bullet", "--dts", "1/60,1/240",
-                     "--duration", "1", "--repeats", "1", "--json", str(out), "-q"]) == 0
+    assert cli_main(["advise", case_scene("bounce_apex"), "--backends", "mujoco,bullet,physx,drake", "--dts",
+                     "1/60,1/240", "--duration", "1", "--repeats", "1", "--json", str(out), "-q"]) == 0
     text = capsys.readouterr().out
     (scene,) = json.loads(out.read_text())["scenes"]
     ref = scene["reference"]
     assert (ref["method"], ref["backend"], ref["events"], ref["spread_backend"]) == (S.FINE_RUN, "mujoco", True,
                                                                                     "bullet")
     assert ref["instead"].startswith("drake: unsupported")
+    assert {o["backend"] for o in scene["options"] if o["error"] is not None} == {"mujoco", "bullet", "physx"}
+    assert "bounce" in scene["judged"]["drake"]["refused"][0]  # drake refuses it, and says so
     assert ref["error"] == max(ref["own_error"], ref["spread"]) > TOL
     assert scene["rule"] == A.CANNOT_RANK and "accuracy cannot be ranked on this scene" in text
     assert ref["said"] in text

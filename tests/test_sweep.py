@@ -298,10 +298,13 @@ def test_the_error_controlled_reference_needs_both_runs_error_controlled():
 def test_sweep_json_and_markdown_say_which_reference(tmp_path):
     _drake()
     out = tmp_path / "sweep"
-    assert cli_main(["sweep", "--scenes", case_scene("double_pendulum_energy"), "--backends", BACKEND, "--dts",
-                     "1/60,1/240", "--iterations", "10", "--accuracy", "false", "--repeats", "1", "--out", str(out),
-                     "--workers", "2", "-q"]) == 0
+    assert cli_main(["sweep", "--scenes", case_scene("double_pendulum_energy"), "--backends", f"{BACKEND},physx,drake",
+                     "--dts", "1/60,1/240", "--iterations", "10", "--accuracy", "false", "--repeats", "1", "--out",
+                     str(out), "--workers", "2", "-q"]) == 0
     doc = json.loads((out / "sweep.json").read_text())
+    # the two newest backends are swept and on their own fronts like the others
+    assert {p["backend"] for p in doc["points"] if p["pareto_backend"] and p["error"] is not None} == \
+        {BACKEND, "physx", "drake"}
     (scene,) = doc["scenes"]
     assert (scene["reference_method"], scene["reference_backend"], scene["reference_accuracy"]) == \
         (S.ERROR_CONTROLLED, "drake", 1e-11)

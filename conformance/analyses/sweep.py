@@ -374,7 +374,8 @@ def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequ
     if controlled is None:
         controlled = drake_usable(plans, timeout)
     common = [t for t in chosen if t.case is None]
-    fine_jobs = {(t.name, b): _fine_jobs(t, plan, dts, iterations, timeout) for t in common for b, plan in plans.items()}
+    fine_jobs = {(t.name, b): _fine_jobs(t, plan, dts, iterations, timeout)
+                 for t in common for b, plan in plans.items()}
     drake_jobs = {t.name: _controlled_jobs(t, dts, timeout) for t in common} if controlled else {}
     keyed = [(Point(t.name, plan.name, dt, its, acc),
               Job(t.scene, plan.name, t.settings.with_dt(dt), its, acc, t.case, timeout, repeats))
