@@ -371,9 +371,9 @@ def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequ
     each target without a closed form's reference runs: every backend's fine run and, where
     `controlled` (None: wherever the drake backend is usable, compared or not), Drake's
     error-controlled one. Empty iterations or accuracy: the scene's own."""
-    if controlled is None:
-        controlled = drake_usable(plans, timeout)
     common = [t for t in chosen if t.case is None]
+    if controlled is None:  # asked of a child only where some scene needs a reference run
+        controlled = bool(common) and drake_usable(plans, timeout)
     fine_jobs = {(t.name, b): _fine_jobs(t, plan, dts, iterations, timeout)
                  for t in common for b, plan in plans.items()}
     drake_jobs = {t.name: _controlled_jobs(t, dts, timeout) for t in common} if controlled else {}
