@@ -53,24 +53,24 @@ def _draw(ax, doc: dict, points: list[dict], unit: str, uncertainty: float | Non
         for v, var in enumerate(dict.fromkeys(variation(p) for p in mine)):
             line = sorted((p for p in mine if variation(p) == var), key=lambda p: -p["dt"])
             its, acc = var.split(" | ")
-            x = [p["wall_per_sim_s"] for p in line]
-            spread = [[m - (p.get("wall_low") or m) for m, p in zip(x, line)],
-                      [(p.get("wall_high") or m) - m for m, p in zip(x, line)]]
+            x = [p["cpu_per_sim_s"] for p in line]
+            spread = [[m - (p.get("cpu_low") or m) for m, p in zip(x, line)],
+                      [(p.get("cpu_high") or m) - m for m, p in zip(x, line)]]
             ax.errorbar(x, [max(p["error"], floor) for p in line], xerr=spread, color=f"C{b}",
                         marker=_MARKERS[v % len(_MARKERS)], linestyle="--" if acc == "TRUE" else "-",
                         label=f"{backend} it={its} acc={acc}", alpha=0.8, capsize=2)
     front = [p for p in points if p["pareto_scene"] and p.get("tie_scene") is None]
-    ax.scatter([p["wall_per_sim_s"] for p in front], [max(p["error"], floor) for p in front], s=180,
+    ax.scatter([p["cpu_per_sim_s"] for p in front], [max(p["error"], floor) for p in front], s=180,
                facecolors="none", edgecolors="black", linewidths=1.5, label="Pareto front (all backends)", zorder=3)
     for p in front:
-        ax.annotate(p["dt_label"], (p["wall_per_sim_s"], max(p["error"], floor)), textcoords="offset points",
+        ax.annotate(p["dt_label"], (p["cpu_per_sim_s"], max(p["error"], floor)), textcoords="offset points",
                     xytext=(6, 6), fontsize=8)
     if uncertainty:
         ax.axhline(uncertainty, color="black", linestyle=":", linewidth=1,
                    label=f"the reference's uncertainty ({uncertainty:.3g} {unit}): errors below it tie")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall time in the engine's steps per simulated second (s), median of the repeats and spread")
+    ax.set_xlabel("CPU time in the engine's steps per simulated second (s), median of the repeats and spread")
     ax.set_ylabel(f"error ({unit})" if unit else "error")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))

@@ -109,10 +109,10 @@ def sweep_findings(doc: dict) -> list[str]:
             continue
         unit = f" {scene['unit']}" if scene["unit"] else ""
         best = min(front, key=lambda p: p["error"])
-        fast = min(front, key=lambda p: p["wall_per_sim_s"])
+        fast = min(front, key=lambda p: p["cpu_per_sim_s"])
         out.append(f"{scene['name']}: most accurate {best['label']} (error {num(best['error'])}{unit}, "
-                   f"{num(best['wall_per_sim_s'])} s per simulated s); fastest {fast['label']} "
-                   f"({num(fast['wall_per_sim_s'])} s per simulated s, error {num(fast['error'])}{unit})")
+                   f"{num(best['cpu_per_sim_s'])} CPU s per simulated s); fastest {fast['label']} "
+                   f"({num(fast['cpu_per_sim_s'])} CPU s per simulated s, error {num(fast['error'])}{unit})")
     return out
 
 

@@ -12,7 +12,7 @@ NO_RESULTS = "no run gave both an error and a speed"  # what "no results" means,
 def measured(points: list[dict]) -> list[dict]:
     """The points that can be drawn and ranked: those with an error and a speed (a refused,
     crashed or timed-out run has neither)."""
-    return [p for p in points if p["error"] is not None and p["wall_per_sim_s"] is not None]
+    return [p for p in points if p["error"] is not None and p["cpu_per_sim_s"] is not None]
 
 
 def variation(p: dict) -> str:
@@ -23,10 +23,10 @@ def variation(p: dict) -> str:
 
 
 def speed(p: dict) -> str:
-    """A point's median speed and its repeats' spread."""
-    if p.get("wall_low") is None or p["wall_low"] == p["wall_high"]:
-        return num(p["wall_per_sim_s"])
-    return f"{num(p['wall_per_sim_s'])} ({num(p['wall_low'])}-{num(p['wall_high'])})"
+    """A point's median speed (CPU time) and its repeats' spread."""
+    if p.get("cpu_low") is None or p["cpu_low"] == p["cpu_high"]:
+        return num(p["cpu_per_sim_s"])
+    return f"{num(p['cpu_per_sim_s'])} ({num(p['cpu_low'])}-{num(p['cpu_high'])})"
 
 
 def _rows(points: list[dict], unit: str, front: str, every: list[dict]) -> list[str]:
@@ -34,10 +34,10 @@ def _rows(points: list[dict], unit: str, front: str, every: list[dict]) -> list[
     point that stands for them."""
     unit = f" ({unit})" if unit else ""
     tie = "tie_scene" if front == "pareto_scene" else "tie_backend"
-    lines = ["| backend | dt | iterations | preferAccuracy | wall s per simulated s (spread) | error" + unit +
+    lines = ["| backend | dt | iterations | preferAccuracy | CPU s per simulated s (spread) | error" + unit +
              " | self-consistency | ties |", "|---|---|---:|---|---:|---:|---:|---|"]
     heads = [p for p in points if p[front] and p[tie] is None]
-    for p in sorted(heads, key=lambda p: (p["backend"], p["wall_per_sim_s"])):
+    for p in sorted(heads, key=lambda p: (p["backend"], p["cpu_per_sim_s"])):
         ties = ", ".join(q["label"] for q in every if q[tie] == p["label"])
         lines.append(f"| {p['backend']} | {p['dt_label']} | {variation(p)} | {speed(p)} | {num(p['error'])} | "
                      f"{num(p.get('self_error'))} | {escape(ties)} |")

@@ -34,6 +34,17 @@ def test_pareto_front_is_exact_without_spread_or_tolerance():
     assert pareto(_exact(1.0, 1.0), [2.0, 1.0]) == [None, 1]  # equal speed: the more accurate one only
 
 
+def test_fronts_rank_by_cpu_time_which_load_does_not_reorder():
+    """Under a busy machine a run's wall time stretches while its CPU time stays: the run whose
+    wall time a neighbour stretched is still the faster one on the front."""
+    quiet = S.Point("s", "bullet", 1 / 60, None, None, error=0.1, wall_per_sim_s=0.004, wall_low=0.004,
+                    wall_high=0.004, cpu_per_sim_s=0.003, cpu_low=0.003, cpu_high=0.003)
+    busy = S.Point("s", "mujoco", 1 / 60, None, None, error=0.1, wall_per_sim_s=0.009, wall_low=0.009,
+                   wall_high=0.009, cpu_per_sim_s=0.001, cpu_low=0.001, cpu_high=0.001)
+    S.mark_pareto([quiet, busy])
+    assert busy.pareto_scene and not quiet.pareto_scene and busy.cost.median == 0.001 and busy.wall.median == 0.009
+
+
 def test_pareto_merges_ties_within_the_spread_and_the_reference_error():
     # pymunk's 10 and 50 iterations of free motion: errors apart by rounding, speeds within
     # each other's spread: one front point, the faster median standing for both
@@ -125,6 +136,7 @@ def test_sweep_command_writes_json_markdown_and_plot(tmp_path):
         [("1/60", 10, False), ("1/240", 10, False)]
     assert all(p["verdict"] == results.PASS and 0 < p["wall_per_sim_s"] < p["simulation_per_sim_s"] for p in points)
     assert all(p["wall_low"] <= p["wall_per_sim_s"] <= p["wall_high"] for p in points)
+    assert all(0 < p["cpu_low"] <= p["cpu_per_sim_s"] <= p["cpu_high"] for p in points)
     assert doc["settings"]["repeats"] == S.REPEATS
     # semi-implicit Euler's position error is first order: a quarter of the step, a quarter of the error
     assert points[1]["error"] / points[0]["error"] == pytest.approx(0.25, rel=0.05)
@@ -184,7 +196,7 @@ def test_without_drake_every_backend_is_measured_against_one_fine_run(tmp_path):
         assert p.verdict == "measured" and p.iterations is None and p.prefer_accuracy is None
         # the reference backend's points: its own fine run is the common reference
         assert (p.error == p.self_error) == (p.backend == ref.backend)
-        assert p.wall_low <= p.wall_per_sim_s <= p.wall_high
+        assert p.wall_low <= p.wall_per_sim_s <= p.wall_high and p.cost.low <= p.cost.median <= p.cost.high
     assert any(p.pareto_scene for p in sweep.points)
     assert set(sweep.positions) == {("double_pendulum_energy", b, dt) for b in plans for dt in (1 / 60, 1 / 240)}
 
@@ -358,7 +370,7 @@ def test_the_plot_draws_the_reference_s_uncertainty_below_which_errors_tie():
     import matplotlib.pyplot as plt
     from reports.plots import _draw
     point = {"backend": BACKEND, "dt": 1 / 60, "dt_label": "1/60", "iterations": None, "prefer_accuracy": None,
-             "error": 0.05, "wall_per_sim_s": 1e-3, "wall_low": 1e-3, "wall_high": 1e-3, "pareto_scene": True,
+             "error": 0.05, "cpu_per_sim_s": 1e-3, "cpu_low": 1e-3, "cpu_high": 1e-3, "pareto_scene": True,
              "tie_scene": None}
     fig, ax = plt.subplots()
     _draw(ax, {"backends": {BACKEND: {}}}, [point], "m", 0.0268)

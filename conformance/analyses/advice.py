@@ -63,7 +63,7 @@ from conformance.analyses.sweep_metrics import Cost, Positions, same_error, shar
 
 DEFAULT_DTS = (1 / 60, 1 / 240, 1 / 1000)
 DEFAULT_DURATION = 5.0  # s: how long the runs are watched for parting
-DEFAULT_BUDGET = 1.0  # wall s in the engine's steps per simulated s: real time
+DEFAULT_BUDGET = 1.0  # CPU s in the engine's steps per simulated s: real time
 DEFAULT_TOLERANCE = 1e-3  # m from the reference over the window: the 1 mm compare holds runs to
 JOINTS = ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint", "UniversalJoint", "MotorJoint")
 WITHIN, CANNOT_RANK, MOST_ACCURATE, NONE_AFFORDABLE, NONE_RAN, NONE_CAN = (
@@ -315,7 +315,7 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
         swept = (S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, repeats, controlled)
                  if able else None)
         options = [] if swept is None else [
-            Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cpu, wall=p.cost) for p in swept.points]
+            Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cost, wall=p.wall) for p in swept.points]
         if swept is not None:
             for o in options:
                 mine = swept.positions.get((target.name, o.backend, o.dt))

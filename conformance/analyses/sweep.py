@@ -60,14 +60,16 @@ Error, against one reference per scene, common to every backend:
 Self-consistency, beside it: each backend against its own run at that fine step, as a
 backend's convergence says nothing of whether it converges to what the others do.
 
-Speed: wall time per simulated second, the child's own measure (`x3drbp run --timing`) of
+Speed: CPU time per simulated second, the child's own measure (`x3drbp run --timing`) of
 the time spent in the engine's steps, over the run's simulated seconds: the integration cost
 that a long simulation pays; the median of REPEATS runs in the child, with their spread.
-Not counted: interpreter start-up, imports, loading the scene, building the engine model
-(which dominates short runs at coarse steps: 20-50 ms on Bullet against microseconds a
-step), the evaluator's per-frame state reads and outputs, writing the trace. The whole
-simulation's time (build, steps, reads) is kept beside it. Runs share the machine with each
-other (as many at a time as the executor has workers): a speed under that load.
+CPU time, not wall time, ranks: runs share the machine with each other (as many at a time as
+the executor has workers) and with whatever else runs, and that load stretches and reorders
+wall times where a process's own CPU time stays (advise ranks by it too); the wall time of
+the same steps is kept beside it. Not counted: interpreter start-up, imports, loading the
+scene, building the engine model (which dominates short runs at coarse steps: 20-50 ms on
+Bullet against microseconds a step), the evaluator's per-frame state reads and outputs,
+writing the trace. The whole simulation's wall time (build, steps, reads) is kept beside it.
 
 Fronts: points whose speeds' spreads overlap and whose errors differ by less than the
 reference's own error (or rounding) are ties, one front point (sweep_metrics.pareto).
@@ -250,21 +252,24 @@ class Point:
     tie_scene: str | None = None
 
     @property
-    def cpu(self) -> Cost | None:
-        """The engine's steps' CPU time per simulated second, with its spread (None before it is measured)."""
+    def cost(self) -> Cost | None:
+        """What speed is ranked by: the engine's steps' CPU time per simulated second, with its
+        spread (None before it is measured). Not wall time: runs share the machine with each
+        other and with whatever else runs, and load reorders wall times but not CPU times."""
         return None if self.cpu_per_sim_s is None else Cost(self.cpu_per_sim_s, self.cpu_low, self.cpu_high)
+
+    @property
+    def wall(self) -> Cost | None:
+        """The same steps in wall time, kept beside it: what a user waits, under this run's load."""
+        if self.wall_per_sim_s is None:
+            return None
+        return Cost(self.wall_per_sim_s, self.wall_low, self.wall_high)
 
     @property
     def label(self) -> str:
         its = "" if self.iterations is None else f" it={self.iterations}"
         acc = "" if self.prefer_accuracy is None else f" acc={'TRUE' if self.prefer_accuracy else 'FALSE'}"
         return f"{self.backend} {results.dt_label(self.dt)}{its}{acc}"
-
-    @property
-    def cost(self) -> Cost | None:
-        if self.wall_per_sim_s is None:
-            return None
-        return Cost(self.wall_per_sim_s, self.wall_low, self.wall_high)
 
     def to_json(self) -> dict:
         d = asdict(self)

@@ -86,10 +86,12 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], planned: dict[str, S.Backend
             wall_s: float) -> dict:
     return {
         "generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "measured": {"speed": "wall_per_sim_s: the child's wall time in the engine's steps (x3drbp run --timing) "
-                              "over the simulated seconds, the median of the repeats (wall_low and wall_high: their "
-                              "spread); not start-up, loading, the model build, per-frame reads or trace writing "
-                              "(simulation_per_sim_s: the whole simulation, build and reads included)",
+        "measured": {"speed": "cpu_per_sim_s: the child's CPU time in the engine's steps (x3drbp run --timing) "
+                              "over the simulated seconds, the median of the repeats (cpu_low and cpu_high: their "
+                              "spread), what ranks, as load does not reorder it; wall_per_sim_s (wall_low, "
+                              "wall_high): the same steps' wall time; not start-up, loading, the model build, "
+                              "per-frame reads or trace writing (simulation_per_sim_s: the whole simulation's "
+                              "wall time, build and reads included)",
                      "error": "closed form: the case's convergence measure; common reference: the largest distance "
                               "of a body from the scene's reference run (the same for every backend: Drake's "
                               "error-controlled run where Drake runs the scene in continuous mode, else one "
