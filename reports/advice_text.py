@@ -53,6 +53,14 @@ def _cases(j: dict) -> str:
             + (f"; accuracy beyond its bound: {', '.join(beyond)}" if beyond else ""))
 
 
+def _flaws(j: dict) -> str:
+    """A runner-up's cases failed (the spec broken) and approximations, counted: why it is not first
+    may be either, and a reader must see both."""
+    fails = [c for c, v in j["failing"].items() if v == "fail"]
+    return ((f"; fails {', '.join(fails)}" if fails else "")
+            + (f"; {len(j['approximated'])} approximation(s)" if j["approximated"] else ""))
+
+
 def _versus(o: dict, best: dict) -> str:
     cost = o["cpu_per_sim_s"] / best["cpu_per_sim_s"] if best["cpu_per_sim_s"] > 0 else float("inf")
     return (f"{_run(o)}: {num(cost)}x the cost, error {num(o['error'])} m "
@@ -88,9 +96,8 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
         runners = [_find(scene, k) for k in scene["runners_up"]]
         if runners:
             lines.append("  runners-up:")
-            lines += [f"    {_versus(o, best)}; {_agreement(o, settings['duration'])}"
-                      + (f"; {len(scene['judged'][o['backend']]['approximated'])} approximation(s)"
-                         if scene["judged"][o["backend"]]["approximated"] else "") for o in runners]
+            lines += [f"    {_versus(o, best)}; {_agreement(o, settings['duration'])}" + _flaws(scene["judged"][o["backend"]])
+                      for o in runners]
     refused = {b: j["refused"] for b, j in scene["judged"].items() if j["refused"]}
     for b, why in refused.items():
         lines.append(f"  cannot run it: {b}: {why[0]}" + (f" (and {len(why) - 1} more)" if len(why) > 1 else ""))

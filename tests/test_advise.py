@@ -99,6 +99,12 @@ def test_a_backend_failing_a_case_another_passes_is_not_recommended():
     judged = {"pymunk": A.Judged(failing={"hinge_limits": "fail"}), "bullet": A.Judged(passing=1)}
     c = A.choose([fast, slow], judged, 1.0, TOL, 0.0)
     assert c.chosen is slow and c.runners_up == [fast]
+    # "the fastest" is of the rest, and the line names the faster run it passed over and why
+    assert c.said == ("within the tolerance: the fastest, of the backends that fail no case another passes: "
+                      "pymunk at dt 1/60 (0.1x the cost, error 0.0005 m) fails hinge_limits, which bullet passes")
+    # one set aside but slower: nothing to say
+    judged_slow = {"pymunk": A.Judged(passing=1), "bullet": A.Judged(failing={"hinge_limits": "fail"})}
+    assert A.choose([fast, slow], judged_slow, 1.0, TOL, 0.0).said == "within the tolerance: the fastest"
     # every backend fails a case another passes: one is still chosen, and the first line says why
     judged["bullet"] = A.Judged(failing={"hinge_max_limit": "fail"})
     judged["pymunk"].passing = 1
@@ -193,6 +199,14 @@ def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_
     text = "\n".join(scene_lines(scene, settings))
     assert "favours" not in text and "exceeds" not in text
     assert "within 1 mm / 1 mrad of ode for all 5 s" in text and "100x real time" in text
+    # a runner-up's broken cases are said beside its cost, not left to be found in the matrix
+    runner = dict(option, backend="pymunk", cpu_per_sim_s=0.005)
+    scene["options"].append(runner)
+    scene["runners_up"] = [{"backend": "pymunk", "dt": 1 / 240}]
+    scene["judged"]["pymunk"] = {"refused": [], "approximated": ["a: b"], "failing": {
+        "hinge_limits": "fail", "contact_slip": "unsupported"}, "passing": 1}
+    text = "\n".join(scene_lines(scene, settings))
+    assert "    pymunk at dt 1/240: 0.5x the cost" in text and "; fails hinge_limits; 1 approximation(s)" in text
 
 
 @pytest.mark.parametrize("args, says", [

@@ -266,6 +266,22 @@ def _outdone(backend: str, backends: Sequence[str], judged: dict[str, Judged]) -
             and any(b != backend and c not in judged[b].failing for b in backends)]
 
 
+def _passed_over(set_aside: list[Option], chosen: Option, outdone: dict[str, list[str]], able: Sequence[str],
+                 judged: dict[str, Judged]) -> str:
+    """What the first line adds where a run as good by the rule's measure (within the tolerance,
+    or more accurate) and no slower was set aside for failing a case another backend passes:
+    "the fastest" or "the most accurate" is then of the rest, and says which run it passed over."""
+    rivals = [o for o in set_aside if o.cost.median <= chosen.cost.median or o.error < chosen.error]
+    if not rivals:
+        return ""
+    o = min(rivals, key=lambda o: o.cost.median)
+    fails = outdone[o.backend]
+    passers = [b for b in able if b != o.backend and not set(fails) & set(judged[b].failing)]
+    cost = o.cost.median / chosen.cost.median if chosen.cost.median > 0 else float("inf")
+    return (f", of the backends that fail no case another passes: {_label(o)} ({cost:.3g}x the cost, error "
+            f"{o.error:.3g} m) fails {', '.join(fails)}, which {', '.join(passers)} pass{'es' if len(passers) == 1 else ''}")
+
+
 def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, tolerance: float,
            reference_error: float) -> Choice:
     """The rule of the module docstring."""
@@ -295,6 +311,10 @@ def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, 
         said = ("every backend that fits fails a case another passes ("
                 + "; ".join(f"{b}: {', '.join(cs)}" for b, cs in outdone.items()) + "), so one is chosen regardless; "
                 + said)
+    else:
+        better = (lambda o: o.error <= tolerance + reference_error) if rule != MOST_ACCURATE else (
+            lambda o: o.error < chosen.error - reference_error)
+        said += _passed_over([o for o in affordable if outdone[o.backend] and better(o)], chosen, outdone, able, judged)
     others = [best([o for o in affordable if o.backend == b]) for b in able if b != chosen.backend]
     # runners-up in the rule's own order: those within the tolerance by speed, then the rest by error
     others.sort(key=lambda t: (t[1] == MOST_ACCURATE, t[0].cost.median if t[1] != MOST_ACCURATE else t[0].error))
