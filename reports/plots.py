@@ -17,7 +17,7 @@ _MARKERS = "os^Dv<>p*h"
 
 
 def sweep_plot(doc: dict, scene: str, path: str) -> None:
-    """Error against wall time per simulated second for one scene of a sweep (sweep.json's
+    """Error against CPU time in the engine's steps per simulated second for one scene of a sweep (sweep.json's
     document), both axes logarithmic: a colour per backend, a line per (iterations,
     preferAccuracy) through its steps in order, the scene's Pareto front ringed in black, and
     a common reference's uncertainty as a dotted line (errors below it tie). Points without

@@ -72,7 +72,8 @@ Bullet against microseconds a step), the evaluator's per-frame state reads and o
 writing the trace. The whole simulation's wall time (build, steps, reads) is kept beside it.
 
 Fronts: points whose speeds' spreads overlap and whose errors differ by less than the
-reference's own error (or rounding) are ties, one front point (sweep_metrics.pareto).
+reference's uncertainty (its own error, or on a scene with events the backends' spread
+where larger; or rounding) are ties, one front point (sweep_metrics.pareto).
 
 Only what a backend honours is varied: one that declares RigidBodyCollection.iterations or
 preferAccuracy unsupported runs the scene's own value (it would refuse another).

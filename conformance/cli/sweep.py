@@ -7,8 +7,8 @@ preferAccuracy (conformance/sweep.py says what is measured).
 
 Writes DIR/sweep.json (every point), DIR/sweep.md (the Pareto fronts, ties merged) and
 DIR/sweep_SCENE.png (error against the scene's one reference, closed form, Drake's
-error-controlled run or a backend's fine run, each scene saying which, over the median wall
-time per simulated second with its spread, one line per backend and variation); DIR
+error-controlled run or a backend's fine run, each scene saying which, over the median CPU
+time in the engine's steps per simulated second with its spread, one line per backend and variation); DIR
 defaults to out/sweep. Runs on local threads (each waits on its run), or on a Dask cluster with
 --scheduler SCHEME://HOST:PORT (tcp://host:8786), given up on where it does not answer in time.
 Exit status 0 whatever the verdicts (where no run gave a result, the files and one line on
