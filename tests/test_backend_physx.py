@@ -62,6 +62,27 @@ def test_torque_free_spin_keeps_angular_momentum_with_a_full_tensor(tmp_path):
     assert np.abs(momentum - momentum[0]).max() < 0.01 * np.linalg.norm(momentum[0])
 
 
+def test_state_read_at_once_is_each_body_s_own(tmp_path):
+    """The packed state (PhysxCpuSystem.pack) read with the layout found at build is, body by body,
+    what each body's own accessors say: poses and velocities apart and in order, a fixed body and
+    the world's anchor among them."""
+    w = scene_worlds(tmp_path, "<RigidBodyCollection gravity='0 -9.81 0'>"
+                               "<RigidBody DEF='Fixed' fixed='true' position='0 3 0'/>"
+                               "<RigidBody DEF='A' position='1 2 3' linearVelocity='0.5 -1 2' "
+                               "angularVelocity='3 -4 5'/>"
+                               "<RigidBody DEF='B' position='0 2 0' orientation='0 0 1 0.4' linearVelocity='-2 0 1'/>"
+                               "<BallJoint anchorPoint='0 2.5 0'><RigidBody USE='B' containerField='body1'/>"
+                               "</BallJoint></RigidBodyCollection>")[0]
+    sim = BACKEND.build(w, DT)
+    assert sim.packed is not None
+    for _ in range(3):
+        sim.step(5)
+        each = sim._each()
+        assert np.array_equal(sim._read(), each) and len(np.unique(each[:, 7:], axis=0)) == 2
+        s = sim.state()
+        assert np.array_equal(s.linear_velocity[1:], each[:, 7:10]) and np.array_equal(s.position[1:], each[:, 4:7])
+
+
 def test_gravity_off_and_forces_in_the_world_frame(tmp_path):
     s = simulate(tmp_path, "<RigidBodyCollection gravity='0 -9.81 0'>"
                            "<RigidBody DEF='F' mass='2' useGlobalGravity='false' centerOfMass='0.2 0 0' "
