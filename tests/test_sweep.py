@@ -364,6 +364,13 @@ def test_the_spread_is_the_farthest_comparable_fine_run():
     alone = S.with_spread(ref, {})
     assert (alone.events, alone.spread_backend, alone.error) == (True, None, 1e-3)
     assert "no other backend's fine run to measure it by" in alone.said
+    # a backend that breaks the clause on the scene's feature is no reading of it: its run is left out, said
+    kept = spread.without({"bullet": "which fails hinge_limits"})
+    assert (kept.spread_backend, kept.spread) == ("ode", pytest.approx(0.01 * np.sqrt(3)))
+    assert "left out: bullet's fine run, which fails hinge_limits" in kept.said
+    assert kept.to_json()["spread_left_out"] == "bullet's fine run, which fails hinge_limits"
+    assert spread.without({"pymunk": "which fails x"}) is spread  # nothing of it in the spread: unchanged
+    assert spread.without({"ode": "a", "bullet": "b"}).error == 1e-3  # no spread left: its own error
 
 
 def test_the_plot_draws_the_reference_s_uncertainty_below_which_errors_tie():

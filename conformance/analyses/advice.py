@@ -347,6 +347,9 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
                         except ValueError:  # no body or frame in common: nothing to say of when they part
                             continue
         reference = swept.references[target.name] if swept is not None else "no backend can run the scene"
+        if isinstance(reference, S.Reference):
+            reference = reference.without({b: f"which fails {', '.join(cs)}" for b in able
+                                           if (cs := _outdone(b, list(able), judged[path]))})
         ref_error = reference.error if isinstance(reference, S.Reference) else 0.0
         choice = choose(options, judged[path], budget, tolerance, ref_error)
         if not able:
