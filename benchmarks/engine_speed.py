@@ -20,9 +20,10 @@ Both sides run with Python's bytecode cache (measure.compiled_env, filled by an 
 one-frame run of every command first), as an installed package runs: an environment with
 PYTHONDONTWRITEBYTECODE set would have each process compile its Python from source.
 Each side's time is the median over the rounds of its process's CPU time (user + system,
-from the kernel's accounting of the child: a load beside it barely moves it), start-up,
-imports, load and trace writing included; the ratio is x3drbp's over the native one, and
-TARGET is 1.15x. Apart, the simulation alone, as each process times its own CPU: x3drbp's
+from the kernel's accounting of the child, every thread's: numpy's OpenBLAS workers spin on
+both sides; a load beside it still moves it by 10-20 % on a shared 2-CPU machine, so compare
+within one run), start-up, imports, load and trace writing included; the ratio is x3drbp's
+over the native one, and TARGET is 1.15x. Apart, the simulation alone, as each process times its own CPU: x3drbp's
 `--timing` simulation_cpu_s (plan, engine build, steps, every frame's readback) against the
 native build, steps and reads (native_run.py), and x3drbp's steps alone (step_cpu_s, what
 `advise` ranks speed by). Where the process ratio is over TARGET and the simulation ratio
