@@ -60,8 +60,10 @@ def compiled_env(folder: str, **extra: str) -> dict[str, str]:
     where PYTHONDONTWRITEBYTECODE would have every process compile the project's modules it
     imports from source (measured: 85 ms of CPU more for an `x3drbp run` of the car, 25 ms for
     its native script). Time a child only after a first, untimed run with the same environment
-    has filled the cache."""
-    env = dict(os.environ, PYTHONPYCACHEPREFIX=os.path.join(folder, "pycache"), **extra)
+    has filled the cache. One OpenBLAS thread on both sides, as `x3drbp` sets for itself
+    (conformance/cli): numpy's spinning threads cost each process about 0.1 s of CPU, the same on
+    both sides, which would flatter every ratio, and a native script could set it as well."""
+    env = dict(os.environ, PYTHONPYCACHEPREFIX=os.path.join(folder, "pycache"), OPENBLAS_NUM_THREADS="1", **extra)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
     return env
 

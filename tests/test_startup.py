@@ -54,3 +54,22 @@ def test_a_run_reads_no_entry_points_and_its_help_still_names_every_backend(tmp_
     done = subprocess.run([sys.executable, "-m", "conformance.cli", "run", "--help"], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
     assert done.returncode == 0 and f"one of {', '.join(base.engines())}" in " ".join(done.stdout.split())
+
+
+BLAS = """
+import os, sys
+import conformance.cli
+print(os.environ.get("OPENBLAS_NUM_THREADS"), "numpy" in sys.modules)
+"""
+
+
+def test_one_blas_thread_is_set_before_numpy_loads_unless_the_user_chose():
+    """numpy's OpenBLAS reads the variable once, when it loads: set later it does nothing, and
+    each process of the hundreds a command starts would spin a thread per core at start and exit."""
+    import os
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_NUM_THREADS"}
+    got = subprocess.run([sys.executable, "-c", BLAS], cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
+    assert got.stdout.split() == ["1", "False"], got.stderr
+    env["OPENBLAS_NUM_THREADS"] = "4"  # a user's own choice stands
+    got = subprocess.run([sys.executable, "-c", BLAS], cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
+    assert got.stdout.split() == ["4", "False"], got.stderr

@@ -13,7 +13,13 @@ import os
 import select
 import sys
 
-from x3d_core.atomic import CannotWrite
+# One BLAS thread unless the user says otherwise, set before numpy loads (and inherited by
+# every child run): x3drbp's arrays are a few bodies wide, and numpy's OpenBLAS otherwise
+# starts a thread per core that spins at start and exit: measured, 0.1 s of CPU of a 0.3 s
+# `x3drbp run` of the pendulum on 2 cores, for no arithmetic that needs it.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+from x3d_core.atomic import CannotWrite  # noqa: E402  (after the BLAS setting)
 
 # command -> the module under conformance.cli whose add_command registers it (run's registers
 # run and backends), in the order `x3drbp --help` lists them
