@@ -38,6 +38,7 @@ bounce threshold (minBounceSpeed); contacts come from the CPU system's contact l
 
 from __future__ import annotations
 
+import functools
 import warnings
 
 import numpy as np
@@ -81,12 +82,24 @@ def _principal(inertia: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return moments, R.from_matrix(axes[None])[0]
 
 
+_Y, _X = np.array([0.0, 1.0, 0.0]), np.array([1.0, 0.0, 0.0])
+
+
 def _frame(axis: np.ndarray) -> np.ndarray:
-    """An orientation whose x axis is the unit vector axis."""
-    a = axis / np.linalg.norm(axis)
-    u = np.cross(a, [0.0, 1.0, 0.0] if abs(a[1]) < 0.9 else [1.0, 0.0, 0.0])
+    """An orientation whose x axis is the unit vector axis, worked out once an axis (a chain's
+    hinges share theirs; R.cross: np.cross's axis handling was two thirds of a hinge's build)."""
+    return _axis_frame(np.asarray(axis, dtype=np.float64).tobytes())  # bytes: -0.0 apart from 0.0
+
+
+@functools.lru_cache(maxsize=256)
+def _axis_frame(axis: bytes) -> np.ndarray:
+    v = np.frombuffer(axis)
+    a = v / np.linalg.norm(v)
+    u = R.cross(a, _Y if abs(a[1]) < 0.9 else _X)
     u /= np.linalg.norm(u)
-    return R.from_matrix(np.stack([a, u, np.cross(a, u)], axis=1)[None])[0]
+    q = R.from_matrix(np.stack([a, u, R.cross(a, u)], axis=1)[None])[0]
+    q.setflags(write=False)  # shared by every joint on this axis
+    return q
 
 
 def _cone(radius: float, height: float) -> np.ndarray:
@@ -125,6 +138,7 @@ class PhysxSimulation:
             p = c.parameters
             self.material = px.PhysxMaterial(float(p.friction[0]), float(p.friction[0]), float(p.bounce))
         self.rows = np.flatnonzero(~b.fixed)
+        self.every = len(self.rows) == len(b)  # no fixed body: state() is the read as it is
         self.actors: dict[int, px.PhysxRigidDynamicComponent] = {}
         self.shape_geometry: dict[int, int] = {}  # id(shape wrapper) -> geometry index
         self.shapes: list = []
@@ -143,9 +157,11 @@ class PhysxSimulation:
             self._joint(j)
         if c is not None:
             self._groups()
-        self.start = State.initial(b)
-        self.start.linear_velocity[b.fixed] = 0.0
-        self.start.angular_velocity[b.fixed] = 0.0
+        start = State.initial(b)
+        start.linear_velocity[b.fixed] = 0.0
+        start.angular_velocity[b.fixed] = 0.0
+        # every body's start in _read's columns: the fixed bodies' state, whatever the steps
+        self.start_read = np.hstack([start.orientation, start.position, start.linear_velocity, start.angular_velocity])
         self.list = [self.actors[int(i)] for i in self.rows]
         self.set_velocities(b.linear_velocity, b.angular_velocity)
         self.set_loads(b.forces, b.torques)
@@ -344,19 +360,21 @@ class PhysxSimulation:
             self.scene.step()
 
     def state(self) -> State:
-        s = self.start
-        out = State(s.position.copy(), s.orientation.copy(), s.linear_velocity.copy(), s.angular_velocity.copy())
+        """The bodies' state as views of one fresh (bodies, 13) array (a numpy call costs more than a few
+        bodies' numbers): the moving bodies' read, the fixed ones' start where some body is fixed."""
         if not len(self.rows):
-            return out
-        a = self._read()
-        if not np.all(np.isfinite(a)):
-            raise BlewUp("PhysX's state turned non-finite")
-        q = a[:, 0:4]
-        out.orientation[self.rows] = q / np.linalg.norm(q, axis=1, keepdims=True)
-        out.position[self.rows] = a[:, 4:7]
-        out.linear_velocity[self.rows] = a[:, 7:10]
-        out.angular_velocity[self.rows] = a[:, 10:13]
-        return out
+            a = self.start_read.copy()
+        else:
+            a = self._read()
+            if not np.isfinite(a).all():
+                raise BlewUp("PhysX's state turned non-finite")
+            q = a[:, 0:4]
+            q /= np.sqrt(np.add.reduce(q * q, axis=1, keepdims=True))  # np.linalg.norm's sums, without its checks
+            if not self.every:
+                full = self.start_read.copy()
+                full[self.rows] = a
+                a = full
+        return State(a[:, 4:7], a[:, 0:4], a[:, 7:10], a[:, 10:13])
 
     def _read(self) -> np.ndarray:
         """Every moving body's orientation, position, linear and angular velocity (n, 13) as PhysX
@@ -368,10 +386,10 @@ class PhysxSimulation:
         return np.array([np.concatenate((p.q, p.p, c.linear_velocity, c.angular_velocity))
                          for c in self.list for p in (c.entity_pose,)], dtype=np.float64)
 
-    def _unpacked(self, rows: np.ndarray) -> np.ndarray:
+    def _unpacked(self, rows: np.ndarray | slice) -> np.ndarray:
         return np.frombuffer(self.system.pack(), dtype=np.float32).reshape(-1, _PACKED)[rows].astype(np.float64)
 
-    def _packed_rows(self) -> np.ndarray | None:
+    def _packed_rows(self) -> np.ndarray | slice | None:
         """Where each moving body lies in PhysxCpuSystem.pack(): _PACKED float32 a rigid dynamic, in
         the system's order (SAPIEN 3.0.3: orientation w x y z, position, linear and angular velocity);
         None where the packed state is not that layout, as checked against the bodies' own reads."""
@@ -380,6 +398,8 @@ class PhysxSimulation:
         if len(self.system.pack()) != 4 * _PACKED * len(system) or any(id(c) not in where for c in self.list):
             return None
         rows = np.array([where[id(c)] for c in self.list], dtype=np.intp)
+        if np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows))):  # in order, one block: a slice, no gather
+            rows = slice(int(rows[0]), int(rows[0]) + len(rows))
         return rows if np.array_equal(self._unpacked(rows), self._each()) else None
 
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:

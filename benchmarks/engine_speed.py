@@ -35,7 +35,8 @@ before any contact, and the final mean height to PILE_HEIGHT_SAME, 1 cm). A back
 native build of a scene (native_run.SCENES) is listed as such; pymunk (2D) has none.
 
 With --against REV, a third side: `x3drbp run` of revision REV (its files from git archive,
-run with `python -m conformance.cli` in that tree), for a before and after in one run.
+run with `python -m conformance.cli` in that tree), for a before and after in one run: its
+process CPU and its simulation CPU, each over the native one.
 
     python benchmarks/engine_speed.py [--duration 2] [--repeat 5] [--backends mujoco,bullet,dart,ode,physx,drake]
                                       [--scenes chain,car,pile] [--against REV]
@@ -166,22 +167,24 @@ def main(argv: list[str] | None = None) -> int:
     print(f"dt 1/240 s, frames at {FRAME_RATE}/s; whole processes taking turns, median of {args.repeat}; "
           f"{os.cpu_count()} CPUs, load average (1, 5, 15 min) {_load(load_before)} before, {_load(load_after)} "
           "after\n")
-    earlier = f" | process CPU s x3drbp at {args.against} | ratio" if args.against else ""
+    earlier = (f" | process CPU s x3drbp at {args.against} | ratio | simulation CPU s x3drbp at {args.against} | ratio"
+               if args.against else "")
     print("| scene | backend | simulated s | process CPU s native / x3drbp | ratio | simulation CPU s native / x3drbp "
           f"| ratio | x3drbp steps CPU s | max position difference{earlier} |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---|" + ("---:|---:|" if args.against else ""))
+    print("|---|---|---:|---:|---:|---:|---:|---:|---|" + ("---:|---:|---:|---:|" if args.against else ""))
     failed = False
     for case, sides in times.items():
         (n_cpu, n_sim, _), (o_cpu, o_sim, o_steps), *rest = ([statistics.median(t[k] for t in side)
                                                               for k in (0, 1, 2)] for side in sides)
         gap, ok, what = checks[case]
         failed |= not ok
-        then = "".join(f" | {b_cpu:.3f} | {_ratio(b_cpu, n_cpu)}" for b_cpu, _, _ in rest)
+        then = "".join(f" | {b_cpu:.3f} | {_ratio(b_cpu, n_cpu)} | {b_sim:.3f} | {_ratio(b_sim, n_sim)}"
+                       for b_cpu, b_sim, _ in rest)
         print(f"| {case[0]} | {case[1]} | {commands[case][1]:g} | {n_cpu:.3f} / {o_cpu:.3f} | {_ratio(o_cpu, n_cpu)} | "
               f"{n_sim:.3f} / {o_sim:.3f} | {_ratio(o_sim, n_sim)} | {o_steps:.3f} | "
               f"{gap:.1e} m ({what}){'' if ok else ' NOT THE SAME'}{then} |")
     for scene, backend in missing:
-        print(f"| {scene} | {backend} | no native build written | | | | | | |" + (" | |" if args.against else ""))
+        print(f"| {scene} | {backend} | no native build written | | | | | | |" + (" | | | |" if args.against else ""))
     return 1 if failed else 0
 
 

@@ -68,6 +68,12 @@ def rotate(q: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Vectors v turned by quaternions q (broadcasting over leading axes)."""
     q = np.asarray(q, dtype=np.float64)
     v = np.asarray(v, dtype=np.float64)
+    if q.ndim == 1 and v.ndim == 1:  # one vector (a backend's joint frames at build): Python floats, the same sums
+        w, x, y, z = q.tolist()
+        a, b, c = v.tolist()
+        t0, t1, t2 = 2.0 * (y * c - z * b), 2.0 * (z * a - x * c), 2.0 * (x * b - y * a)
+        return np.array([a + w * t0 + (y * t2 - z * t1), b + w * t1 + (z * t0 - x * t2),
+                         c + w * t2 + (x * t1 - y * t0)])
     w, u = q[..., :1], q[..., 1:]
     t = 2.0 * cross(u, v)
     return v + w * t + cross(u, t)

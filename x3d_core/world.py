@@ -245,11 +245,11 @@ def parallel(w: World) -> list[str]:
     every backend refuses it now. Only joints that join two ends and whose axes are not zero
     (undirected names those). A UniversalJoint's axes are the spec's to leave undefined where
     not perpendicular (x3d_core.validate warns); ODE alone refuses parallel ones, as its engine
-    cannot build them."""
+    cannot build them. R.cross: np.cross cost 30 us a joint of every run's plan."""
     out = []
     for j in w.joints:
         if j.type == "DoubleAxisHingeJoint" and j.body1 != j.body2 and np.all(np.any(j.axes[:2], axis=1)) \
-                and np.linalg.norm(np.cross(j.axes[0], j.axes[1])) < PARALLEL:
+                and np.linalg.norm(R.cross(j.axes[0], j.axes[1])) < PARALLEL:
             a1, a2 = (F.format_xml(F.FIELD_TYPES["SFVec3f"], j.node.get(f)) for f in ("axis1", "axis2"))
             out.append(f"{j.type} {j.name}: axis1 = {a1} and axis2 = {a2} are parallel")
     return out
