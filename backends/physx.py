@@ -398,7 +398,7 @@ class PhysxSimulation:
         if len(self.system.pack()) != 4 * _PACKED * len(system) or any(id(c) not in where for c in self.list):
             return None
         rows = np.array([where[id(c)] for c in self.list], dtype=np.intp)
-        if np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows))):  # in order, one block: a slice, no gather
+        if len(rows) and np.array_equal(rows, np.arange(rows[0], rows[0] + len(rows))):  # one block: a slice
             rows = slice(int(rows[0]), int(rows[0]) + len(rows))
         return rows if np.array_equal(self._unpacked(rows), self._each()) else None
 

@@ -83,6 +83,17 @@ def test_state_read_at_once_is_each_body_s_own(tmp_path):
         assert np.array_equal(s.linear_velocity[1:], each[:, 7:10]) and np.array_equal(s.position[1:], each[:, 4:7])
 
 
+def test_no_moving_body_reads_the_start(tmp_path):
+    """A world of fixed bodies alone has nothing packed to read: its state is the start, every call."""
+    w = scene_worlds(tmp_path, "<RigidBodyCollection><RigidBody DEF='Fixed' fixed='true' position='0 3 0' "
+                               "linearVelocity='1 0 0'/></RigidBodyCollection>")[0]
+    sim = BACKEND.build(w, DT)
+    sim.step(2)
+    s = sim.state()
+    assert s.position.tolist() == [[0, 3, 0]] and s.linear_velocity.tolist() == [[0, 0, 0]]
+    assert s.orientation.tolist() == [[1, 0, 0, 0]]
+
+
 def test_gravity_off_and_forces_in_the_world_frame(tmp_path):
     s = simulate(tmp_path, "<RigidBodyCollection gravity='0 -9.81 0'>"
                            "<RigidBody DEF='F' mass='2' useGlobalGravity='false' centerOfMass='0.2 0 0' "
