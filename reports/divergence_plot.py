@@ -20,7 +20,7 @@ from matplotlib.figure import Figure
 from conformance.results import ORIENTATION, POSITION, Comparison, Divergence, PairComparison, dt_label
 from x3d_core import atomic
 
-from .text import num
+from .text import num, plotted
 
 FLOOR = 1e-16  # a log axis has no 0: divergences below this (rounding, or none) are drawn at it
 SIZE, DPI = (9.0, 5.0), 100  # inches, dots per inch: 900 x 500 px
@@ -57,7 +57,7 @@ def figure(comparison: Comparison) -> Figure:
     fig = Figure(figsize=SIZE, dpi=DPI, layout="constrained")
     FigureCanvasAgg(fig)
     pairs = [p for p in c.pairs if _drawn(p)]
-    title = f"{os.path.basename(c.scene)}: divergence over time (dt {dt_label(c.dt)} s, {c.frame_rate:g} frames/s)"
+    title = f"{plotted(os.path.basename(c.scene))}: divergence over time (dt {dt_label(c.dt)} s, {c.frame_rate:g} frames/s)"
     if pairs:
         axes = fig.subplots(2, 1, sharex=True)
         for ax, (quantity, label, unit) in zip(axes, _PANELS):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import textwrap
 
 import matplotlib
 
@@ -12,8 +13,10 @@ import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 from x3d_core import atomic  # noqa: E402
 
 from .sweep_tables import NO_RESULTS, measured, variation  # noqa: E402
+from .text import plotted  # noqa: E402
 
 _MARKERS = "os^Dv<>p*h"
+TITLE_WIDTH = 80  # characters a title line holds at 10 points over the axes (the legend beside them): longer lines were cut off
 
 
 def sweep_plot(doc: dict, scene: str, path: str) -> None:
@@ -35,7 +38,7 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     else:
         ax.axis("off")
         ax.text(0.5, 0.5, f"no results: {NO_RESULTS}", ha="center", va="center", transform=ax.transAxes)
-    ax.set_title(title, fontsize=10)
+    ax.set_title(textwrap.fill(plotted(title), TITLE_WIDTH), fontsize=10)
     fig.tight_layout()
     png = io.BytesIO()
     fig.savefig(png, format="png", dpi=110)

@@ -37,6 +37,12 @@ def escape(text: str) -> str:
     return _MARKDOWN.sub(r"\\\1", html.escape(one_line(text), quote=False))
 
 
+def plotted(text: str) -> str:
+    """Text as text in a matplotlib title or label: each $ escaped, or a name such as
+    `a$x^2$.x3d` is set as mathematics and `a$\\frac$.x3d` stops the plot with a parse error."""
+    return text.replace("$", r"\$")
+
+
 def link(path: str, text: str | None = None) -> str:
     """A markdown link to a relative path (its words the path's own unless given): the target
     percent-encoded, so a name such as `javascript:x` or `a) b` stays a file's name."""

@@ -104,3 +104,20 @@ def test_a_pair_without_a_body_in_common_is_not_drawn(compared):
         d.frame_max = d.frame_rms = np.empty(0)
     (ax,) = figure(c).axes
     assert [t.get_text() for t in ax.texts] == ["no pair shares a body and a frame time"]
+
+
+def test_a_scene_named_like_mathematics_is_text_in_the_plots(tmp_path):
+    """matplotlib sets $...$ as mathematics: a scene file named `a$\\frac$b.x3d` stopped the plot
+    with a parse error, and `a$x^2$.x3d` was drawn as a formula. A name is text on the page."""
+    from reports.plots import sweep_plot
+    for name in ("a$\\frac$b.x3d", "a$x^2$.x3d"):
+        c = Comparison(name, 0.5, 1 / 240, 60, THRESHOLDS, [], [])
+        path = str(tmp_path / "none.png")
+        divergence_plot(c, path)  # no parse error
+        (ax,) = figure(c).axes
+        assert ax.get_title().startswith(name.replace("$", "\\$") + ": divergence")
+        stem = name[:-4]
+        doc = {"backends": {}, "points": [], "scenes": [{"name": stem, "reference": "closed form", "quantity": "q",
+                                                          "unit": "m"}]}
+        sweep_plot(doc, stem, str(tmp_path / "sweep.png"))
+        assert _png(str(tmp_path / "sweep.png"))[0] > 0
