@@ -224,6 +224,29 @@ def test_bounce_rebounds_at_e_times_the_approach_speed(tmp_path):
             pytest.fail("no rebound")
 
 
+@pytest.mark.parametrize("dt, accurate", [(1 / 32000, False), (1 / 8000, True)])
+def test_bounce_holds_at_fine_steps(tmp_path, dt, accurate):
+    """At a step short enough that a falling ball comes within the contact processing threshold
+    before it touches, pybullet took the contact as a speculative one and stopped the ball at the
+    surface: at dt 1/32000 an e = 0.8 rebound left at 0.5 of the approach speed. The rebound is
+    still e (v + g h) with h the internal step (preferAccuracy: 4 substeps a step)."""
+    e = 0.8
+    world, sim = build(tmp_path, ball_on_floor(f"bounce='{e}' minBounceSpeed='0.1'", y=0.5,
+                                               world=f"preferAccuracy='{str(accurate).lower()}'"), dt)
+    before = 0.0
+    for _ in range(int(0.5 / dt)):
+        sim.step()
+        v = sim.state().linear_velocity[0, 1]
+        if v > 0:
+            # the internal substeps of the contact step are not read: the rebound is e times the
+            # approach at most one step's gravity apart
+            assert v == pytest.approx(e * -before, abs=e * G * dt + 1e-9)
+            break
+        before = v
+    else:
+        pytest.fail("no rebound")
+
+
 def test_no_collider_no_contacts(tmp_path):
     world, sim = build(tmp_path, "<RigidBodyCollection><RigidBody DEF='B'>"
                        + shape("S", "<Sphere/>") + "</RigidBody></RigidBodyCollection>")
