@@ -304,7 +304,11 @@ def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, 
             return o, rule, f"{within if rule == WITHIN else CANNOT_RANK_SAID}: {speed}"
         least = min(o.error for o in group)
         o, speed = _fastest([o for o in group if same_error(o.error, least, reference_error)], judged)
-        return o, MOST_ACCURATE, MOST_ACCURATE + ("" if speed == "the fastest" else f"; {speed}")
+        said = MOST_ACCURATE + ("" if speed == "the fastest" else f"; {speed}")
+        if reference_error > tolerance:  # what the reference cannot tell apart is said, not ranked
+            said = (f"accuracy cannot be ranked finer than the reference's uncertainty ({reference_error:.3g} m, "
+                    f"over the tolerance); {said}, errors within it one")
+        return o, MOST_ACCURATE, said
 
     chosen, rule, said = best(clean or affordable)
     if not clean:

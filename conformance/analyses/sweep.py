@@ -48,7 +48,7 @@ Error, against one reference per scene, common to every backend:
   as good a reading of the scene as the reference's. Errors within it tie on the fronts
   (mark_pareto), and advise says accuracy cannot be ranked where it exceeds the tolerance,
   ranking by speed what it cannot tell apart. Measured (1 s, mujoco reference at 1/1920):
-  bounce_apex, own error 21 mm, Bullet's fine run 27 mm from it, ODE's 20, PhysX's 19;
+  bounce_apex, own error 21 mm, ODE's fine run 20 mm from it, PhysX's 19, Bullet's 16;
   a 0.2 m box dropped 0.3 m onto a floor, own error 3.4 mm, DART's 5.5 mm, Drake's 5.2,
   PhysX's and pymunk's 4.7, ODE's 63 mm (ODE's run at 1/960 is as far from its own: not
   settled, but still what ODE makes of the scene at that step, so it is not discounted).
