@@ -329,8 +329,9 @@ def test_sweep_json_and_markdown_say_which_reference(tmp_path):
 def test_events_are_contacts_and_stops(tmp_path):
     drop = tmp_path / "drop.x3d"
     drop.write_text(DROP)
-    assert S.has_events(str(drop)) and S.has_events(case_scene("hinge_limits"))
-    assert not S.has_events(case_scene("double_pendulum_energy")) and not S.has_events(case_scene("free_fall"))
+    assert S.has_events(load(str(drop))) and S.has_events(load(case_scene("hinge_limits")))
+    assert not S.has_events(load(case_scene("double_pendulum_energy")))
+    assert not S.has_events(load(case_scene("free_fall")))
     (target,) = S.targets([str(drop)], [1 / 60])
     assert target.events
 

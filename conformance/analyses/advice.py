@@ -335,7 +335,7 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
     controlled = S.drake_usable(plans, timeout)  # Drake's error-controlled reference wherever it can run
     for path in paths:
         able = {b: p for b, p in plans.items() if not judged[path][b].refused}  # a refusal needs no run
-        (target,) = S.targets([path], dts, window, duration)
+        (target,) = S.targets([path], dts, window, duration, scenes)
         swept = (S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, repeats, controlled)
                  if able else None)
         options = [] if swept is None else [

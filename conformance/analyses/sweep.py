@@ -87,11 +87,12 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
 
 from x3d_core.analysis import run_features
 from x3d_core.load import load
+from x3d_core.model import Scene
 
 from conformance import cases as C
 from conformance import results
@@ -135,11 +136,12 @@ class Target:
 
 
 def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_WINDOW,
-            duration: float | None = None) -> list[Target]:
+            duration: float | None = None, loaded: Mapping[str, Scene] | None = None) -> list[Target]:
     """Targets for case names and scene files (ValueError naming what is wrong). A case with a
     convergence measure is judged by its closed form over its own duration; other cases and
     scene files by the common reference over the window, run for `duration` (default: the
-    window), at frames comparison_interval apart."""
+    window), at frames comparison_interval apart. loaded: scenes the caller has loaded already,
+    by name (a large scene takes as long to load again as to run)."""
     interval = comparison_interval([*dts, min(dts) / REFINEMENT, 2 * min(dts) / REFINEMENT])
     if interval > window:
         raise ValueError(f"the steps have no common multiple within the {window:g} s window "
@@ -157,16 +159,17 @@ def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_
         if not os.path.isfile(path):
             raise ValueError(f"{name} is neither a case ({', '.join(C.BY_NAME)}) nor a scene file")
         label = name if case is not None else os.path.splitext(os.path.basename(path))[0]
+        scene = (loaded or {}).get(name)
         out.append(Target(label, _relative(path), fine, None,
-                          f"max |position - reference position| over the first {window:g} s", window, has_events(path)))
+                          f"max |position - reference position| over the first {window:g} s", window,
+                          has_events(load(path) if scene is None else scene)))
     # two scene files of one stem: numbered, as their plots are named after them
     return [replace(t, name=name) for t, name in zip(out, numbered([t.name for t in out]))]
 
 
-def has_events(path: str) -> bool:
+def has_events(scene: Scene) -> bool:
     """Whether a run of the scene has events (contacts or joint stops), where its trajectory is
     not smooth; False where it does not load (its runs will say why)."""
-    scene = load(path)
     if scene.errors:
         return False
     return any(f.startswith("CollisionCollection") or f.endswith(".limits") for f in run_features(scene))
@@ -306,14 +309,26 @@ class Reference:
     check: str = ""  # what its own error is the distance from
     instead: str = ""  # a fine run: why Drake's error-controlled run is not the reference
     events: bool = False  # the scene has contacts or joint stops: its trajectory is not smooth
-    spread: float = 0.0  # m: scenes with events: the farthest other backend's fine run from it
-    spread_backend: str | None = None  # ... whose it is; None: no other backend's fine run
-    gaps: tuple[tuple[str, float], ...] = ()  # every other backend's fine run's distance from it (events)
+    gaps: tuple[tuple[str, float], ...] = ()  # scenes with events: each other backend's fine run's distance from it
     left_out: str = ""  # backends whose fine runs the spread leaves out, and why (Reference.without)
 
     @property
     def method(self) -> str:
         return FINE_RUN if self.accuracy is None else ERROR_CONTROLLED
+
+    @property
+    def _farthest(self) -> tuple[float, str | None]:
+        return max(((g, b) for b, g in self.gaps), default=(0.0, None))
+
+    @property
+    def spread(self) -> float:
+        """m: scenes with events: the farthest other backend's fine run from it (0 without one)."""
+        return self._farthest[0]
+
+    @property
+    def spread_backend(self) -> str | None:
+        """... whose it is; None: no other backend's fine run."""
+        return self._farthest[1]
 
     @property
     def error(self) -> float:
@@ -346,9 +361,7 @@ class Reference:
         out = [b for b, _ in self.gaps if b in why]
         if not out:
             return self
-        kept = [(b, g) for b, g in self.gaps if b not in why]
-        spread, whose = max(((g, b) for b, g in kept), default=(0.0, None))
-        return replace(self, spread=spread, spread_backend=whose,
+        return replace(self, gaps=tuple((b, g) for b, g in self.gaps if b not in why),
                        left_out="; ".join(f"{b}'s fine run, {why[b]}" for b in out))
 
     def to_json(self) -> dict:
@@ -463,8 +476,7 @@ def with_spread(ref: Reference, fine: dict[str, tuple[float, Positions]]) -> Ref
             gaps.append((b, window_error(runs, ref.runs, window)))
         except ValueError:
             continue
-    spread, whose = max(((g, b) for b, g in gaps), default=(0.0, None))
-    return replace(ref, events=True, spread=spread, spread_backend=whose, gaps=tuple(gaps))
+    return replace(ref, events=True, gaps=tuple(gaps))
 
 
 def error_controlled(job: Job, run: JobResult, check: JobResult) -> Reference | str:

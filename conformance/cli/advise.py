@@ -114,7 +114,7 @@ def cmd_advise(args: argparse.Namespace) -> int:
         return status
     try:
         for path in scenes:  # the steps' common frames, each scene's reference run within a run's bounds
-            targets([path], dts, args.window, args.duration)
+            targets([path], dts, args.window, args.duration, scenes)
         planned = plans("advise", args.backends, args.timeout)
     except ValueError as e:
         return _usage(str(e))

@@ -30,9 +30,11 @@ import datetime
 import os
 import sys
 import time
+from collections.abc import Mapping
 from fractions import Fraction
 
 from x3d_core import atomic
+from x3d_core.model import Scene
 
 from conformance.cli import options
 from conformance.runner import children
@@ -58,10 +60,11 @@ def steps(values: list[str] | None, default: tuple[float, ...] = S.DEFAULT_DTS) 
     return sorted(set(dts), reverse=True)
 
 
-def targets(names: list[str], dts: list[float], window: float, duration: float | None = None) -> list[S.Target]:
+def targets(names: list[str], dts: list[float], window: float, duration: float | None = None,
+            loaded: Mapping[str, Scene] | None = None) -> list[S.Target]:
     """S.targets, each target's finest run (its fine-step reference) within a run's bounds
     (options.too_long): ValueError saying what it would make otherwise."""
-    chosen = S.targets(names, dts, window, duration)
+    chosen = S.targets(names, dts, window, duration, loaded)
     for t in chosen:
         fine = t.settings.with_dt(min(dts) / S.REFINEMENT)
         too = options.too_long(fine.duration, fine.dt, fine.rate)
