@@ -23,6 +23,13 @@ ODD_BODY = ("position='1 2 3' orientation='0.2 1 0.3 0.9' centerOfMass='0.3 -0.1
 ODD_SCENE = (f"<RigidBodyCollection gravity='0 -9.81 0'><RigidBody DEF='B' {ODD_BODY} "
              "linearVelocity='0.5 0 -1' angularVelocity='0 2 1'/></RigidBodyCollection>")
 
+# A turned body, its centre of mass off its origin and a full inertia tensor (an engine's inertial
+# frame both offset and turned against the body frame), falling: the backends' inertial-frame tests
+TURNED_ORIENTATION = np.array([0.3, 1, 0.2, 0.7])
+TURNED_BODY = ("<RigidBodyCollection gravity='0 -9.81 0'><RigidBody DEF='B' position='1 2 3' "
+               f"orientation='{' '.join(map(repr, TURNED_ORIENTATION.tolist()))}' centerOfMass='0.3 -0.1 0.2' mass='2' "
+               "inertia='0.2 0.03 0.01 0.03 0.15 -0.02 0.01 -0.02 0.1'/></RigidBodyCollection>")
+
 
 # A bob on a massless rod of 1 m, hinged about z to a fixed anchor: the backends' hinge tests
 PENDULUM = """<RigidBodyCollection gravity='0 -9.81 0'>

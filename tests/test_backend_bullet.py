@@ -15,7 +15,8 @@ pytest.importorskip("pybullet")
 
 from backends import base  # noqa: E402
 from backends.bullet import BACKEND  # noqa: E402
-from engine_run import DT, G, last, pendulum, run_x3d, scene_worlds, values  # noqa: E402
+from engine_run import (DT, G, TURNED_BODY, TURNED_ORIENTATION, last, pendulum, run_x3d, scene_worlds,  # noqa: E402
+                        values)
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
 
@@ -27,11 +28,9 @@ def simulate(tmp_path, body: str, *args, **kwargs):
 def test_centre_of_mass_and_orientation_come_back_at_the_body_origin(tmp_path):
     # a rotated body with an off-centre centre of mass and a full inertia tensor (so
     # pybullet's inertial frame is both offset and turned against the body frame)
-    s = simulate(tmp_path, "<RigidBodyCollection gravity='0 -9.81 0'><RigidBody DEF='B' position='1 2 3' "
-                           "orientation='0.3 1 0.2 0.7' centerOfMass='0.3 -0.1 0.2' mass='2' "
-                           "inertia='0.2 0.03 0.01 0.03 0.15 -0.02 0.01 -0.02 0.1'/></RigidBodyCollection>")
+    s = simulate(tmp_path, TURNED_BODY)
     assert s[("B", "position")][0][1] == pytest.approx([1, 2, 3], abs=1e-12)
-    q0 = R.from_axis_angle(np.array([0.3, 1, 0.2, 0.7]))
+    q0 = R.from_axis_angle(TURNED_ORIENTATION)
     turn = R.multiply(R.conjugate(q0), R.from_axis_angle(values(s, "B", "orientation")))
     assert np.abs(turn[:, 1:]).max() < 1e-12  # never turns: no torque about the centre of mass
     # the centre of mass falls as a point does (Euler at the centre of mass, as above)

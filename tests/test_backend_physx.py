@@ -17,7 +17,8 @@ pytest.importorskip("sapien")
 
 from backends.physx import BACKEND  # noqa: E402
 from conformance.cases.closed_forms import ellipk  # noqa: E402
-from engine_run import DT, G, last, pendulum, run_x3d, scene_worlds, shape, values  # noqa: E402
+from engine_run import (DT, G, TURNED_BODY, TURNED_ORIENTATION, last, pendulum, run_x3d, scene_worlds,  # noqa: E402
+                        shape, values)
 from x3d_core import rotation as R  # noqa: E402
 from x3d_core.engine import Unsupported  # noqa: E402
 
@@ -40,11 +41,9 @@ def test_free_fall_is_semi_implicit_euler_in_single_precision(tmp_path):
 def test_centre_of_mass_and_full_inertia_come_back_at_the_body_origin(tmp_path):
     # a turned body, its centre of mass off the origin, a full inertia tensor (diagonalised for
     # PhysX, its principal frame turned against the body's): it falls without turning
-    s = simulate(tmp_path, "<RigidBodyCollection gravity='0 -9.81 0'><RigidBody DEF='B' position='1 2 3' "
-                           "orientation='0.3 1 0.2 0.7' centerOfMass='0.3 -0.1 0.2' mass='2' "
-                           "inertia='0.2 0.03 0.01 0.03 0.15 -0.02 0.01 -0.02 0.1'/></RigidBodyCollection>")
+    s = simulate(tmp_path, TURNED_BODY)
     assert s[("B", "position")][0][1] == pytest.approx([1, 2, 3], abs=1e-6)
-    q0 = R.from_axis_angle(np.array([0.3, 1, 0.2, 0.7]))
+    q0 = R.from_axis_angle(TURNED_ORIENTATION)
     turn = R.multiply(R.conjugate(q0), R.from_axis_angle(values(s, "B", "orientation")))
     assert np.abs(turn[:, 1:]).max() < 1e-6
     n = round(1.0 / DT)
