@@ -39,6 +39,7 @@ bounce threshold (minBounceSpeed); contacts come from the CPU system's contact l
 from __future__ import annotations
 
 import functools
+import math
 import warnings
 
 import numpy as np
@@ -353,11 +354,12 @@ class PhysxSimulation:
 
     # -- running ------------------------------------------------------------
     def step(self, n: int = 1) -> None:
+        step = self.system.step  # what sapien.Scene.step calls, without its Python frame each step
         for _ in range(n):
             if self.loaded:
                 for comp, f, t in self.loads:
                     comp.add_force_torque(f, t)
-            self.scene.step()
+            step()
 
     def state(self) -> State:
         """The bodies' state as views of one fresh (bodies, 13) array (a numpy call costs more than a few
@@ -366,7 +368,7 @@ class PhysxSimulation:
             a = self.start_read.copy()
         else:
             a = self._read()
-            if not np.isfinite(a).all():
+            if not math.isfinite(np.add.reduce(a, axis=None)):  # a float64 sum of float32s overflows never
                 raise BlewUp("PhysX's state turned non-finite")
             q = a[:, 0:4]
             q /= np.sqrt(np.add.reduce(q * q, axis=1, keepdims=True))  # np.linalg.norm's sums, without its checks
@@ -374,7 +376,7 @@ class PhysxSimulation:
                 full = self.start_read.copy()
                 full[self.rows] = a
                 a = full
-        return State(a[:, 4:7], a[:, 0:4], a[:, 7:10], a[:, 10:13])
+        return State(a[:, 4:7], a[:, 0:4], a[:, 7:10], a[:, 10:13], whole=a)
 
     def _read(self) -> np.ndarray:
         """Every moving body's orientation, position, linear and angular velocity (n, 13) as PhysX

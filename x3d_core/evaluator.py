@@ -381,17 +381,23 @@ class _Recorder:
             s = self.sim.state()
         except BlewUp as e:  # an engine that found its state unsound (pybullet at its speed clamp)
             raise BlewUp(f"blew up at t={t:g}: {e}") from None
-        # the three bounded fields in one reduction (a numpy call costs more than a few bodies' numbers)
-        bounded = np.concatenate((s.position, s.linear_velocity, s.angular_velocity), axis=1)
-        sound = (np.abs(bounded).max(initial=0.0) <= STATE_BOUND  # false for a NaN too
-                 and np.isfinite(s.orientation).all())
+        # the bounded fields in one reduction (a numpy call costs more than a few bodies' numbers); a
+        # state read whole brings its unit quaternions into it, each component within the bound
+        if s.whole is not None:
+            sound = np.abs(s.whole).max(initial=0.0) <= STATE_BOUND  # false for a NaN or an infinity too
+        else:
+            bounded = np.concatenate((s.position, s.linear_velocity, s.angular_velocity), axis=1)
+            sound = np.abs(bounded).max(initial=0.0) <= STATE_BOUND and np.isfinite(s.orientation).all()
         if not sound:
             self._blew_up(s, t)
-        pick = (lambda a: a) if self.all else (lambda a: a[self.rows])
-        trace.add_many(t, self.names, "position", "SFVec3f", pick(s.position))
-        trace.add_many(t, self.names, "orientation", "SFRotation", pick(s.orientation), convert=R.to_axis_angle)
-        trace.add_many(t, self.names, "linearVelocity", "SFVec3f", pick(s.linear_velocity))
-        trace.add_many(t, self.names, "angularVelocity", "SFVec3f", pick(s.angular_velocity))
+        position, orientation, linear, angular = s.position, s.orientation, s.linear_velocity, s.angular_velocity
+        if not self.all:
+            rows = self.rows
+            position, orientation, linear, angular = position[rows], orientation[rows], linear[rows], angular[rows]
+        trace.add_many(t, self.names, "position", "SFVec3f", position)
+        trace.add_many(t, self.names, "orientation", "SFRotation", orientation, convert=R.to_axis_angle)
+        trace.add_many(t, self.names, "linearVelocity", "SFVec3f", linear)
+        trace.add_many(t, self.names, "angularVelocity", "SFVec3f", angular)
         for joint, field, value in self.outputs.values(s):
             trace.add(t, joint, field, _OUTPUT_TYPES[field], value)
         if self.sensors:

@@ -59,6 +59,9 @@ class State:
     orientation: np.ndarray  # (n, 4) w x y z
     linear_velocity: np.ndarray  # (n, 3)
     angular_velocity: np.ndarray  # (n, 3)
+    # the one (n, 13) array the four are column views of, where a backend read them so: the
+    # evaluator's soundness check is then one pass over it, not a concatenation of copies
+    whole: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @classmethod
     def initial(cls, bodies: Bodies) -> State:

@@ -50,6 +50,7 @@ class _StepClock:
 class _TimedSteps:
     def __init__(self, sim: Simulation, clock: _StepClock):
         self._sim, self._clock = sim, clock
+        self.state = sim.state  # read every frame: not through __getattr__'s failed lookup first
 
     def step(self, n: int = 1) -> None:
         started, cpu = time.perf_counter(), time.process_time()
