@@ -27,7 +27,8 @@ over the native one, and TARGET is 1.15x. Apart, the simulation alone, as each p
 `--timing` simulation_cpu_s (plan, engine build, steps, every frame's readback) against the
 native build, steps and reads (native_run.py), and x3drbp's steps alone (step_cpu_s, what
 `advise` ranks speed by). Where the process ratio is over TARGET and the simulation ratio
-is not, the difference is x3drbp's start-up, not its engine glue.
+is not, the difference is x3drbp's start-up, not its engine glue: the column "start-up
+added" is that fixed cost, x3drbp's process less its simulation, less the native one's.
 The traces are checked to agree (exit status 1 where one does not): the chain's and the
 car's positions to SAME at every compared frame (the car's every frame, the chain's last);
 the pile, being chaotic, as pile.py checks it (every body to pile.AGREE at pile.CHECK_T,
@@ -170,8 +171,8 @@ def main(argv: list[str] | None = None) -> int:
     earlier = (f" | process CPU s x3drbp at {args.against} | ratio | simulation CPU s x3drbp at {args.against} | ratio"
                if args.against else "")
     print("| scene | backend | simulated s | process CPU s native / x3drbp | ratio | simulation CPU s native / x3drbp "
-          f"| ratio | x3drbp steps CPU s | max position difference{earlier} |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---|" + ("---:|---:|---:|---:|" if args.against else ""))
+          f"| ratio | start-up added ms | x3drbp steps CPU s | max position difference{earlier} |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---|" + ("---:|---:|---:|---:|" if args.against else ""))
     failed = False
     for case, sides in times.items():
         (n_cpu, n_sim, _), (o_cpu, o_sim, o_steps), *rest = ([statistics.median(t[k] for t in side)
@@ -181,10 +182,11 @@ def main(argv: list[str] | None = None) -> int:
         then = "".join(f" | {b_cpu:.3f} | {_ratio(b_cpu, n_cpu)} | {b_sim:.3f} | {_ratio(b_sim, n_sim)}"
                        for b_cpu, b_sim, _ in rest)
         print(f"| {case[0]} | {case[1]} | {commands[case][1]:g} | {n_cpu:.3f} / {o_cpu:.3f} | {_ratio(o_cpu, n_cpu)} | "
-              f"{n_sim:.3f} / {o_sim:.3f} | {_ratio(o_sim, n_sim)} | {o_steps:.3f} | "
+              f"{n_sim:.3f} / {o_sim:.3f} | {_ratio(o_sim, n_sim)} | {1e3 * ((o_cpu - o_sim) - (n_cpu - n_sim)):.0f} | "
+              f"{o_steps:.3f} | "
               f"{gap:.1e} m ({what}){'' if ok else ' NOT THE SAME'}{then} |")
     for scene, backend in missing:
-        print(f"| {scene} | {backend} | no native build written | | | | | | |" + (" | | | |" if args.against else ""))
+        print(f"| {scene} | {backend} | no native build written | | | | | | | |" + (" | | | |" if args.against else ""))
     return 1 if failed else 0
 
 
