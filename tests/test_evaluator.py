@@ -4,6 +4,7 @@ frame times, joint outputs from given states, and the trace file."""
 from __future__ import annotations
 
 import math
+import re
 import os
 
 import numpy as np
@@ -342,3 +343,49 @@ def test_slider_force_pushes_body1_along_the_axis_it_carries_and_turns_neither(t
     centres = np.array([[0.0, 0.3, 1.0], [0.0, 0.0, 0.0]])  # Block's centre of mass turned with it
     assert np.allclose(np.cross(centres, forces).sum(axis=0) + torques.sum(axis=0), 0, rtol=0, atol=1e-15)
     assert not np.allclose(torques, 0)
+
+
+class _Unsound:
+    """An engine that stands still until its second frame, then reads `value` into one component of
+    body row 1's `column` (of position 0-2, orientation 3-6, velocities 7-12): its state as four
+    arrays, or, with whole, as views of one (n, 13) array (State.whole), as PhysX's backend reads it."""
+    name = "unsound"
+
+    def __init__(self, column: int, value: float, whole: bool):
+        self.column, self.value, self.whole = column, value, whole
+
+    def build(self, world, dt):
+        engine, steps = self, [0]
+
+        class Sim:
+            def step(self, n=1):
+                steps[0] += n
+
+            def state(self):
+                s = State.initial(world.bodies)
+                a = np.hstack([s.position, s.orientation, s.linear_velocity, s.angular_velocity])
+                if steps[0] >= 2:
+                    a[1, engine.column] = engine.value
+                if engine.whole:
+                    return State(a[:, 0:3], a[:, 3:7], a[:, 7:10], a[:, 10:13], whole=a)
+                return State(a[:, 0:3].copy(), a[:, 3:7].copy(), a[:, 7:10].copy(), a[:, 10:13].copy())
+        return Sim()
+
+
+@pytest.mark.parametrize("whole", [False, True], ids=["four arrays", "one array"])
+@pytest.mark.parametrize("column,value,said", [
+    (1, np.nan, "B has a non-finite state"), (4, np.inf, "B has a non-finite state"),
+    (3, np.nan, "B has a non-finite state"), (8, 2e12, "B's linear velocity is beyond 1e+12"),
+    (0, -2e12, "B's position is beyond 1e+12")])
+def test_an_unsound_state_stops_the_run_at_its_frame_however_the_engine_read_it(tmp_path, column, value, said, whole):
+    """The soundness check is one reduction over a state read whole (its unit quaternions within the
+    bound) and over the three bounded fields plus the orientation's finiteness otherwise: either
+    way a NaN, an infinity or a value past STATE_BOUND anywhere stops the run at that frame."""
+    from x3d_core.engine import BlewUp
+    from x3d_core.evaluator import run
+    s = scene(tmp_path, "<RigidBodyCollection><RigidBody DEF='A'/><RigidBody DEF='B' position='0 1 0'/>"
+                        "</RigidBodyCollection>")
+    with pytest.raises(BlewUp, match=re.escape(f"blew up at t=0.1: {said}")):
+        run(worlds(s), _Unsound(column, value, whole), RunSettings(0.3, 0.05, 10))
+    trace = run(worlds(s), _Unsound(column, 1.0 if column < 3 else 0.0, whole), RunSettings(0.3, 0.05, 10))
+    assert sorted({r.time for r in trace.rows}) == pytest.approx([0.0, 0.1, 0.2, 0.3])  # sound values run on
