@@ -125,6 +125,14 @@ def test_targets_pick_the_reference():
         S.targets(["frame_rate"], dts)
 
 
+def test_the_default_scenes_are_found_from_any_folder(tmp_path, monkeypatch):
+    # run from another folder, the default's bundled scene file was "neither a case nor a scene file"
+    monkeypatch.chdir(tmp_path)
+    chosen = S.targets(list(S.DEFAULT_SCENES), [1 / 60, 1 / 240])
+    assert [t.name for t in chosen] == ["pendulum_period", "projectile", "bounce_apex", "double_pendulum_energy"]
+    assert chosen[-1].scene == "conformance/cases/double_pendulum_energy/double_pendulum_energy.x3d"
+
+
 def test_sweep_command_writes_json_markdown_and_plot(tmp_path):
     out = tmp_path / "sweep"
     assert cli_main(["sweep", "--scenes", "projectile", "--backends", BACKEND, "--dts", "1/60,1/240",

@@ -110,8 +110,9 @@ REPEATS = 3  # timed runs of each point, in its child: the median and the spread
 REFERENCE_ORDER = ("mujoco", "ode", "dart", "bullet", "pymunk", "drake", "physx")
 DRAKE = "drake"  # whose error-controlled run is the reference wherever it runs the scene as one
 ERROR_CONTROLLED, FINE_RUN = "error-controlled", "fine run"  # a common reference's method
+# the bundled scene by its path in the project, so that the default finds it from any folder
 DEFAULT_SCENES = ("pendulum_period", "projectile", "bounce_apex",
-                  os.path.join("conformance", "cases", "double_pendulum_energy", "double_pendulum_energy.x3d"))
+                  os.path.join(C.ROOT, "conformance", "cases", "double_pendulum_energy", "double_pendulum_energy.x3d"))
 DEFAULT_DTS = (1 / 60, 1 / 240, 1 / 1000, 1 / 4000)
 DEFAULT_ITERATIONS = (10, 50)
 DEFAULT_WINDOW = 1.0  # s
@@ -153,14 +154,14 @@ def targets(names: Sequence[str], dts: Sequence[float], window: float = DEFAULT_
         if case is not None and len(case.runs) != 1:
             raise ValueError(f"case {name} judges several runs together; the sweep varies one")
         if case is not None and case.convergence:
-            out.append(Target(name, _relative(case.path), case.runs[0], name, case.convergence))
+            out.append(Target(name, relative(case.path), case.runs[0], name, case.convergence))
             continue
         path = case.path if case is not None else name
         if not os.path.isfile(path):
             raise ValueError(f"{name} is neither a case ({', '.join(C.BY_NAME)}) nor a scene file")
         label = name if case is not None else os.path.splitext(os.path.basename(path))[0]
         scene = (loaded or {}).get(name)
-        out.append(Target(label, _relative(path), fine, None,
+        out.append(Target(label, relative(path), fine, None,
                           f"max |position - reference position| over the first {window:g} s", window,
                           has_events(load(path) if scene is None else scene)))
     # two scene files of one stem: numbered, as their plots are named after them
@@ -191,7 +192,8 @@ def numbered(names: Sequence[str]) -> list[str]:
     return out
 
 
-def _relative(path: str) -> str:
+def relative(path: str) -> str:
+    """A path relative to the project root where it lies under it (where the children run), else absolute."""
     rel = os.path.relpath(os.path.abspath(path), C.ROOT)
     return os.path.abspath(path) if rel.startswith("..") else rel
 

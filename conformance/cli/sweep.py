@@ -184,7 +184,7 @@ def add_command(sub) -> None:
                        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scenes", "--cases", action="append", metavar="NAMES",
                    help="case names or scene files, comma-separated, or the option repeated; a comma in a "
-                        f"file name written \\, (default: {', '.join(S.DEFAULT_SCENES)})")
+                        f"file name written \\, (default: {', '.join(map(S.relative, S.DEFAULT_SCENES))})")
     p.add_argument("--backends", action="append", metavar="LIST",
                    help="backends, comma-separated (default: every installed one)")
     p.add_argument("--dts", action="append", metavar="LIST",
