@@ -209,6 +209,23 @@ def test_without_drake_every_backend_is_measured_against_one_fine_run(tmp_path):
     assert set(sweep.positions) == {("double_pendulum_energy", b, dt) for b in plans for dt in (1 / 60, 1 / 240)}
 
 
+@pytest.mark.parametrize("text, said", [
+    ("<X3D><Scene><RigidBodyCollection><RigidBody mass='abc'/></RigidBodyCollection></Scene></X3D>",
+     ":1:45: error: RigidBody.mass: 'abc' is not a number"),
+    ("<X3D><Scene><RigidBodyCollection><RigidBody mass=", ":1:"),  # malformed XML: was a traceback
+])
+def test_a_scene_file_that_does_not_load_is_said_before_any_run(text, said, tmp_path, capsys):
+    # a bad field value ran every point to fail alike, then "no results" and exit 0
+    scene = tmp_path / "bad scene.x3d"
+    scene.write_text(text)
+    out = tmp_path / "sweep"
+    assert cli_main(["sweep", "--scenes", f"projectile,{scene}", "--backends", BACKEND, "--dts", "1/60,1/240",
+                     "--out", str(out), "-q"]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith(f"{scene}{said}") and err.count("\n") == 1 and "Traceback" not in err, err
+    assert not out.exists()
+
+
 @pytest.mark.parametrize("address", ["garbage", "tcp://host", "tcp://host:http", "ftp://host:21", "tcp://:8786",
                                      "tcp://host:70000"])
 def test_a_scheduler_address_that_is_none_is_a_usage_error(address, tmp_path, capsys):

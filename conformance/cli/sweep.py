@@ -12,8 +12,9 @@ time in the engine's steps per simulated second with its spread, one line per ba
 defaults to out/sweep. Runs on local threads (each waits on its run), or on a Dask cluster with
 --scheduler SCHEME://HOST:PORT (tcp://host:8786), given up on where it does not answer in time.
 Exit status 0 whatever the verdicts (where no run gave a result, the files and one line on
-stderr say "no results"); 1 where the scheduler cannot be reached; 2 on bad usage; 130 or 143
-when interrupted by SIGINT or SIGTERM (every run stopped).
+stderr say "no results"); 1 where the scheduler cannot be reached, or a scene file does not
+load or has nothing to simulate (each error one line, before any run; nothing written); 2 on
+bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM (every run stopped).
 
 The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, the
 seven backends: 384 points, each timed 3 times in its child, 28 fine-step runs and Drake's 4
@@ -36,12 +37,13 @@ from fractions import Fraction
 from x3d_core import atomic
 from x3d_core.model import Scene
 
+from conformance import cases as C
 from conformance.cli import options
 from conformance.runner import children
 from conformance.analyses import distribute
 from conformance.analyses import sweep as S
 
-EXIT_OK, EXIT_UNREACHABLE, EXIT_USAGE = 0, 1, 2
+EXIT_OK, EXIT_UNREACHABLE, EXIT_SCENE, EXIT_USAGE = 0, 1, 1, 2
 ACCURACY = {"both": (False, True), "false": (False,), "true": (True,)}
 
 
@@ -72,6 +74,22 @@ def targets(names: list[str], dts: list[float], window: float, duration: float |
             raise ValueError(f"{t.name}: its reference run: {fine.duration:g} s at a step of {fine.dt:g} s (the "
                              f"finest of the steps / {S.REFINEMENT}) and {fine.rate:g} frames/s makes {too}")
     return chosen
+
+
+def scene_files(names: list[str]) -> dict[str, Scene] | None:
+    """The scene files among names (case names aside) loaded, by name, each one's warnings
+    said once; None after one line per error where one does not load or has nothing to
+    simulate: said before any run, where every point's run would fail alike (a malformed file
+    was a traceback, a bad field value a sweep of failed runs and exit 0)."""
+    from conformance.cli.run import scene_to_run  # the scene's checks as run and advise make them
+    scenes, failed = {}, False
+    for name in names:
+        if name not in C.BY_NAME and os.path.isfile(name):
+            loaded = scene_to_run(name)
+            failed = failed or loaded is None
+            if loaded is not None:
+                scenes[name] = loaded[0]
+    return None if failed else scenes
 
 
 def plans(command: str, names: list[str] | None, timeout: float) -> dict[str, S.BackendPlan]:
@@ -145,7 +163,11 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         scheduler = distribute.address(args.scheduler) if args.scheduler else None
         dts = steps(args.dts)
         iterations = sorted({int(v) for v in options.names(args.iterations)} or set(S.DEFAULT_ITERATIONS))
-        chosen = targets(options.listed(args.scenes) or list(S.DEFAULT_SCENES), dts, args.window)
+        names = options.listed(args.scenes) or list(S.DEFAULT_SCENES)
+        loaded = scene_files(names)
+        if loaded is None:
+            return EXIT_SCENE
+        chosen = targets(names, dts, args.window, loaded=loaded)
         planned = plans("sweep", args.backends, args.timeout)
     except ValueError as e:
         print(f"x3drbp sweep: {e}", file=sys.stderr)
