@@ -226,6 +226,16 @@ def test_a_scene_file_that_does_not_load_is_said_before_any_run(text, said, tmp_
     assert not out.exists()
 
 
+@pytest.mark.parametrize("value", ["-1", "abc", "1.5", "2147483648", ","])
+def test_iterations_out_of_range_are_a_usage_error(value, tmp_path, capsys):
+    # -1 ran every point to fail alike and exited 0; 'abc' said int()'s own words
+    assert cli_main(["sweep", "--scenes", "projectile", "--backends", BACKEND, "--iterations", value,
+                     "--out", str(tmp_path / "sweep"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("x3drbp sweep: --iterations ") and repr(value) in err, err
+    assert not list(tmp_path.iterdir())
+
+
 @pytest.mark.parametrize("address", ["garbage", "tcp://host", "tcp://host:http", "ftp://host:21", "tcp://:8786",
                                      "tcp://host:70000"])
 def test_a_scheduler_address_that_is_none_is_a_usage_error(address, tmp_path, capsys):

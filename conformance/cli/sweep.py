@@ -62,6 +62,28 @@ def steps(values: list[str] | None, default: tuple[float, ...] = S.DEFAULT_DTS) 
     return sorted(set(dts), reverse=True)
 
 
+SFINT32_MAX = 2**31 - 1
+
+
+def iteration_counts(values: list[str] | None) -> list[int]:
+    """--iterations as whole numbers in RigidBodyCollection.iterations' range, [0, 2^31 - 1]
+    (SFInt32), ascending; ValueError naming one that is not (-1 ran every point to fail
+    alike, 'abc' said int()'s own words), or a --iterations that names none."""
+    empty = [v for v in values or [] if not options.names([v])]
+    if empty:
+        raise ValueError(f"--iterations names no count: {empty[0]!r}")
+    counts = []
+    for v in options.names(values):
+        try:
+            n = int(v)
+        except ValueError:
+            n = -1
+        if not 0 <= n <= SFINT32_MAX:
+            raise ValueError(f"--iterations must be whole numbers from 0 to {SFINT32_MAX}, not {v!r}")
+        counts.append(n)
+    return sorted(set(counts) or set(S.DEFAULT_ITERATIONS))
+
+
 def targets(names: list[str], dts: list[float], window: float, duration: float | None = None,
             loaded: Mapping[str, Scene] | None = None) -> list[S.Target]:
     """S.targets, each target's finest run (its fine-step reference) within a run's bounds
@@ -162,7 +184,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     try:
         scheduler = distribute.address(args.scheduler) if args.scheduler else None
         dts = steps(args.dts)
-        iterations = sorted({int(v) for v in options.names(args.iterations)} or set(S.DEFAULT_ITERATIONS))
+        iterations = iteration_counts(args.iterations)
         names = options.listed(args.scenes) or list(S.DEFAULT_SCENES)
         loaded = scene_files(names)
         if loaded is None:
