@@ -81,6 +81,28 @@ def test_every_output_of_run_fails_the_same_way(tmp_path, option, name):
     p = x3drbp(*RUN, "--trace", str(tmp_path / "t.csv"), option, str(out))
     assert p.returncode == 1
     _one_line(p, "run", str(out))
+    assert os.listdir(tmp_path) == ["file"]  # said before the run: the trace was written, then this refused
+
+
+@pytest.mark.parametrize("args", [
+    ("compare", PENDULUM, "--backends", "pymunk,mujoco", "--json", "{ok}/c.json", "--rerun", "{bad}/c.rrd"),
+    ("advise", PENDULUM, "--backends", "pymunk,mujoco", "--dts", "1/60,1/120", "--json", "{bad}/a.json"),
+    ("sweep", "--scenes", "projectile", "--backends", "pymunk", "--out", "{file}"),
+    ("stability", "--cases", "mass_ratio_pendulum", "--backends", "pymunk", "--out", "{file}/deeper/still"),
+])
+def test_an_output_that_cannot_be_written_is_said_before_any_run(args, tmp_path):
+    # compare, advise and run said it after every run (compare's --json left written where its
+    # --rerun was refused); sweep and conformance said "File exists" of an --out that is a file
+    (tmp_path / "file").write_text("")
+    paths = {"ok": str(tmp_path), "bad": str(tmp_path / "missing"), "file": str(tmp_path / "file")}
+    argv = [a.format(**paths) for a in args]
+    started = time.perf_counter()
+    p = x3drbp(*argv, "-q")
+    assert p.returncode == 1 and p.stdout == ""
+    refused = next(a for a, b in zip(argv, args) if "{bad}" in b or "{file}" in b)
+    line = _one_line(p, args[0], refused)
+    assert line.endswith(("No such file or directory", "is a file, not a folder")), line
+    assert os.listdir(tmp_path) == ["file"] and time.perf_counter() - started < 10
 
 
 def test_standard_output_closed_by_its_reader_ends_quietly_with_141():

@@ -227,6 +227,33 @@ def replacing(path: str) -> Iterator[str]:
             os.unlink(tmp)
 
 
+def check(path: str) -> None:
+    """Raises now the CannotWrite a write to path would raise for what is there: a missing
+    folder, a folder, a path under a file, a folder that may not be written. A command checks
+    its outputs so before it runs anything: it neither runs for minutes only to fail, nor
+    leaves one output written and the next refused."""
+    real, st = _resolve(path)
+    if _regular(st):
+        _writable(path, os.path.dirname(real))
+
+
+def check_folder(path: str) -> None:
+    """check() for an output folder, which a command makes with its parents: the nearest of
+    them that exists is a folder that may be written."""
+    nearest = os.path.abspath(path)
+    while not os.path.exists(nearest) and os.path.dirname(nearest) != nearest:
+        nearest = os.path.dirname(nearest)
+    if not os.path.isdir(nearest):
+        raise CannotWrite(path, "it is a file, not a folder" if nearest == os.path.abspath(path)
+                          else f"{nearest} is a file, not a folder")
+    _writable(path, nearest)
+
+
+def _writable(path: str, folder: str) -> None:
+    if not os.access(folder, os.W_OK | os.X_OK):  # a read-only file system too, even for root
+        raise CannotWrite(path, f"folder {folder} may not be written")
+
+
 def write_chunks(path: str, chunks: Iterator[bytes]) -> None:
     """path holds the chunks, concatenated, once this returns; until then it holds what it
     held before (a device or named pipe: what was written so far)."""

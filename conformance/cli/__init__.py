@@ -109,6 +109,7 @@ def main(argv: list[str] | None = None) -> int:
     given = _resolve_outputs(args)
     args.given = {**given, **_resolve_scenes(args)}
     try:
+        _check_outputs(args)
         status = args.func(args)
         if sys.stdout is not None:
             sys.stdout.flush()  # here, where a reader gone is caught, not at exit
@@ -171,6 +172,18 @@ def _resolve_outputs(args: argparse.Namespace) -> dict[str, str]:
             setattr(args, name, os.path.abspath(value))
             given[getattr(args, name)] = value
     return given
+
+
+def _check_outputs(args: argparse.Namespace) -> None:
+    """CannotWrite for an output that cannot be written (a missing folder, a folder, a path
+    under a file, read-only), before the command runs anything: it was said after every run,
+    and where a command had two outputs, the first was left written (compare's --json where
+    its --rerun could not be)."""
+    from x3d_core import atomic
+    for name in OUTPUT_OPTIONS + (("trace",) if args.command in ("run", "x-ite") else ()):
+        value = getattr(args, name, None)
+        if name != "pins" and isinstance(value, str) and value:  # pins: read as well, checked as read
+            (atomic.check_folder if name == "out" else atomic.check)(value)
 
 
 # the scenes a command reads and hands to children, which run in the project root: (command, option)
