@@ -57,7 +57,7 @@ def _child(argv: list[str], err: int, keep_out: list[int]) -> None:
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         signal.signal(signal.SIGCHLD, signal.SIG_DFL)
         # what ps shows of it, as of a fresh child: the server's own command line would hide which run it is
-        setproctitle.setproctitle(" ".join([sys.executable, "-m", "conformance.cli", *argv]))
+        setproctitle.setproctitle(_title([sys.executable, "-m", "conformance.cli", *argv]))
         from conformance.cli import main
         try:
             status = main(argv)
@@ -73,6 +73,13 @@ def _child(argv: list[str], err: int, keep_out: list[int]) -> None:
                 pass
     finally:
         os._exit(status)
+
+
+def _title(argv: list[str]) -> str:
+    """A command line as ps shows it, a file name's bytes that are not UTF-8 (held as surrogates)
+    as their escapes: setproctitle refuses a surrogate, and that ended the run with exit 1 and
+    no word before it ran (every run of a scene whose file name is not UTF-8)."""
+    return " ".join(argv).encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
 
 
 def _fork(request: dict, err: int, conn: socket.socket, keep_out: list[int]) -> int:
