@@ -221,10 +221,11 @@ _LINK = re.compile(r"""(?:href|src)=["']([^"'#]+)(?:#[^"']*)?["']""")
 
 
 def dead_links(out: str, page: str) -> list[str]:
-    """The page's links (href, src) that point at no file under out: none may."""
+    """The page's links (href, src) that point at no file under out: none may (a byte that is
+    not UTF-8, %FF, read back as the file name's own, as text.link wrote it)."""
     targets = dict.fromkeys(html.unescape(m.group(1)) for m in _LINK.finditer(page))
     return [t for t in targets if not re.match(r"[a-z][a-z0-9+.-]*:", t)
-            and not os.path.exists(os.path.join(out, urllib.parse.unquote(t)))]
+            and not os.path.exists(os.path.join(out, urllib.parse.unquote(t, errors="surrogateescape")))]
 
 
 def write_report(out: str) -> str:

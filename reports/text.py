@@ -31,22 +31,30 @@ def one_line(text: str) -> str:
     return " ".join(text.splitlines())
 
 
+def encodable(text: str) -> str:
+    """Text that encodes: a file name's bytes that are not UTF-8 reach Python as surrogates,
+    which neither a UTF-8 file nor a font takes (a sweep of `p\\xffq.x3d` stopped at its plot's
+    title), shown as their escapes, as Python's repr shows them in every diagnostic."""
+    return text.encode("utf-8", "backslashreplace").decode("utf-8")
+
+
 def escape(text: str) -> str:
     """Text as text in markdown, anywhere on a line (a table cell, a heading, a list item, a link's
     words): HTML's specials as entities, markdown's backslash-escaped, its lines joined."""
-    return _MARKDOWN.sub(r"\\\1", html.escape(one_line(text), quote=False))
+    return _MARKDOWN.sub(r"\\\1", html.escape(one_line(encodable(text)), quote=False))
 
 
 def plotted(text: str) -> str:
     """Text as text in a matplotlib title or label: each $ escaped, or a name such as
     `a$x^2$.x3d` is set as mathematics and `a$\\frac$.x3d` stops the plot with a parse error."""
-    return text.replace("$", r"\$")
+    return encodable(text).replace("$", r"\$")
 
 
 def link(path: str, text: str | None = None) -> str:
     """A markdown link to a relative path (its words the path's own unless given): the target
-    percent-encoded, so a name such as `javascript:x` or `a) b` stays a file's name."""
-    return f"[{escape(path if text is None else text)}]({urllib.parse.quote(path)})"
+    percent-encoded, so a name such as `javascript:x` or `a) b` stays a file's name (a byte
+    that is not UTF-8 as itself, %FF)."""
+    return f"[{escape(path if text is None else text)}]({urllib.parse.quote(path, errors='surrogateescape')})"
 
 
 def basis_cell(m: Measure) -> str:

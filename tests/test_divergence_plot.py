@@ -121,3 +121,18 @@ def test_a_scene_named_like_mathematics_is_text_in_the_plots(tmp_path):
                                                           "unit": "m"}]}
         sweep_plot(doc, stem, str(tmp_path / "sweep.png"))
         assert _png(str(tmp_path / "sweep.png"))[0] > 0
+
+
+def test_a_scene_whose_file_name_is_not_utf_8_is_its_escapes_in_the_plots(tmp_path):
+    """A byte that is not UTF-8 reaches Python as a surrogate, which no font takes: the sweep of
+    `p\\xffq.x3d` stopped at its plot's title with a TypeError traceback."""
+    from reports.plots import sweep_plot
+    name = os.fsdecode(b"p\xffq.x3d")
+    c = Comparison(name, 0.5, 1 / 240, 60, THRESHOLDS, [], [])
+    divergence_plot(c, str(tmp_path / "none.png"))
+    (ax,) = figure(c).axes
+    assert ax.get_title().startswith("p\\udcffq.x3d: divergence")
+    doc = {"backends": {}, "points": [], "scenes": [{"name": name[:-4], "reference": "closed form",
+                                                      "quantity": "q", "unit": "m"}]}
+    sweep_plot(doc, name[:-4], str(tmp_path / "sweep.png"))
+    assert _png(str(tmp_path / "sweep.png"))[0] > 0

@@ -129,6 +129,16 @@ def test_the_report_page_keeps_a_hostile_scene_as_text(tmp_path, name):
     assert any(img.endswith(".divergence.png") for img in lxml.html.fromstring(page).xpath("//img/@src"))
 
 
+def test_a_scene_whose_file_name_is_not_utf_8_is_its_escapes_on_the_page(tmp_path):
+    # its byte reaches Python as a surrogate, which a UTF-8 page cannot hold (UnicodeEncodeError);
+    # the links keep the byte itself, so that they reach the file
+    found = _results(tmp_path, os.fsdecode(b"mine/p\xffq.x3d"))
+    page = rendered(report_markdown(str(tmp_path), found))
+    page.encode("utf-8")
+    assert "p\\udcffq" in text_of(page) and dead_links(str(tmp_path), page) == []
+    assert "compare/p%FFq.rrd" in lxml.html.fromstring(page).xpath("//a/@href")
+
+
 # end to end: `x3drbp report --scenes DIR`, its steps made small, on scenes with hostile names
 
 SCENE = f"""<?xml version="1.0" encoding="UTF-8"?>
