@@ -243,6 +243,23 @@ def test_command_writes_json_and_markdown(tmp_path, capsys):
     assert "### intermediate_axis_tumble" in text and "angular momentum drift" in text
 
 
+@pytest.mark.parametrize("dts, says", [
+    ("1/0", "--dts must be positive steps in seconds, as 1/240 or 0.004, not '1/0'"),  # was "Fraction(1, 0)"
+    ("abc", "--dts must be positive steps in seconds, as 1/240 or 0.004, not 'abc'"),
+    (",", "--dts names no step: ','"),  # ran the default steps
+    # ran every case to be refused in its child, then stopped on a trace name 300 digits long
+    ("1e-300", "mass_ratio_pendulum: 10 s at a step of 1e-300 s makes 1e+301 steps; a run takes at most 1e+09"),
+])
+def test_a_bad_step_is_bad_usage_before_any_run(dts, says, tmp_path, capsys):
+    if REFERENCE is None:
+        pytest.skip("no backend is installed")
+    out = tmp_path / "stab"
+    assert cli_main(["stability", "--cases", "mass_ratio_pendulum", "--backends", REFERENCE, "--dts", dts,
+                     "--out", str(out), "-q"]) == 2
+    assert capsys.readouterr().err == f"x3drbp stability: {says}\n"
+    assert not out.exists()
+
+
 @pytest.mark.parametrize("backend", ["physx", "drake"])
 def test_the_newer_engines_get_verdicts_with_their_reasons(tmp_path, backend):
     """PhysX and Drake run the hard cases as every engine does: the free tumble's angular momentum

@@ -236,6 +236,20 @@ def test_iterations_out_of_range_are_a_usage_error(value, tmp_path, capsys):
     assert not list(tmp_path.iterdir())
 
 
+@pytest.mark.parametrize("value, says", [
+    ("1/0", "--dts must be positive steps in seconds, as 1/240 or 0.004, not '1/0'"),  # "a step divides by zero"
+    ("abc", "--dts must be positive steps in seconds, as 1/240 or 0.004, not 'abc'"),  # Fraction's own words
+    ("1/60,-1", "--dts must be positive steps in seconds, as 1/240 or 0.004, not '-1'"),  # named no value
+    ("1e400", "--dts must be positive steps in seconds, as 1/240 or 0.004, not '1e400'"),  # OverflowError
+    ("1e-300,1/60", "a step of 1e-300 s is finer than 1e-9 s, the resolution at which steps are compared"),  # "no steps"
+])
+def test_a_bad_step_is_a_usage_error_naming_it(value, says, tmp_path, capsys):
+    assert cli_main(["sweep", "--scenes", "projectile", "--backends", BACKEND, "--dts", value,
+                     "--out", str(tmp_path / "sweep"), "-q"]) == 2
+    assert capsys.readouterr().err == f"x3drbp sweep: {says}\n"
+    assert not list(tmp_path.iterdir())
+
+
 @pytest.mark.parametrize("address", ["garbage", "tcp://host", "tcp://host:http", "ftp://host:21", "tcp://:8786",
                                      "tcp://host:70000"])
 def test_a_scheduler_address_that_is_none_is_a_usage_error(address, tmp_path, capsys):

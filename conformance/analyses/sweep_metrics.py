@@ -41,6 +41,8 @@ def comparison_interval(dts: Sequence[float]) -> float:
     common = Fraction(0)
     for dt in dts:
         f = Fraction(dt).limit_denominator(10 ** 9)
+        if f == 0:  # was 'no steps' (a --dts of 1e-300)
+            raise ValueError(f"a step of {dt:g} s is finer than 1e-9 s, the resolution at which steps are compared")
         common = f if common == 0 else Fraction(math.lcm(common.numerator, f.numerator),
                                                 math.gcd(common.denominator, f.denominator))
     if common == 0:

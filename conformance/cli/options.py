@@ -13,6 +13,7 @@ import os
 import re
 import sys
 from collections.abc import Callable, Sequence
+from fractions import Fraction
 from typing import TYPE_CHECKING, Any
 
 from x3d_core.load import load
@@ -91,6 +92,31 @@ def too_long(duration: float, dt: float, frame_rate: float) -> str | None:
     if steps > MAX_STEPS:
         return f"{steps:.3g} steps; a run takes at most {MAX_STEPS:g}"
     return None
+
+
+def given(values: list[str] | None, option: str, what: str) -> list[str]:
+    """A list option's values (names()); ValueError where one giving of it names none:
+    `--dts ,` is a mistake, not the default."""
+    empty = [v for v in values or [] if not names([v])]
+    if empty:
+        raise ValueError(f"{option} names no {what}: {empty[0]!r}")
+    return names(values)
+
+
+def steps(values: list[str] | None) -> list[float]:
+    """--dts: physics steps in seconds, as fractions (1/240) or decimals, each once in the order
+    given ([] where none is); ValueError naming one that is not a positive finite number
+    (the commands said Fraction's own words, 'Fraction(1, 0)', or ran `--dts ,` as the default)."""
+    out = []
+    for v in given(values, "--dts", "step"):
+        try:
+            dt = float(Fraction(v))
+        except (ValueError, ZeroDivisionError, OverflowError):
+            dt = math.nan
+        if not (math.isfinite(dt) and dt > 0):
+            raise ValueError(f"--dts must be positive steps in seconds, as 1/240 or 0.004, not {v!r}")
+        out.append(dt)
+    return list(dict.fromkeys(out))
 
 
 def positive(text: str) -> float:

@@ -26,7 +26,6 @@ import datetime
 import os
 import sys
 import time
-from fractions import Fraction
 
 from reports.stability_table import markdown
 
@@ -38,12 +37,16 @@ from conformance.runner import children
 EXIT_OK, EXIT_USAGE = 0, 2
 
 
-def _dts(values: list[str] | None) -> list[float]:
-    """Steps as fractions (1/240) or decimals, in the order given."""
-    dts = list(dict.fromkeys(float(Fraction(v)) for v in options.names(values))) or list(S.DEFAULT_DTS)
-    if any(dt <= 0 for dt in dts):
-        raise ValueError("steps must be positive")
-    return dts
+def _within_bounds(cases: list[S.HardCase], dts: list[float]) -> None:
+    """ValueError naming the first run of a case at a step past a run's bounds (options.too_long):
+    a `--dts 1e-300` ran every case to be refused by its child, then stopped on a trace name of
+    300 digits."""
+    for c in cases:
+        for dt in dts:
+            settings = results.Settings(c.duration, dt)
+            too = options.too_long(settings.duration, dt, settings.rate)
+            if too:
+                raise ValueError(f"{c.name}: {c.duration:g} s at a step of {dt:g} s makes {too}")
 
 
 def to_json(outcomes: list[S.StabilityResult], cases: list[S.HardCase], backends: list[str], dts: list[float],
@@ -64,9 +67,10 @@ def to_json(outcomes: list[S.StabilityResult], cases: list[S.HardCase], backends
 @children.interruptible
 def cmd_stability(args: argparse.Namespace) -> int:
     try:
-        dts = _dts(args.dts)
+        dts = options.steps(args.dts) or list(S.DEFAULT_DTS)
         cases, info, backends = options.chosen(args, S.select)
-    except (ValueError, ZeroDivisionError) as e:
+        _within_bounds(cases, dts)
+    except ValueError as e:
         print(f"x3drbp stability: {e}", file=sys.stderr)
         return EXIT_USAGE
     runnable = [b for b in backends if info[b].usable]

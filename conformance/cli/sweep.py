@@ -32,7 +32,6 @@ import os
 import sys
 import time
 from collections.abc import Mapping
-from fractions import Fraction
 
 from x3d_core import atomic
 from x3d_core.model import Scene
@@ -48,18 +47,8 @@ ACCURACY = {"both": (False, True), "false": (False,), "true": (True,)}
 
 
 def steps(values: list[str] | None, default: tuple[float, ...] = S.DEFAULT_DTS) -> list[float]:
-    """Steps as fractions (1/240) or decimals, finest last; ValueError where one is not positive,
-    or a --dts names none (`--dts ,` is a mistake, not the default)."""
-    empty = [v for v in values or [] if not options.names([v])]
-    if empty:
-        raise ValueError(f"--dts names no step: {empty[0]!r}")
-    try:
-        dts = [float(Fraction(v)) for v in options.names(values)] or list(default)
-    except ZeroDivisionError:
-        raise ValueError("a step divides by zero") from None
-    if any(dt <= 0 for dt in dts):
-        raise ValueError("steps must be positive")
-    return sorted(set(dts), reverse=True)
+    """--dts (options.steps), else the default; finest last."""
+    return sorted(set(options.steps(values) or default), reverse=True)
 
 
 SFINT32_MAX = 2**31 - 1
@@ -69,11 +58,8 @@ def iteration_counts(values: list[str] | None) -> list[int]:
     """--iterations as whole numbers in RigidBodyCollection.iterations' range, [0, 2^31 - 1]
     (SFInt32), ascending; ValueError naming one that is not (-1 ran every point to fail
     alike, 'abc' said int()'s own words), or a --iterations that names none."""
-    empty = [v for v in values or [] if not options.names([v])]
-    if empty:
-        raise ValueError(f"--iterations names no count: {empty[0]!r}")
     counts = []
-    for v in options.names(values):
+    for v in options.given(values, "--iterations", "count"):
         try:
             n = int(v)
         except ValueError:
