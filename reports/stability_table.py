@@ -44,7 +44,7 @@ def markdown(data: dict) -> str:
             return f"{n} (unavailable: {b['unavailable']})"
         return f"{n} {b['version']}" + ("" if b["run"] else " (not run)")
     lines += ["Backends: " + "; ".join(describe(n) for n in data["backends"]), "",
-              f"{len(data['results'])} runs, {data['jobs']} at a time: {data['wall_s']:.0f} s wall.", "",
+              f"{len(data['results'])} runs, {data['jobs']} at a time: {data['wall_s']:.1f} s wall.", "",
               "Cell: the verdict; where a run did not hold, what gave way first and when (simulated time). "
               "Bounds and their arguments: conformance/analyses/stability.py and each scene's leading comment.", "",
               "| case | dt | " + " | ".join(backends) + " |", "|---|---|" + "---|" * len(backends)]

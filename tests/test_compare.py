@@ -172,6 +172,15 @@ def test_a_crashed_backend_is_its_verdict_and_the_others_still_compare(tmp_path,
         assert code == 1 and data["pairs"] == []
 
 
+@pytest.mark.parametrize("command", [["compare", PENDULUM], ["advise", PENDULUM], ["sweep", "--scenes", PENDULUM]])
+def test_an_unknown_backend_is_said_alone_before_the_scene_loads(command, capsys):
+    """Bad usage is one line: the pendulum's warning (its bob's geometry collides with nothing)
+    was printed first, as the scene loaded before the backends were looked up."""
+    assert cli_main([*command, "--backends", "ode,nosuch"]) == 2
+    (line,) = capsys.readouterr().err.splitlines()
+    assert line.startswith(f"x3drbp {command[0]}: unknown backend(s) nosuch; known: ")
+
+
 def test_compare_exit_statuses_on_bad_usage_and_broken_scenes(tmp_path, capsys):
     assert cli_main(["compare", PENDULUM, "--backends", "nosuchengine,mujoco"]) == 2
     assert cli_main(["compare", PENDULUM, "--backends", "mujoco,mujoco"]) == 2  # one backend twice is one

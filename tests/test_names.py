@@ -40,7 +40,7 @@ def test_a_comma_in_a_scene_s_name_is_written_with_a_backslash(tmp_path, capsys)
     shutil.copy(case_scene("free_fall"), odd)
     escaped = str(odd).replace(",", "\\,")
     assert options.listed([f"projectile,{escaped}", "free_fall"]) == ["projectile", str(odd), "free_fall"]
-    # the sweep takes the scene (and stops at the unknown backend, before any run)
+    # the sweep takes the name (and stops at the unknown backend, before it loads the scene)
     assert cli_main(["sweep", "--scenes", escaped, "--backends", "nope", "--out", str(tmp_path / "o")]) == 2
     assert "unknown backend(s) nope" in capsys.readouterr().err
     steps = dict(R._steps(str(tmp_path / "r"), ["pymunk", "mujoco"], False, False, [str(odd)]))

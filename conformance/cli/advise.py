@@ -41,7 +41,7 @@ from conformance.cli import as_given, options
 from conformance.results import PASS
 from conformance.cli.run import scene_to_run
 from conformance.cli.sweep import plans, steps, targets
-from conformance.runner import children
+from conformance.runner import children, probe
 from conformance.analyses import advice as A
 from conformance.analyses import sweep as S
 
@@ -97,6 +97,7 @@ def cmd_advise(args: argparse.Namespace) -> int:
     try:
         dts = steps(args.dts, A.DEFAULT_DTS)
         matrix = _matrix(args.verdicts)
+        probe.known(options.names(args.backends))
     except ValueError as e:
         return _usage(str(e))
     files = scene_files(args.paths)

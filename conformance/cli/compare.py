@@ -54,6 +54,7 @@ def _usage(message: str) -> int:
 def cmd_compare(args: argparse.Namespace) -> int:
     try:
         thresholds = options.thresholds(args.threshold)
+        probe.known(options.names(args.backends))
     except ValueError as e:
         return _usage(str(e))
     problem = options.settings_error(args)

@@ -38,7 +38,7 @@ from x3d_core.model import Scene
 
 from conformance import cases as C
 from conformance.cli import options
-from conformance.runner import children
+from conformance.runner import children, probe
 from conformance.analyses import distribute
 from conformance.analyses import sweep as S
 
@@ -171,6 +171,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         scheduler = distribute.address(args.scheduler) if args.scheduler else None
         dts = steps(args.dts)
         iterations = iteration_counts(args.iterations)
+        probe.known(options.names(args.backends))
         names = options.listed(args.scenes) or list(S.DEFAULT_SCENES)
         loaded = scene_files(names)
         if loaded is None:

@@ -82,6 +82,16 @@ def named_backends(names: Sequence[str], info: dict[str, BackendInfo]) -> list[s
     return list(names) or [n for n, i in info.items() if i.usable or isinstance(i, Unprobed)]
 
 
+def known(names: Sequence[str]) -> None:
+    """ValueError naming any backend the registry does not know; no engine imported, so a command
+    checks its --backends with the rest of its usage, before it loads a scene."""
+    from backends import base
+    registered = base.engines()
+    unknown = [n for n in names if n not in registered]
+    if unknown:
+        raise ValueError(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(registered)}")
+
+
 def backend_table(timeout: float = DEFAULT_TIMEOUT, names: Sequence[str] = ()) -> dict[str, BackendInfo]:
     """The backends `names` (default: every one registered, base.engines(): the entry point
     group x3drbp.backends, as the child finds it) as found here, each asked in a child with a
@@ -91,10 +101,7 @@ def backend_table(timeout: float = DEFAULT_TIMEOUT, names: Sequence[str] = ()) -
     such engine costing one child and at most one `timeout`; an engine left out of `names` is
     never imported. ValueError naming any name the registry does not know, before any child."""
     from backends import base  # the registry itself imports no engine
-    known = base.engines()
-    unknown = [n for n in names if n not in known]
-    if unknown:
-        raise ValueError(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(known)}")
+    known(names)
     found: dict[str, dict] = {}
     out: dict[str, BackendInfo] = {}
     asked: list[str] = list(dict.fromkeys(names))
