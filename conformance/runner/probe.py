@@ -102,13 +102,14 @@ def backend_table(timeout: float = DEFAULT_TIMEOUT, names: Sequence[str] = ()) -
     never imported. ValueError naming any name the registry does not know, before any child."""
     from backends import base  # the registry itself imports no engine
     known(names)
+    registered = base.engines()
     found: dict[str, dict] = {}
     out: dict[str, BackendInfo] = {}
     asked: list[str] = list(dict.fromkeys(names))
     todo = asked
     while True:
         said, why = answers(_PROBE, todo, timeout, "the backend probe")
-        listed = said[0] if said and isinstance(said[0], list) else todo or list(known)
+        listed = said[0] if said and isinstance(said[0], list) else todo or list(registered)
         asked = asked or listed
         for one in said[1:]:
             found.update(one)
