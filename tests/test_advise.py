@@ -90,6 +90,13 @@ def test_speed_ties_go_to_fewer_approximations_then_agreement_then_the_coarser_s
     said = A.choose([a, b, c], _judged(bullet=0, mujoco=0, ode=0), 1.0, TOL, 0.0).said
     assert "the fastest" not in said and said.endswith("chosen by tie-break 3: within 1 mm / 1 mrad of more backends "
                                                        "for the whole run")
+    # runs cheaper than the speed resolution tie though their spreads lie apart: said so, not "within their spreads"
+    quick = _option("bullet", 1 / 60, 5e-4, (0.0003, 0.00029, 0.00032))
+    slower = _option("ode", 1 / 60, 5e-4, (0.0013, 0.0012, 0.0015))
+    c = A.choose([quick, slower], _judged(bullet=1, ode=0), 1.0, TOL, 0.0)
+    assert c.chosen is slower and c.said == (
+        "within the tolerance: tied on speed with bullet at dt 1/60 within 1 ms of CPU per simulated s of each "
+        "other, finer than runs this cheap are told apart; chosen by tie-break 1: fewer approximations")
 
 
 def test_within_the_tolerance_is_never_said_beside_an_error_above_it():

@@ -255,7 +255,12 @@ def _fastest(group: list[Option], judged: dict[str, Judged]) -> tuple[Option, st
         return chosen, "the fastest"
     rival = min(others, key=lambda o: _tiebreak(o, judged))
     k = next(i for i, (a, b) in enumerate(zip(_tiebreak(chosen, judged), _tiebreak(rival, judged))) if a != b)
-    return chosen, (f"tied on speed with {' and '.join(map(_label, others))} within their spreads; "
+    # why they tie, in the words that hold: a runner-up at a quarter of the cost is no tie "within
+    # its spread", but it is one within the resolution no measure on a shared machine beats
+    why = ("within their spreads" if all(o.cost.ties(first.cost) for o in tied) else
+           f"within {margin * 1e3:.2g} ms of CPU per simulated s of each other, finer than runs this cheap are "
+           "told apart")
+    return chosen, (f"tied on speed with {' and '.join(map(_label, others))} {why}; "
                     f"chosen by tie-break {k + 1}: {TIEBREAKS[k]}")
 
 
