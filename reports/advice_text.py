@@ -123,17 +123,21 @@ def markdown(doc: dict, details: bool = True) -> str:
     """advice.json as markdown: a table of the answers and the rule's settings, then (details)
     each scene's reasons, folded."""
     s = doc["settings"]
-    lines = ["| scene | kind | recommended | step | error (m) | CPU s per simulated s | runner-up |",
-             "|---|---|---|---|---:|---:|---|"]
+    lines = ["| scene | kind | recommended | step | error (m) | CPU s per simulated s | chosen as | runner-up |",
+             "|---|---|---|---|---:|---:|---|---|"]
     for scene in doc["scenes"]:
         best = _find(scene, scene["recommended"])
         runner = _find(scene, scene["runners_up"][0]) if scene["runners_up"] else None
         name = escape(scene["scene"])
         if best is None:
-            lines.append(f"| {name} | {scene['kind']} | none: {escape(scene['rule'])} | - | - | - | - |")
+            lines.append(f"| {name} | {scene['kind']} | none: {escape(scene['rule'])} | - | - | - | - | - |")
             continue
+        # how the rule settled it, beside a runner-up that may be cheaper or closer: a tie and its
+        # tie-break, or the runner-up's failed cases and approximations
+        chosen_as = "; ".join(filter(None, (scene["rule"], scene.get("settled"))))
+        versus = _versus(runner, best) + _flaws(scene["judged"][runner["backend"]]) if runner else "-"
         lines.append(f"| {name} | {scene['kind']} | {best['backend']} | {dt_label(best['dt'])} | {num(best['error'])} "
-                     f"| {num(best['cpu_per_sim_s'])} | {escape(_versus(runner, best)) if runner else '-'} |")
+                     f"| {num(best['cpu_per_sim_s'])} | {escape(chosen_as)} | {escape(versus)} |")
     lines += ["", f"Budget {s['budget']:g} CPU s per simulated second, tolerance {s['tolerance']:g} m over the first "
                   f"{s['window']:g} s, steps {', '.join(dt_label(d) for d in s['dts'])}, runs of {s['duration']:g} s. "
                   "The rule (docs/commands/advise.md): the fastest run within the tolerance of the scene's reference; "

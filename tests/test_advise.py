@@ -255,6 +255,12 @@ def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_
         "hinge_limits": "fail", "contact_slip": "unsupported"}, "passing": 1}
     text = "\n".join(scene_lines(scene, settings))
     assert "    pymunk at dt 1/240: 0.5x the cost" in text and "; fails hinge_limits; 1 approximation(s)" in text
+    # the summary table says how the rule settled it and why the cheaper runner-up is not first
+    from reports.advice_text import markdown
+    scene.update(rule=A.WITHIN, settled="tied on speed; tie-break 1: fewer approximations")
+    row = markdown({"settings": {**settings, "dts": [1 / 240], "repeats": 3}, "scenes": [scene]}, details=False)
+    assert ("| within the tolerance; tied on speed; tie-break 1: fewer approximations | pymunk at dt 1/240: 0.5x the "
+            "cost, error 0.002 m (+0 m); fails hinge\\_limits; 1 approximation(s) |") in row  # markdown-escaped
 
 
 @pytest.mark.parametrize("args, says", [

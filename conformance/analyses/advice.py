@@ -198,7 +198,7 @@ class Advice:
     def to_json(self) -> dict:
         ref, c = self.reference, self.choice
         return {
-            "scene": self.scene, "kind": self.kind, "rule": c.rule, "said": c.said,
+            "scene": self.scene, "kind": self.kind, "rule": c.rule, "said": c.said, "settled": c.settled,
             "reference": ref.to_json() if isinstance(ref, S.Reference) else {"backend": None, "method": None,
                                                                              "why_none": ref},
             "judged": {b: vars(j) for b, j in self.judged.items()},
@@ -225,11 +225,14 @@ def _option_json(o: Option) -> dict:
 @dataclass
 class Choice:
     """What the rule chose: the run (or None), the branch, the first line's honest account of
-    why (a tie said as a tie, the tie-break that settled it), and each other backend's best run."""
+    why (a tie said as a tie, the tie-break that settled it), each other backend's best run, and
+    in a few words how the branch settled it ('the fastest', or the speed tie's tie-break): a
+    table's cell, beside a runner-up that may be cheaper."""
     chosen: Option | None
     rule: str
     said: str
     runners_up: list[Option]
+    settled: str = ""
 
 
 def _tiebreak(o: Option, judged: dict[str, Judged]) -> tuple:
@@ -243,16 +246,16 @@ def _label(o: Option) -> str:
     return f"{o.backend} at dt {dt_label(o.dt)}"
 
 
-def _fastest(group: list[Option], judged: dict[str, Judged]) -> tuple[Option, str]:
-    """The fastest by median, ties (spreads overlapping its own) broken by the tie-breaks; and
-    what to say of its speed: 'the fastest' only where nothing ties with it."""
+def _fastest(group: list[Option], judged: dict[str, Judged]) -> tuple[Option, str, str]:
+    """The fastest by median, ties (spreads overlapping its own) broken by the tie-breaks; what
+    to say of its speed ('the fastest' only where nothing ties with it), and that in a few words."""
     first = min(group, key=lambda o: o.cost.median)
     margin = max(SPEED_RESOLUTION, SPEED_RELATIVE * first.cost.median)
     tied = [o for o in group if o.cost.ties(first.cost) or o.cost.median - first.cost.median <= margin]
     chosen = min(tied, key=lambda o: _tiebreak(o, judged))
     others = [o for o in tied if o is not chosen]
     if not others:
-        return chosen, "the fastest"
+        return chosen, "the fastest", "the fastest"
     rival = min(others, key=lambda o: _tiebreak(o, judged))
     k = next(i for i, (a, b) in enumerate(zip(_tiebreak(chosen, judged), _tiebreak(rival, judged))) if a != b)
     # why they tie, in the words that hold: a runner-up at a quarter of the cost is no tie "within
@@ -261,7 +264,7 @@ def _fastest(group: list[Option], judged: dict[str, Judged]) -> tuple[Option, st
            f"within {margin * 1e3:.2g} ms of CPU per simulated s of each other, finer than runs this cheap are "
            "told apart")
     return chosen, (f"tied on speed with {' and '.join(map(_label, others))} {why}; "
-                    f"chosen by tie-break {k + 1}: {TIEBREAKS[k]}")
+                    f"chosen by tie-break {k + 1}: {TIEBREAKS[k]}"), f"tied on speed; tie-break {k + 1}: {TIEBREAKS[k]}"
 
 
 def _outdone(backend: str, backends: Sequence[str], judged: dict[str, Judged]) -> list[str]:
@@ -299,23 +302,23 @@ def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, 
     outdone = {b: _outdone(b, able, judged) for b in able}
     clean = [o for o in affordable if not outdone[o.backend]]
 
-    def best(group: list[Option]) -> tuple[Option, str, str]:
+    def best(group: list[Option]) -> tuple[Option, str, str, str]:
         accurate = [o for o in group if o.error <= tolerance + reference_error]
         if accurate:
-            o, speed = _fastest(accurate, judged)
+            o, speed, settled = _fastest(accurate, judged)
             rule = WITHIN if reference_error <= tolerance else CANNOT_RANK
             within = ("within the tolerance" if o.error <= tolerance else
                       f"within the tolerance and the reference's uncertainty ({reference_error:.3g} m)")
-            return o, rule, f"{within if rule == WITHIN else CANNOT_RANK_SAID}: {speed}"
+            return o, rule, f"{within if rule == WITHIN else CANNOT_RANK_SAID}: {speed}", settled
         least = min(o.error for o in group)
-        o, speed = _fastest([o for o in group if same_error(o.error, least, reference_error)], judged)
+        o, speed, settled = _fastest([o for o in group if same_error(o.error, least, reference_error)], judged)
         said = MOST_ACCURATE + ("" if speed == "the fastest" else f"; {speed}")
         if reference_error > tolerance:  # what the reference cannot tell apart is said, not ranked
             said = (f"accuracy cannot be ranked finer than the reference's uncertainty ({reference_error:.3g} m, "
                     f"over the tolerance); {said}, errors within it one")
-        return o, MOST_ACCURATE, said
+        return o, MOST_ACCURATE, said, "" if settled == "the fastest" else settled
 
-    chosen, rule, said = best(clean or affordable)
+    chosen, rule, said, settled = best(clean or affordable)
     if not clean:
         said = ("every backend that fits fails a case another passes ("
                 + "; ".join(f"{b}: {', '.join(cs)}" for b, cs in outdone.items()) + "), so one is chosen regardless; "
@@ -327,7 +330,7 @@ def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, 
     others = [best([o for o in affordable if o.backend == b]) for b in able if b != chosen.backend]
     # runners-up in the rule's own order: those within the tolerance by speed, then the rest by error
     others.sort(key=lambda t: (t[1] == MOST_ACCURATE, t[0].cost.median if t[1] != MOST_ACCURATE else t[0].error))
-    return Choice(chosen, rule, said, [o for o, _, _ in others])
+    return Choice(chosen, rule, said, [o for o, _, _, _ in others], settled)
 
 
 def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.BackendPlan],
