@@ -176,6 +176,9 @@ def _header(meta: dict, out: str) -> str:
     steps = ", ".join(f"{k} {v:g} s" for k, v in t.items() if k != "total")
     failed = f" Steps that could not run: {', '.join(meta['failed'])} (see their logs)." if meta["failed"] else ""
     yours = f" Your scenes: {', '.join(map(escape, meta['scenes']))}." if meta.get("scenes") else ""
+    left = meta.get("left_out") or {}
+    yours += (" Left out of every step, as they do not load or simulate nothing: "
+              + "; ".join(escape(why) for why in left.values()) + ".") if left else ""
     return "\n".join([
         "# x3drbp report", "",
         f"Generated {meta['generated']} on {meta['cpus']} CPUs in {t['total']:g} s ({steps}).{failed}{yours}", "",

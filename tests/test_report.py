@@ -125,6 +125,7 @@ def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys
     yours = tmp_path / "mine"
     yours.mkdir()
     shutil.copy(case_scene("free_fall"), yours / "drop.x3d")
+    (yours / "cut.x3d").write_text("<X3D><Scene><RigidBodyCollection>")  # does not load: left out of every step
 
     def small(out_dir, backends, quick, x_ite, scenes):
         chosen = ["--backends", ",".join(backends)]
@@ -142,8 +143,10 @@ def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys
                                 os.path.join(out_dir, "stability")]])]
     monkeypatch.setattr(R, "_steps", small)
     from conformance.cli import main
-    assert main(["report", "--out", out, "--backends", pair, "--scenes", str(yours)]) == 0
-    assert "links to" not in capsys.readouterr().err  # the command found no dead link
+    assert main(["report", "--out", out, "--backends", pair, "--scenes", str(yours)]) == 1  # a scene left out
+    err = capsys.readouterr().err
+    assert "links to" not in err  # the command found no dead link
+    assert f"x3drbp report: left out of every step: {yours / 'cut.x3d'}:1:" in err
     page = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     assert page.startswith("<!DOCTYPE html>") and page.count("<table>") >= 5
     assert dead_links(out, page) == [] and "compare/pendulum.divergence.png" in page
@@ -162,6 +165,9 @@ def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys
     meta = json.load(open(os.path.join(out, "report.json"), encoding="utf-8"))
     assert set(meta["timings_s"]) == {"conformance", "compare", "advise", "stability", "total"}
     assert not meta["failed"] and meta["scenes"] == [os.path.relpath(yours / "drop.x3d")]
+    (why,) = meta["left_out"].values()
+    assert list(meta["left_out"]) == [os.path.relpath(yours / "cut.x3d")] and ": error: " in why
+    assert "Left out of every step, as they do not load or simulate nothing: " in text
     assert "$ x3drbp conformance" in open(os.path.join(out, "logs", "conformance.log"), encoding="utf-8").read()
 
 

@@ -186,19 +186,21 @@ def progress(args: argparse.Namespace) -> bool:
 def load_scene(path: str) -> Scene | None:
     """The scene, or None after printing why it does not load to stderr: one line per
     error, never a traceback (commands that run a scene exit 1 then)."""
+    scene, errors = scene_or_errors(path)
+    for line in errors:
+        print(line, file=sys.stderr)
+    return scene
+
+
+def scene_or_errors(path: str) -> tuple[Scene | None, list[str]]:
+    """The scene, or None and why it does not load, a line per error (never a traceback)."""
     try:
         scene = load(path)
     except LoadError as e:
-        for d in e.diagnostics:
-            print(d, file=sys.stderr)
-        return None
+        return None, [str(d) for d in e.diagnostics]
     except Exception as e:  # a bug of ours, never the file's fault: still one line
-        print(f"{path}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it",
-              file=sys.stderr)
-        return None
-    for d in scene.errors:
-        print(d, file=sys.stderr)
-    return None if scene.errors else scene
+        return None, [f"{path}:1:1: error: internal error while reading ({type(e).__name__}: {e}); please report it"]
+    return (None if scene.errors else scene), [str(d) for d in scene.errors]
 
 
 def add_matrix_options(p: argparse.ArgumentParser, verb: str, case_names: list[str], timeout: float) -> None:

@@ -21,9 +21,11 @@ files or folders, go into compare, advise and sweep beside the bundled examples)
                  `make x-ite-install`)                       DIR/x_ite/x_ite.json, x_ite.md
 
 then reports/report_page.py writes DIR/report.md and DIR/index.html from those files alone.
---quick leaves out the sweep (the longest step). DIR defaults to out/report. Exit status 0
-whatever the verdicts (they are results); 1 where a step could not run at all (its log in
-DIR/logs/ says why); 2 on bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM (the
+--quick leaves out the sweep (the longest step). DIR defaults to out/report. A scene of
+yours that does not load, or has nothing to simulate, is left out of every step, its first
+error on stderr, on the page and in report.json's `left_out`. Exit status 0 whatever the
+verdicts (they are results); 1 where a step could not run at all (its log in DIR/logs/ says
+why) or a scene of yours was left out; 2 on bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM (the
 step's runs stopped, one line). A named backend that cannot run is one line on stderr.
 """
 
@@ -40,6 +42,7 @@ from collections.abc import Callable
 from typing import TextIO
 
 from x3d_core import atomic
+from x3d_core.outcome import EMPTY, simulates
 from x3d_core.paths import scene_files
 
 from conformance.cli import as_given, options
@@ -176,6 +179,10 @@ def cmd_report(args: argparse.Namespace) -> int:
         print("x3drbp report: --scenes: no X3D files (.x3d, .x3dv, .x3dj) under the given paths", file=sys.stderr)
         return EXIT_USAGE
     yours = [os.path.abspath(p) for p in yours]
+    left_out = _unrunnable(yours)
+    for why in left_out.values():
+        print(f"x3drbp report: left out of every step: {why}", file=sys.stderr)
+    yours = [p for p in yours if p not in left_out]
     for sub in ("logs", "compare", "advice"):
         os.makedirs(os.path.join(out, sub), exist_ok=True)
     timings, failed = {}, []
@@ -208,14 +215,30 @@ def cmd_report(args: argparse.Namespace) -> int:
     timings["total"] = round(time.perf_counter() - started, 1)
     meta = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "backends": {b: info[b].version for b in backends}, "cpus": os.cpu_count(), "timings_s": timings,
-            "failed": failed, "quick": args.quick, "scenes": [os.path.relpath(p) for p in yours]}
+            "failed": failed, "quick": args.quick, "scenes": [os.path.relpath(p) for p in yours],
+            "left_out": {os.path.relpath(p): why for p, why in left_out.items()}}
     atomic.write_json(os.path.join(out, "report.json"), meta)
     page = write_report(out)
     with open(page, encoding="utf-8") as f:
         for link in dead_links(out, f.read()):  # a step that left out a file its text cites
             print(f"x3drbp report: {page} links to {link}, which is not there", file=sys.stderr)
     print(f"report: wrote {page} and report.md in {timings['total']:g} s", file=sys.stderr)
-    return EXIT_FAILED if failed else EXIT_OK
+    return EXIT_FAILED if failed or left_out else EXIT_OK
+
+
+def _unrunnable(paths: list[str]) -> dict[str, str]:
+    """Each of the user's scenes no step can run, with the first reason (the line the steps
+    would each print): left out of every step and named on the page, where it failed the
+    sweep's step whole (a sweep stops at a scene that does not load) and every other step's
+    log said it again."""
+    out = {}
+    for path in paths:
+        scene, errors = options.scene_or_errors(path)
+        if scene is None:
+            out[path] = errors[0] if errors else f"{path}: does not load"
+        elif not simulates(scene):
+            out[path] = f"{path}: nothing to simulate: {EMPTY}"
+    return out
 
 
 def add_command(sub) -> None:
