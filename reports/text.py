@@ -13,6 +13,7 @@ import re
 import urllib.parse
 
 from conformance.results import Measure, grade
+from x3d_core.paths import printable
 
 _MARKDOWN = re.compile(r"([\\`*_\[\]#|])")  # code spans, emphasis, links and images, headings, table cells
 
@@ -40,8 +41,9 @@ def encodable(text: str) -> str:
 
 def escape(text: str) -> str:
     """Text as text in markdown, anywhere on a line (a table cell, a heading, a list item, a link's
-    words): HTML's specials as entities, markdown's backslash-escaped, its lines joined."""
-    return _MARKDOWN.sub(r"\\\1", html.escape(one_line(encodable(text)), quote=False))
+    words): HTML's specials as entities, markdown's backslash-escaped, its lines joined, and what
+    does not print (a terminal escape, a byte that is not UTF-8) as its escape (printable())."""
+    return _MARKDOWN.sub(r"\\\1", html.escape(printable(one_line(text)), quote=False))
 
 
 def plotted(text: str) -> str:

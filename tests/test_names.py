@@ -46,3 +46,24 @@ def test_a_comma_in_a_scene_s_name_is_written_with_a_backslash(tmp_path, capsys)
     steps = dict(R._steps(str(tmp_path / "r"), ["pymunk", "mujoco"], False, False, [str(odd)]))
     (sweep,) = steps["sweep"]
     assert options.listed([sweep[sweep.index("--scenes") + 1]])[-1] == str(odd)  # report escapes what it hands on
+
+
+def test_a_terminal_escape_or_newline_in_a_def_name_or_a_path_is_shown_as_text(tmp_path, capsys):
+    """A JSON DEF name `B\\u001b[31m...` reached the terminal raw in check's diagnostics and in
+    validate's markdown (recolouring it; its newline split the line), as did a trace's or an
+    output's name in validate's one-line refusals."""
+    from reports.text import escape
+    scene = tmp_path / "ball.x3dj"
+    text = open(f"{ROOT}/scenes/examples/bouncing_ball.x3dj", encoding="utf-8").read()
+    scene.write_text(text.replace('"@DEF": "Ball"', '"@DEF": "B\\u001b[31m\\nX"').replace('"@mass": 0.2', '"@mass": -0.2'))
+    assert cli_main(["check", str(scene)]) == 1
+    out = capsys.readouterr().out
+    assert "\x1b" not in out and "RigidBody B\\x1b[31m\\nX.mass: -0.2 is out of range" in out.splitlines()[0]
+    assert "\x1b" not in escape("B\x1b[31m<b>") and "B\\\\x1b" in escape("B\x1b[31m<b>")
+    odd = str(tmp_path / "t\x1b[31m\nx.csv")
+    assert cli_main(["validate", case_scene("free_fall"), "--trace", odd]) == 2
+    assert capsys.readouterr().err == f"{str(tmp_path)}/t\\x1b[31m\\nx.csv: cannot read: cannot read file: No such file or directory\n"
+    json_out = str(tmp_path / "j\x1b[1m" / "x.json")
+    assert cli_main(["validate", case_scene("free_fall"), "--trace", odd, "--json", json_out]) == 1
+    err = capsys.readouterr().err
+    assert "\x1b" not in err and err.count("\n") == 1 and "cannot write" in err

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Iterator, NamedTuple
 
 from .fields import FieldType
-from .paths import shown
+from .paths import printable, shown
 from .schema import NodeType
 
 
@@ -28,7 +28,7 @@ class Diagnostic:
 
     def __str__(self) -> str:
         subject = f"{self.subject}: " if self.subject else ""
-        return f"{self.loc}: {self.severity}: {subject}{self.message}"
+        return f"{self.loc}: {self.severity}: {printable(subject + self.message)}"
 
 
 class LoadError(Exception):

@@ -1,4 +1,4 @@
-"""Which files on disk are scenes."""
+"""Which files on disk are scenes, and how a name from a file is shown on a line of output."""
 
 from __future__ import annotations
 
@@ -12,6 +12,14 @@ def shown(path: str) -> str:
     repr) where it holds a character that does not print (a newline would start a line of
     its own, one that could read `x.x3d: ok`; an undecodable byte would not encode)."""
     return path if path.isprintable() else repr(path)
+
+
+def printable(text: str) -> str:
+    """Text from a user's file (a DEF name, a value a message quotes) as text on a terminal:
+    each character that does not print as its Python escape. An escape sequence in a DEF name
+    (JSON's \\u001b, ClassicVRML's raw byte) recoloured or moved the terminal's cursor, and a
+    newline split a diagnostic into two lines."""
+    return text if text.isprintable() else "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
 def scene_files(paths: list[str]) -> list[str]:

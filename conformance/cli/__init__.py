@@ -20,6 +20,7 @@ import sys
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from x3d_core.atomic import CannotWrite  # noqa: E402  (after the BLAS setting)
+from x3d_core.paths import printable  # noqa: E402
 
 # command -> the module under conformance.cli whose add_command registers it (run's registers
 # run and backends), in the order `x3drbp --help` lists them
@@ -57,8 +58,9 @@ def _quiet_stdout() -> None:
 
 
 def _say(line: str) -> None:
+    """One line on stderr, as text: the path it names may hold a terminal escape or a newline."""
     try:
-        print(line, file=sys.stderr)
+        print(printable(line), file=sys.stderr)
     except (OSError, ValueError):  # standard error closed too: the status says it
         pass
 

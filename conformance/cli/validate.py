@@ -30,6 +30,7 @@ from conformance.cli import options
 from conformance import results
 from conformance.runner import children, probe
 from conformance.cases.case import Case
+from x3d_core.paths import printable
 from x3d_core.trace import TraceView
 from conformance.analyses.compare import DEFAULT_THRESHOLDS
 from conformance.analyses.trace_check import Problem, check_trace
@@ -41,8 +42,9 @@ MAX_SHOWN = 20  # problems printed; the rest counted
 
 
 def _unreadable(lines: Sequence[str]) -> int:
+    """Each line printed as text (a trace's or scene's name may hold a terminal escape or a newline)."""
     for line in lines[:MAX_SHOWN]:
-        print(line, file=sys.stderr)
+        print(printable(line), file=sys.stderr)
     if len(lines) > MAX_SHOWN:
         print(f"... and {len(lines) - MAX_SHOWN} more problems", file=sys.stderr)
     return EXIT_UNREADABLE
