@@ -210,3 +210,21 @@ def test_without_nodes_takes_a_joint_type_out(tmp_path):
     assert without_nodes(case_scene("slider_stops"), "SliderJoint", out)
     assert not load(out).of_type("SliderJoint") and not load(out).errors
     assert not without_nodes(case_scene("free_fall"), "SliderJoint", out + "2")
+
+
+@pytest.mark.parametrize("body, says", [
+    ("<RigidBodyCollection><RigidBody DEF='Ball' mass='-1'/></RigidBodyCollection>",
+     "'s\\x1b[31m\\n.x3d':3:"),  # then ': error: RigidBody Ball.mass: -1 is out of range'
+    ("<RigidBodyCollection DEF='W'><RigidBody mass='1'/></RigidBodyCollection>",
+     "x3drbp x-ite: 's\\x1b[31m\\n.x3d': RigidBody_1: a page reads nodes by DEF name, and these have none"),
+])
+def test_record_refuses_a_scene_with_errors_or_unnamed_outputs_in_one_line(tmp_path, monkeypatch, capsys, body, says):
+    """A scene with errors went on to be recorded (or to 'X_ITE cannot run here', exit 1); the
+    name of one that did not load was said twice, raw, and cut at its first newline."""
+    monkeypatch.chdir(tmp_path)
+    _scene(tmp_path, body, name="s\x1b[31m\n.x3d")
+    assert cli_main(["x-ite", "record", "s\x1b[31m\n.x3d", "--trace", "o.csv"]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and err[0].startswith(says), err
+    assert "mass='-1'" not in body or err[0].endswith("error: RigidBody Ball.mass: -1 is out of range; allowed (0,inf)")
+    assert not (tmp_path / "o.csv").exists()

@@ -26,8 +26,7 @@ import sys
 import time
 
 from x3d_core import atomic
-from x3d_core.load import load
-from x3d_core.model import LoadError
+from x3d_core.paths import shown
 
 from conformance.cli import options
 from conformance import cases as C
@@ -92,11 +91,13 @@ class _NotRecorded(Exception):
 
 @children.interruptible
 def cmd_record(args: argparse.Namespace) -> int:
+    scene = options.load_scene(args.scene)  # its errors as check says them: a scene with errors was recorded
+    if scene is None:
+        return EXIT_USAGE
     try:
-        scene = load(args.scene)
         what = outputs(scene)
-    except (LoadError, NotRecordable) as e:
-        _say(f"{args.scene}: {e}".splitlines()[0])
+    except NotRecordable as e:
+        _say(f"{shown(args.scene)}: {e}")
         return EXIT_USAGE
     reason = unavailable()
     if reason:
