@@ -122,3 +122,22 @@ def test_the_plugin_refuses_a_pin_file_that_is_a_pipe(tmp_path):
     with fed(str(pins / "ode.toml")) as pipe:
         p = _plugin(tmp_path, str(pins))
     one_line(p, pytest.ExitCode.USAGE_ERROR, rf"ERROR: --x3drbp-expectations: {pipe}: a named pipe, not a regular file$")
+
+
+def test_expectations_refuses_a_matrix_page_before_any_run(tmp_path, monkeypatch, capsys):
+    """A --matrix page that does not read was said after every case had run and the pins had
+    been rewritten: now at once, nothing run, nothing written."""
+    from conformance.cli import main as cli_main
+    from conformance.runner import verdicts
+
+    def ran(*args, **kwargs):
+        raise AssertionError("the cases ran")
+    monkeypatch.setattr(verdicts, "run_matrix", ran)
+    b = _installed_backend()
+    page = tmp_path / "matrix.md"
+    page.write_text("# no markers\n")
+    for bad, why in ((page, "no matrix markers"), (tmp_path, "a folder, not a regular file"),
+                     (tmp_path / "nope" / "m.md", "cannot read file: No such file or directory")):
+        assert cli_main(["expectations", "--backends", b, "--cases", "free_fall", "--matrix", str(bad)]) == 2
+        err = capsys.readouterr().err.splitlines()
+        assert len(err) == 1 and err[0].startswith(f"x3drbp expectations: --matrix {bad}: {why}"), err

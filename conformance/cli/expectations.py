@@ -8,7 +8,7 @@ each backend that ran (a `why` is kept while its verdict holds; cases not run ke
 pins), then the conformance matrix page (docs/conformance-matrix.md) from every file.
 Prints each pin that changed. With --check it writes nothing and exits 1 when any verdict
 differs from its pin: what CI of an engine's adapter runs. Exit 2 on bad usage: a --pins DIR that is no folder, a pin file that
-does not read (one line, FILE:LINE: why, before any run), a --matrix that is not one.
+does not read (one line, FILE:LINE: why, before any run), a --matrix that is not one (also before any run).
 """
 
 from __future__ import annotations
@@ -32,16 +32,23 @@ EXIT_OK, EXIT_CHANGED, EXIT_USAGE = 0, 1, 2
 MATRIX = os.path.join(C.ROOT, "docs", "conformance-matrix.md")
 
 
+def matrix_page(path: str) -> str:
+    """The matrix page's text; ValueError naming the file (and line) where it does not read or
+    has no markers (read before any run, and again to write it)."""
+    text = read_text(path)
+    try:
+        replace_section(text, "")
+    except ValueError as e:
+        raise ValueError(f"{path}: {e}") from None
+    return text
+
+
 def write_matrix(path: str) -> None:
     """The matrix page's table from the pinned verdicts of every backend x3drbp ships; ValueError
     naming the file (and line) where the page or a pin file does not read, or the page has no
     markers."""
-    text = read_text(path)
-    table = markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.IN_TREE})
-    try:
-        new = replace_section(text, table)
-    except ValueError as e:
-        raise ValueError(f"{path}: {e}") from None
+    text = matrix_page(path)
+    new = replace_section(text, markdown([c.name for c in C.CASES], {b: E.load(b) for b in base.IN_TREE}))
     if new != text:
         atomic.write_text(path, new)
 
@@ -57,8 +64,15 @@ def cmd_expectations(args: argparse.Namespace) -> int:
         if not info[b].usable:
             print(f"skipped {b}, its pins kept: unavailable: {info[b].unavailable}")
     backends = [b for b in named if info[b].usable]
-    try:  # before any run: a pin file that is not one is said at once
+    matrix = args.matrix if args.matrix and args.pins is None and not args.check else None
+    try:  # before any run: a pin file or a matrix page that is not one is said at once (the page was
+        # read after every run, once the pins were rewritten)
         pins = {b: E.load(b, args.pins) for b in backends}
+        if matrix:
+            try:
+                matrix_page(matrix)
+            except ValueError as e:
+                raise ValueError(f"--matrix {e}") from None
     except ValueError as e:
         print(f"x3drbp expectations: {e}", file=sys.stderr)
         return EXIT_USAGE
@@ -79,9 +93,9 @@ def cmd_expectations(args: argparse.Namespace) -> int:
     print(f"{changed} verdict(s) differ from their pins on {', '.join(backends) or 'no backend'}")
     if args.check:
         return EXIT_CHANGED if changed else EXIT_OK
-    if args.matrix and args.pins is None:  # the matrix page shows x3drbp's own pins
+    if matrix:  # the matrix page shows x3drbp's own pins
         try:
-            write_matrix(args.matrix)
+            write_matrix(matrix)
         except ValueError as e:  # not a regular file, not UTF-8, or without the matrix's markers
             print(f"x3drbp expectations: --matrix {e}", file=sys.stderr)
             return EXIT_USAGE
