@@ -114,3 +114,17 @@ def test_missing_body_field_and_wrong_trace_count_are_refused(bullet_fall, tmp_p
     assert f"{path}: no rows for Ball.angularVelocity" in capsys.readouterr().err
     assert _validate(FRAME_RATE, "--trace", path) == 2
     assert "takes 2 trace(s) (--trace, in this order: 30 frames/s, 144 frames/s), got 1" in capsys.readouterr().err
+
+
+def test_a_step_no_backend_can_take_is_bad_usage_before_any_run(bullet_fall, tmp_path, capsys, monkeypatch):
+    """--dt 1e-12 (2e11 steps for free_fall's 2 s) was handed to every backend, each refused it in
+    its row, and the trace was judged 'does not conform', exit 1, for a setting of the command line."""
+    from conformance.analyses import validation
+
+    def ran(*args, **kwargs):
+        raise AssertionError("a backend ran")
+    monkeypatch.setattr(validation, "run_backends", ran)
+    path = _write(tmp_path, bullet_fall)
+    assert _validate(FREE_FALL, "--trace", path, "--against", "bullet", "--dt", "1e-12") == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and err[0].startswith(f"x3drbp validate: {path} reads as ") and "steps; a run takes at most" in err[0]

@@ -13,7 +13,8 @@ Exit status: 0 when the trace conforms: the case's expectation passes, or, for a
 that is no case, the trace agrees with at least one backend within the thresholds; 1 when
 it does not; 2 when it cannot be judged: the trace is unreadable (one line per problem,
 FILE:LINE: ..., at most MAX_SHOWN), lacks what the expectation reads, or the usage is
-wrong (the scene does not load, an unknown backend, the wrong number of traces).
+wrong (the scene does not load, an unknown backend, the wrong number of traces, a --dt
+at which a backend's run of the trace would pass a run's steps or frames).
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ from x3d_core.paths import printable
 from x3d_core.trace import TraceView
 from conformance.analyses.compare import DEFAULT_THRESHOLDS
 from conformance.analyses.trace_check import Problem, check_trace
-from conformance.analyses.validation import check_case, compare_with_backends, find_case
+from conformance.analyses.validation import check_case, compare_with_backends, find_case, trace_settings
 from conformance.results import Validation
 
 EXIT_CONFORMS, EXIT_DOES_NOT, EXIT_UNREADABLE = 0, 1, 2
@@ -65,6 +66,19 @@ def _coverage(path: str, rows: TraceView, case: Case | None, k: int) -> list[Pro
     return []
 
 
+def _too_long(paths: Sequence[str], traces: Sequence[TraceView], dt: float) -> str | None:
+    """Why the backends cannot run a trace as it reads at step dt (past a run's frames or steps),
+    in one line; None when they can. Said before any run: each backend's run was refused in its
+    row, and the trace judged 'does not conform' (exit 1) for a setting of the command line."""
+    for path, rows in zip(paths, traces):
+        s = trace_settings(rows, dt)
+        too = options.too_long(s.duration, s.dt, s.frame_rate)
+        if too:
+            return (f"{path} reads as {s.duration:g} s at {s.frame_rate:g} frames/s: at --dt {dt:g} a backend's "
+                    f"run of it makes {too}")
+    return None
+
+
 @children.interruptible
 def cmd_validate(args: argparse.Namespace) -> int:
     try:
@@ -92,6 +106,10 @@ def cmd_validate(args: argparse.Namespace) -> int:
         problems += found
     if problems:
         return _unreadable([str(p) for p in problems])
+    dt = args.dt or 1.0 / 240.0
+    too = _too_long(args.trace, traces, dt)
+    if too:
+        return _usage(too)
     result = None
     if case is not None:
         result = check_case(case, [TraceView(r) for r in traces], args.dt)
@@ -101,7 +119,6 @@ def cmd_validate(args: argparse.Namespace) -> int:
         info, backends = probe.chosen(options.names(args.against), args.timeout)
     except ValueError as e:
         return _usage(str(e))
-    dt = args.dt or 1.0 / 240.0
     validation = Validation(args.scene, list(args.trace), thresholds, result,
                             [compare_with_backends(args.scene, path, rows, dt, backends, info, thresholds, args.timeout)
                              for path, rows in zip(args.trace, traces)])
