@@ -35,3 +35,34 @@ def test_backends_prints_no_engine_banner():
     r = _x3drbp("backends", "--features")
     assert r.returncode == 0 and "build time" not in r.stdout + r.stderr, r.stderr
     assert r.stdout.startswith("bullet ") or "\nbullet " in r.stdout
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["expectations", "--check", "--cases", ","], "x3drbp expectations: --cases names no case: ','"),
+    (["expectations", "--check", "--backends", " , "], "x3drbp expectations: --backends names no backend: ' , '"),
+    (["validate", "scenes/examples/pendulum.x3d", "--trace", "t.csv", "--against", ","],
+     "x3drbp validate: --against names no backend: ','"),
+    (["x-ite", "cases", "--cases", ",", "--out", "o"], "x3drbp x-ite: --cases names no case: ','"),
+])
+def test_a_list_option_that_names_nothing_is_bad_usage_not_the_default(tmp_path, monkeypatch, capsys, argv, says):
+    """`--cases ,` ran every case (and `--backends ,` every backend), as if the option were not
+    given, where `--dts ,` was already refused as a mistake."""
+    from conformance.analyses import validation
+    from conformance.cli import main as cli_main
+    from conformance.runner import verdicts
+
+    def ran(*args, **kwargs):
+        raise AssertionError("it ran")
+    monkeypatch.setattr(verdicts, "run_matrix", ran)
+    monkeypatch.setattr(validation, "run_backends", ran)
+    if argv[0] == "validate":
+        trace = tmp_path / "t.csv"
+        installed = [b for b, v in base.available().items() if not isinstance(v, str)]
+        if not installed:
+            pytest.skip("no engine is installed")
+        assert cli_main(["run", f"{ROOT}/{argv[1]}", "--backend", installed[0], "--duration", "0.1", "--trace", str(trace)]) == 0
+        argv = ["validate", f"{ROOT}/{argv[1]}", "--trace", str(trace), *argv[4:]]
+        capsys.readouterr()
+    monkeypatch.chdir(tmp_path)
+    assert cli_main(argv) == 2
+    assert capsys.readouterr().err.splitlines() == [says]

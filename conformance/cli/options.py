@@ -221,11 +221,11 @@ def chosen(args: argparse.Namespace, select: Callable[[Sequence[str]], list[Any]
     --backends names (default: every usable one); ValueError with the one-line reason for a
     name either does not know."""
     try:
-        cases = select(names(args.cases))
+        cases = select(given(args.cases, "--cases", "case"))  # `--cases ,` a mistake, not every case
     except KeyError as e:
         raise ValueError(e.args[0]) from None
     from conformance.runner import probe
-    return cases, *probe.chosen(names(args.backends), args.timeout)
+    return cases, *probe.chosen(given(args.backends, "--backends", "backend"), args.timeout)
 
 
 def publish(out: str, name: str, text: str, data: dict) -> None:

@@ -116,7 +116,7 @@ def cmd_validate(args: argparse.Namespace) -> int:
         if result.verdict == results.ERROR:
             return _unreadable([f"{', '.join(args.trace)}: case {case.name}: {result.reason}"])
     try:
-        info, backends = probe.chosen(options.names(args.against), args.timeout)
+        info, backends = probe.chosen(options.given(args.against, "--against", "backend"), args.timeout)
     except ValueError as e:
         return _usage(str(e))
     validation = Validation(args.scene, list(args.trace), thresholds, result,

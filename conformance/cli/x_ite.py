@@ -52,8 +52,8 @@ def _say(text: str) -> None:
 def cmd_cases(args: argparse.Namespace) -> int:
     from reports.x_ite_text import render  # reports render results: imported when there are some
     try:
-        chosen = C.select(options.names(args.cases) or None)
-        info, named = probe.chosen(options.names(args.against))
+        chosen = C.select(options.given(args.cases, "--cases", "case") or None)
+        info, named = probe.chosen(options.given(args.against, "--against", "backend"))
         backends = [b for b in named if info[b].usable]
         thresholds = options.thresholds(args.threshold)
     except (KeyError, ValueError) as e:  # an unknown case, backend or threshold
