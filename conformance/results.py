@@ -596,6 +596,13 @@ class Validation:
         return "the case's expectation" if self.case is not None else "agreement with one backend"
 
     @property
+    def judged(self) -> bool:
+        """Whether anything judged the trace: the case's expectation, or a backend whose run it could
+        be held to; where every backend refused, failed or timed out, nothing did, and saying the
+        trace 'does not conform' would accuse an implementation that nothing measured."""
+        return self.case is not None or any(c.pairs for c in self.comparisons)
+
+    @property
     def conforms(self) -> bool:
         if self.case is not None:
             return self.case.verdict in (PASS, CONVENTIONS)
@@ -603,5 +610,5 @@ class Validation:
 
     def to_json(self) -> dict:
         return {"scene": self.scene, "traces": self.traces, "thresholds": self.thresholds, "rule": self.rule,
-                "conforms": self.conforms, "case": None if self.case is None else self.case.to_json(),
+                "judged": self.judged, "conforms": self.conforms, "case": None if self.case is None else self.case.to_json(),
                 "agreeing": self.agreeing(), "comparisons": [c.to_json() for c in self.comparisons]}

@@ -51,5 +51,9 @@ def render(v: Validation) -> str:
         lines += _comparison(c)
     ran = any(r.verdict == RAN for c in v.comparisons for r in c.runs)
     agreeing = ", ".join(v.agreeing()) or ("none" if ran else "none ran")
-    lines.append(f"Agrees with: {agreeing}. **{'Conforms' if v.conforms else 'Does not conform'}** ({v.rule}).")
+    if not v.judged:
+        lines.append(f"Agrees with: {agreeing}. **Not judged**: no backend ran the scene (each row says why), and "
+                     "the scene is no conformance case: nothing measured the trace.")
+    else:
+        lines.append(f"Agrees with: {agreeing}. **{'Conforms' if v.conforms else 'Does not conform'}** ({v.rule}).")
     return "\n".join(lines) + "\n"

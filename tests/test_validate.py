@@ -76,6 +76,20 @@ def test_a_scene_without_case_conforms_by_agreeing_with_one_backend(tmp_path, ca
     assert "| ode | agrees |" in out and "| pymunk | differs |" in out and "agreement with one backend" in out
 
 
+def test_a_trace_no_backend_ran_against_is_not_judged_rather_than_accused(tmp_path, capsys):
+    """The car is no case, and pymunk (planar) refuses it: nothing measured their trace, and
+    'does not conform' (exit 1) said so of a trace nothing held to anything."""
+    car, path = os.path.join(SCENES, "examples", "car.x3d"), str(tmp_path / "ode.csv")
+    assert cli_main(["run", car, "--backend", "ode", "--duration", "0.2", "--trace", path]) == 0
+    capsys.readouterr()
+    out = str(tmp_path / "v.json")
+    assert _validate(car, "--trace", path, "--against", "pymunk", "--json", out) == 3
+    text = capsys.readouterr().out
+    assert "**Not judged**: no backend ran the scene" in text and "Does not conform" not in text
+    doc = json.loads(open(out, encoding="utf-8").read())
+    assert doc["judged"] is False and doc["conforms"] is False
+
+
 def _on(line: int, old: str, new: str):
     """An edit of one line (1: the header) of the trace."""
     def edit(lines: list[str]) -> list[str]:

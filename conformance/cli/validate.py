@@ -14,7 +14,9 @@ that is no case, the trace agrees with at least one backend within the threshold
 it does not; 2 when it cannot be judged: the trace is unreadable (one line per problem,
 FILE:LINE: ..., at most MAX_SHOWN), lacks what the expectation reads, or the usage is
 wrong (the scene does not load, an unknown backend, the wrong number of traces, a --dt
-at which a backend's run of the trace would pass a run's steps or frames).
+at which a backend's run of the trace would pass a run's steps or frames); 3 when nothing
+judged it: the scene is no case and no backend ran it (each refused, failed or timed out),
+so there is nothing it could agree with, and "does not conform" would accuse it unmeasured.
 """
 
 from __future__ import annotations
@@ -38,7 +40,7 @@ from conformance.analyses.trace_check import Problem, check_trace
 from conformance.analyses.validation import check_case, compare_with_backends, find_case, trace_settings
 from conformance.results import Validation
 
-EXIT_CONFORMS, EXIT_DOES_NOT, EXIT_UNREADABLE = 0, 1, 2
+EXIT_CONFORMS, EXIT_DOES_NOT, EXIT_UNREADABLE, EXIT_NOT_JUDGED = 0, 1, 2, 3
 MAX_SHOWN = 20  # problems printed; the rest counted
 
 
@@ -125,6 +127,8 @@ def cmd_validate(args: argparse.Namespace) -> int:
     sys.stdout.write(render(validation))
     if args.json:
         atomic.write_json(args.json, validation.to_json())
+    if not validation.judged:
+        return EXIT_NOT_JUDGED
     return EXIT_CONFORMS if validation.conforms else EXIT_DOES_NOT
 
 
