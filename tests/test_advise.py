@@ -224,6 +224,9 @@ def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
     assert cli_main(["advise", str(folder), "--dts", "0"]) == 2
     (tmp_path / "empty").mkdir()
     assert cli_main(["advise", str(tmp_path / "empty")]) == 2  # no scene at all: bad usage
+    capsys.readouterr()
+    assert cli_main(["check", str(tmp_path / "empty")]) == 2
+    assert capsys.readouterr().err == f"x3drbp check: no X3D files (.x3d, .x3dv, .x3dj) under {tmp_path / 'empty'}\n"
     assert cli_main(["advise", str(tmp_path / "missing.x3d")]) == 1  # a scene that cannot be read, as check says
 
 

@@ -62,7 +62,7 @@ def test_a_terminal_escape_or_newline_in_a_def_name_or_a_path_is_shown_as_text(t
     assert "\x1b" not in escape("B\x1b[31m<b>") and "B\\\\x1b" in escape("B\x1b[31m<b>")
     odd = str(tmp_path / "t\x1b[31m\nx.csv")
     assert cli_main(["validate", case_scene("free_fall"), "--trace", odd]) == 2
-    assert capsys.readouterr().err == f"{str(tmp_path)}/t\\x1b[31m\\nx.csv: cannot read: cannot read file: No such file or directory\n"
+    assert capsys.readouterr().err == f"{str(tmp_path)}/t\\x1b[31m\\nx.csv: cannot read file: No such file or directory\n"
     json_out = str(tmp_path / "j\x1b[1m" / "x.json")
     assert cli_main(["validate", case_scene("free_fall"), "--trace", odd, "--json", json_out]) == 1
     err = capsys.readouterr().err

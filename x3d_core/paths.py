@@ -22,6 +22,11 @@ def printable(text: str) -> str:
     return text if text.isprintable() else "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
+def none_under(folders: list[str]) -> str:
+    """What a command says where scene_files found nothing: the folders named, as text."""
+    return f"no X3D files (.x3d, .x3dv, .x3dj) under {', '.join(map(shown, folders))}"
+
+
 def scene_files(paths: list[str]) -> list[str]:
     """Files as given, folders searched (sorted, so every run sees the same order).
 

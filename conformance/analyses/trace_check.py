@@ -164,7 +164,8 @@ def _check_csv(path: str, fields: _Fields) -> tuple[TraceView, list[Problem]]:
                         break
                 b.flush()
     except (InputRefused, OSError, UnicodeDecodeError, csv.Error) as e:
-        return TraceView(), [Problem(path, 0, f"cannot read: {e}")]
+        said = str(e)  # InputRefused's own words may already begin so ('cannot read file: ...')
+        return TraceView(), [Problem(path, 0, said if said.startswith("cannot read") else f"cannot read: {said}")]
     except ValueError as e:  # an output whose good rows hold different counts of numbers (an MF output)
         return TraceView(), [Problem(path, 0, f"cannot read as arrays: {e}")]
     try:

@@ -34,7 +34,7 @@ from collections.abc import Callable
 from reports.advice_text import render
 from x3d_core import atomic
 from x3d_core.documents import BadDocument, read_json
-from x3d_core.paths import scene_files
+from x3d_core.paths import none_under, scene_files
 
 from conformance import expectations
 from conformance.cli import as_given, options
@@ -102,7 +102,7 @@ def cmd_advise(args: argparse.Namespace) -> int:
         return _usage(str(e))
     files = scene_files(args.paths)
     if not files:
-        return _usage("no X3D files (.x3d, .x3dv, .x3dj) under the given paths")
+        return _usage(none_under([as_given(p, getattr(args, "given", {})) or p for p in args.paths]))
     scenes, status = {}, EXIT_OK
     given = getattr(args, "given", {})
     for path in files:  # each scene's errors and warnings once, before any run, naming it as given

@@ -9,13 +9,13 @@ from x3d_core.analysis import features, summarize
 from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.outcome import outcome_warnings
-from x3d_core.paths import scene_files, shown
+from x3d_core.paths import none_under, scene_files, shown
 
 
 def cmd_check(args: argparse.Namespace) -> int:
     files = scene_files(args.paths)
     if not files:
-        print("x3drbp check: no X3D files (.x3d, .x3dv, .x3dj) under the given paths", file=sys.stderr)
+        print(f"x3drbp check: {none_under(args.paths)}", file=sys.stderr)
         return 2
     failed = 0
     for path in files:

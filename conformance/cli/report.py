@@ -43,7 +43,7 @@ from typing import TextIO
 
 from x3d_core import atomic
 from x3d_core.outcome import EMPTY, simulates
-from x3d_core.paths import scene_files
+from x3d_core.paths import none_under, scene_files
 
 from conformance.cli import as_given, options
 from conformance import cases as C
@@ -176,7 +176,8 @@ def cmd_report(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     yours = scene_files(args.scenes) if args.scenes else []
     if args.scenes and not yours:
-        print("x3drbp report: --scenes: no X3D files (.x3d, .x3dv, .x3dj) under the given paths", file=sys.stderr)
+        print(f"x3drbp report: --scenes: {none_under([as_given(p, getattr(args, 'given', {})) or p for p in args.scenes])}",
+              file=sys.stderr)
         return EXIT_USAGE
     yours = [os.path.abspath(p) for p in yours]
     left_out = _unrunnable(yours)
