@@ -32,13 +32,6 @@ def one_line(text: str) -> str:
     return " ".join(text.splitlines())
 
 
-def encodable(text: str) -> str:
-    """Text that encodes: a file name's bytes that are not UTF-8 reach Python as surrogates,
-    which neither a UTF-8 file nor a font takes (a sweep of `p\\xffq.x3d` stopped at its plot's
-    title), shown as their escapes, as Python's repr shows them in every diagnostic."""
-    return text.encode("utf-8", "backslashreplace").decode("utf-8")
-
-
 def escape(text: str) -> str:
     """Text as text in markdown, anywhere on a line (a table cell, a heading, a list item, a link's
     words): HTML's specials as entities, markdown's backslash-escaped, its lines joined, and what
@@ -48,8 +41,11 @@ def escape(text: str) -> str:
 
 def plotted(text: str) -> str:
     """Text as text in a matplotlib title or label: each $ escaped, or a name such as
-    `a$x^2$.x3d` is set as mathematics and `a$\\frac$.x3d` stops the plot with a parse error."""
-    return encodable(text).replace("$", r"\$")
+    `a$x^2$.x3d` is set as mathematics and `a$\\frac$.x3d` stops the plot with a parse error;
+    what does not print as its escape (printable(): a file name's byte that is not UTF-8
+    reaches Python as a surrogate, which no font takes: a sweep of `p\\xffq.x3d` stopped at
+    its plot's title)."""
+    return printable(text).replace("$", r"\$")
 
 
 def link(path: str, text: str | None = None) -> str:

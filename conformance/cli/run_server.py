@@ -18,6 +18,8 @@ import traceback
 
 import setproctitle
 
+from x3d_core.paths import printable
+
 from conformance.runner.fork_server import GRACE, NO_FORK, READY, kill_group
 
 PRELOAD = ("numpy", "lxml.etree", "conformance.cli", "conformance.cli.run", "x3d_core.trace_npz")
@@ -57,7 +59,9 @@ def _child(argv: list[str], err: int, keep_out: list[int]) -> None:
         signal.signal(signal.SIGTERM, signal.SIG_DFL)
         signal.signal(signal.SIGCHLD, signal.SIG_DFL)
         # what ps shows of it, as of a fresh child: the server's own command line would hide which run it is
-        setproctitle.setproctitle(_title([sys.executable, "-m", "conformance.cli", *argv]))
+        # (printable: a file name's byte that is not UTF-8 is a surrogate, which setproctitle refuses:
+        # that ended every warm run of such a scene with exit 1 and no word before it ran)
+        setproctitle.setproctitle(printable(" ".join([sys.executable, "-m", "conformance.cli", *argv])))
         from conformance.cli import main
         try:
             status = main(argv)
@@ -73,13 +77,6 @@ def _child(argv: list[str], err: int, keep_out: list[int]) -> None:
                 pass
     finally:
         os._exit(status)
-
-
-def _title(argv: list[str]) -> str:
-    """A command line as ps shows it, a file name's bytes that are not UTF-8 (held as surrogates)
-    as their escapes: setproctitle refuses a surrogate, and that ended the run with exit 1 and
-    no word before it ran (every run of a scene whose file name is not UTF-8)."""
-    return " ".join(argv).encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
 
 
 def _fork(request: dict, err: int, conn: socket.socket, keep_out: list[int]) -> int:
