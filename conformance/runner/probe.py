@@ -82,14 +82,16 @@ def named_backends(names: Sequence[str], info: dict[str, BackendInfo]) -> list[s
     return list(names) or [n for n, i in info.items() if i.usable or isinstance(i, Unprobed)]
 
 
-def known(names: Sequence[str]) -> None:
-    """ValueError naming any backend the registry does not know; no engine imported, so a command
-    checks its --backends with the rest of its usage, before it loads a scene."""
+def known(names: Sequence[str]) -> tuple[str, ...]:
+    """The registered backends; ValueError naming any of names the registry does not know. No
+    engine imported, so a command checks its --backends with the rest of its usage, before it
+    loads a scene."""
     from backends import base
     registered = base.engines()
     unknown = [n for n in names if n not in registered]
     if unknown:
         raise ValueError(f"unknown backend(s) {', '.join(unknown)}; known: {', '.join(registered)}")
+    return registered
 
 
 def backend_table(timeout: float = DEFAULT_TIMEOUT, names: Sequence[str] = ()) -> dict[str, BackendInfo]:
@@ -100,9 +102,7 @@ def backend_table(timeout: float = DEFAULT_TIMEOUT, names: Sequence[str] = ()) -
     is the first unanswered: it is listed Unprobed with why, and a new child asks the rest, each
     such engine costing one child and at most one `timeout`; an engine left out of `names` is
     never imported. ValueError naming any name the registry does not know, before any child."""
-    from backends import base  # the registry itself imports no engine
-    known(names)
-    registered = base.engines()
+    registered = known(names)
     found: dict[str, dict] = {}
     out: dict[str, BackendInfo] = {}
     asked: list[str] = list(dict.fromkeys(names))
