@@ -119,7 +119,7 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         return EXIT_INTERRUPTED
     except CannotWrite as e:  # an output file: its path, as given, and why
-        _say(f"x3drbp {args.command}: cannot write {as_given(e.path, given) or e.path}: {e.reason}")
+        _say(f"x3drbp {args.command}: cannot write {as_typed(e.path, given)}: {e.reason}")
         return EXIT_CANNOT_WRITE
     except BrokenPipeError as e:
         if _stdout_gone():
@@ -216,6 +216,11 @@ def as_given(path: str, given: dict[str, str]) -> str | None:
         if path.startswith(os.path.join(full, "")):
             return os.path.join(value, path[len(os.path.join(full, "")):])
     return None
+
+
+def as_typed(path: str, given: dict[str, str]) -> str:
+    """A path as the command line named it (as_given), else as it is: how a message names it."""
+    return as_given(path, given) or path
 
 
 def _oserror(e: OSError, given: dict[str, str]) -> str:

@@ -37,7 +37,7 @@ from x3d_core.documents import BadDocument, read_json
 from x3d_core.paths import none_under, scene_files
 
 from conformance import expectations
-from conformance.cli import as_given, options
+from conformance.cli import as_typed, options
 from conformance.results import PASS
 from conformance.cli.run import scene_to_run
 from conformance.cli.sweep import plans, steps, targets
@@ -89,7 +89,7 @@ def _verdict(matrix: dict[tuple[str, str], A.Said] | None, backends: list[str]) 
 def _named(scene: dict, given: dict[str, str]) -> dict:
     """A scene's advice naming it as the command line did (its path was made absolute for the
     children, which run in the project root)."""
-    return {**scene, "scene": as_given(scene["scene"], given) or scene["scene"]}
+    return {**scene, "scene": as_typed(scene["scene"], given)}
 
 
 @children.interruptible
@@ -102,11 +102,11 @@ def cmd_advise(args: argparse.Namespace) -> int:
         return _usage(str(e))
     files = scene_files(args.paths)
     if not files:
-        return _usage(none_under([as_given(p, getattr(args, "given", {})) or p for p in args.paths]))
+        return _usage(none_under([as_typed(p, getattr(args, "given", {})) for p in args.paths]))
     scenes, status = {}, EXIT_OK
     given = getattr(args, "given", {})
     for path in files:  # each scene's errors and warnings once, before any run, naming it as given
-        loaded = scene_to_run(as_given(path, given) or path)
+        loaded = scene_to_run(as_typed(path, given))
         if loaded is None:
             status = EXIT_SCENE
         else:

@@ -34,7 +34,7 @@ import sys
 from reports.compare_text import render
 from x3d_core import atomic
 
-from conformance.cli import as_given, options
+from conformance.cli import as_typed, options
 from conformance.cli.run import scene_to_run
 from conformance.runner import children, probe
 from conformance.results import Settings
@@ -60,7 +60,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
     problem = options.settings_error(args)
     if problem:
         return _usage(problem)
-    shown = as_given(args.scene, getattr(args, "given", {})) or args.scene  # made absolute for the children
+    shown = as_typed(args.scene, getattr(args, "given", {}))  # made absolute for the children
     loaded = scene_to_run(shown)  # its diagnostics naming it as given
     if loaded is None:
         return EXIT_NOTHING_COMPARED

@@ -45,7 +45,7 @@ from x3d_core import atomic
 from x3d_core.outcome import EMPTY, simulates
 from x3d_core.paths import none_under, scene_files
 
-from conformance.cli import as_given, options
+from conformance.cli import as_typed, options
 from conformance import cases as C
 from conformance import expectations
 from conformance.results import ACCURACY, CONVENTIONS, PASS, UNSUPPORTED
@@ -170,13 +170,13 @@ def cmd_report(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     out = args.out
     logs = os.path.join(out, "logs")
-    missing = [as_given(p, getattr(args, "given", {})) or p for p in args.scenes or () if not os.path.exists(p)]
+    missing = [as_typed(p, getattr(args, "given", {})) for p in args.scenes or () if not os.path.exists(p)]
     if missing:  # before any step: a step would fail on it minutes later
         print(f"x3drbp report: --scenes: no such file or folder: {', '.join(missing)}", file=sys.stderr)
         return EXIT_USAGE
     yours = scene_files(args.scenes) if args.scenes else []
     if args.scenes and not yours:
-        print(f"x3drbp report: --scenes: {none_under([as_given(p, getattr(args, 'given', {})) or p for p in args.scenes])}",
+        print(f"x3drbp report: --scenes: {none_under([as_typed(p, getattr(args, 'given', {})) for p in args.scenes])}",
               file=sys.stderr)
         return EXIT_USAGE
     yours = [os.path.abspath(p) for p in yours]
