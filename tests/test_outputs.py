@@ -90,19 +90,26 @@ def test_every_output_of_run_fails_the_same_way(tmp_path, option, name):
     ("sweep", "--scenes", "projectile", "--backends", "pymunk", "--out", "{file}"),
     ("stability", "--cases", "mass_ratio_pendulum", "--backends", "pymunk", "--out", "{file}/deeper/still"),
 ])
-def test_an_output_that_cannot_be_written_is_said_before_any_run(args, tmp_path):
-    # compare, advise and run said it after every run (compare's --json left written where its
-    # --rerun was refused); sweep and conformance said "File exists" of an --out that is a file
+def test_an_output_that_cannot_be_written_is_said_before_any_run(args, tmp_path, monkeypatch, capsys):
+    """compare, advise and run said it after every run (compare's --json left written where its
+    --rerun was refused); sweep and conformance said "File exists" of an --out that is a file.
+    Before any run: not even the backends are probed, the first thing each of them asks."""
+    from conformance.cli import main as cli_main
+    from conformance.runner import probe
+
+    def probed(*_args, **_kwargs):
+        raise AssertionError("the backends were probed before the outputs were checked")
+    monkeypatch.setattr(probe, "backend_table", probed)
     (tmp_path / "file").write_text("")
     paths = {"ok": str(tmp_path), "bad": str(tmp_path / "missing"), "file": str(tmp_path / "file")}
     argv = [a.format(**paths) for a in args]
-    started = time.perf_counter()
-    p = x3drbp(*argv, "-q")
-    assert p.returncode == 1 and p.stdout == ""
+    status = cli_main([*argv, "-q"])
+    out, err = capsys.readouterr()
+    assert status == 1 and out == ""
     refused = next(a for a, b in zip(argv, args) if "{bad}" in b or "{file}" in b)
-    line = _one_line(p, args[0], refused)
+    line = _one_line(subprocess.CompletedProcess(argv, status, out, err), args[0], refused)
     assert line.endswith(("No such file or directory", "is a file, not a folder")), line
-    assert os.listdir(tmp_path) == ["file"] and time.perf_counter() - started < 10
+    assert os.listdir(tmp_path) == ["file"]
 
 
 def test_standard_output_closed_by_its_reader_ends_quietly_with_141():
