@@ -120,6 +120,21 @@ DEF Two RigidBodyCollection { bodies [ DEF B RigidBody { position 0 -1 0 } %s ]
 """
 
 
+PLACED = """DEF World RigidBodyCollection {
+  bodies DEF Ball RigidBody { position 0 1 0
+    geometry DEF S CollidableShape { %s shape Shape { geometry Sphere { radius 0.1 } } } }
+  collider CollisionCollection { collidables [ USE S
+    DEF Floor CollidableShape { shape Shape { geometry Box { size 4 0.1 4 } } } ] }
+}
+"""
+
+
+def _shape_pose_in_body(path: str) -> tuple[list[float], list[float]]:
+    (w,) = worlds(load(path))
+    (g,) = [g for g in w.collisions.geometries if g.name == "S"]
+    return g.position.tolist(), g.orientation.tolist()
+
+
 def _traced_bodies(path: str) -> set[str]:
     return {r.node for r in read_trace(path + ".csv")}
 
@@ -150,7 +165,12 @@ def _joint_rows(path: str) -> tuple[int, int]:
     (JOINED % "", "5:11: warning: BallJoint J.body1: RigidBody A is not in the joint's collection RigidBodyCollection "
      "Two; the spec leaves such a joint undefined: a run ties this end to the static world, as if body1 were NULL, "
      "and the joint does not act on RigidBody A", _joint_rows, (STATIC, 0)),
-], ids=["in-no-collection", "transform", "shared-collidable", "joint-across-collections"])
+    (PLACED % "translation 0 1 0", "4:38: warning: CollidableShape S.translation: the clause reads it two ways: "
+     "x3drbp takes 37.4.10's (collidables \"have their location set to the same location as the body instance in "
+     "which they are located\", so a run ignores its translation), another browser may take 37.3.1's (\"an offset "
+     "from, and rotation about, the body's center\") and place the geometry elsewhere",
+     _shape_pose_in_body, ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0])),  # at the body's frame, not 1 m above it
+], ids=["in-no-collection", "transform", "shared-collidable", "joint-across-collections", "collidable-on-a-body"])
 def test_each_warning_is_said_once_by_run_and_says_what_it_does(tmp_path, capsys, text, line, does, result):
     path = _scene(tmp_path, text)
     _said_once(path, f"{path}:{line}", capsys)
@@ -165,7 +185,10 @@ def test_each_warning_is_said_once_by_run_and_says_what_it_does(tmp_path, capsys
     (TRANSFORMED % "", "Transform"),
     (TRANSFORMED % "translation 0 0 0 rotation 0 1 0 0 scale 1 1 1 center 3 3 3", "Transform"),
     (TRANSFORMED % "rotation 1 0 0 6.283185307179586", "Transform"),
-], ids=["collected", "own-collidables", "joint-within", "identity", "identity-given", "full-turn"])
+    # a body's collidable placed at the identity: both readings put it at the body's frame
+    (PLACED % "translation 0 0 0 rotation 0 1 0 0", "the clause reads it two ways"),
+], ids=["collected", "own-collidables", "joint-within", "identity", "identity-given", "full-turn",
+        "collidable-at-identity"])
 def test_the_counter_scenes_are_not_warned(tmp_path, capsys, text, fragment):
     path = _scene(tmp_path, text)
     assert not [w for w in _check(path, capsys) if fragment in w]

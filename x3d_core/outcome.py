@@ -40,7 +40,8 @@ def outcome_warnings(scene: Scene, ws: list[World] | None = None) -> list[Diagno
         return []
     groups = by_type(scene)
     return [*_nothing_to_simulate(scene, groups), *_in_no_collection(scene, groups), *_transformed(scene, groups),
-            *_shared_collidables(scene, groups), *_never_colliding(scene, groups, worlds(scene) if ws is None else ws),
+            *_shared_collidables(scene, groups), *_placed_on_body(scene, groups),
+            *_never_colliding(scene, groups, worlds(scene) if ws is None else ws),
             *_scripts_holding_no_physics(scene, groups)]
 
 
@@ -124,6 +125,29 @@ def _shared_collidables(scene: Scene, groups: dict[str, list[Node]]) -> list[Dia
                     out.append(diagnostic(scene, body, "geometry", f"{g.label} is also in {first.label}'s geometry, "
                                        f"earlier in {coll.label}'s bodies: it moves and collides with "
                                        f"{first.label} only, and {body.label} gets no collision shape from it"))
+    return out
+
+
+# The clause's two readings of a body's own collidable's translation and rotation
+# (docs/spec-loose-ends.md, "A collidable's translation and rotation on a body")
+BODY_FRAME_READING = ("the clause reads it two ways: x3drbp takes 37.4.10's (collidables \"have their location set to "
+                      "the same location as the body instance in which they are located\", so a run ignores its "
+                      "{fields}), another browser may take 37.3.1's "
+                      "(\"an offset from, and rotation about, the body's center\") and place the geometry elsewhere")
+
+
+def _placed_on_body(scene: Scene, groups: dict[str, list[Node]]) -> list[Diagnostic]:
+    """A collidable at the top of a RigidBody's geometry that gives a translation or rotation other
+    than the identity: the one place where which of the clause's readings a run takes moves the
+    geometry, so the scene depends on it."""
+    out: list[Diagnostic] = []
+    seen: set[int] = set()
+    for body in groups.get("RigidBody", []):
+        for g in body.get("geometry"):
+            given = [f for f in ("translation", "rotation") if f in g.values and not _identity(f, g.values[f])]
+            if given and id(g) not in seen:
+                seen.add(id(g))
+                out.append(diagnostic(scene, g, given[0], BODY_FRAME_READING.format(fields=" and ".join(given))))
     return out
 
 
