@@ -38,8 +38,10 @@ JUDGED = (PASS, CONVENTIONS, FAIL)  # the verdicts of a run the expectation meas
 MEANING = {PASS: "conforms", CONVENTIONS: "conforms, differs in conventions", FAIL: "violates the spec"}
 SPEC, CONVENTION, DESCRIPTION, ACCURACY = "spec", "convention", "description", "accuracy"
 KINDS = (SPEC, CONVENTION, DESCRIPTION, ACCURACY)
-# the editions of ISO/IEC 19775-1 a SPEC basis may quote, and the sources of a DESCRIPTION
-EDITIONS = ("V3.3", "V4.0")
+# the edition of ISO/IEC 19775-1 every SPEC basis quotes: the clause 37 text this project judges
+# by (../shared/reference/clause37-rigid-body-physics.txt), a V3 edition from before V3.3 (units
+# in words, "metres per second", where V3.3 writes "base units"); and the sources of a DESCRIPTION
+EDITION = "V3 pre-3.3"
 SOURCES = ("X3DUOM 4.0", "X3D tooltips")
 
 
@@ -47,9 +49,10 @@ SOURCES = ("X3DUOM 4.0", "X3D tooltips")
 class Basis:
     """Why a measure holds an implementation to its tolerance.
 
-    SPEC: `text` is "37.x.y Node: " and then words of clause 37 of ISO/IEC 19775-1, verbatim
-    and uncut, of the edition `source` names (V3.3 or V4.0); the tolerance is one any consistent
-    integrator and solver meets at the scene's own settings, so a failure is a violation.
+    SPEC: `text` is "37.x.y Name: " (the subclause as the clause's text numbers and names it) and
+    then whole sentences of that subclause, verbatim and uncut, of the edition `source` names
+    (EDITION); the tolerance is one any consistent integrator and solver meets at the scene's own
+    settings, so a failure is a violation.
     CONVENTION: the clause is silent or ambiguous; `text` names the reading checked (ODE's, as
     a rule) and the alternatives real implementations take, none of them wrong.
     DESCRIPTION: `text` quotes a description from outside the clause (`source`: the X3D Unified
@@ -63,19 +66,19 @@ class Basis:
     def __post_init__(self) -> None:
         if self.kind not in KINDS or not self.text.strip():
             raise ValueError(f"a basis is one of {', '.join(KINDS)} with its text, not {self.kind!r}: {self.text!r}")
-        if self.kind == SPEC and self.source not in EDITIONS:
-            raise ValueError(f"a spec basis names its edition ({', '.join(EDITIONS)}), not {self.source!r}")
+        if self.kind == SPEC and self.source != EDITION:
+            raise ValueError(f"a spec basis names its edition ({EDITION}), not {self.source!r}")
         if self.kind == DESCRIPTION and self.source not in SOURCES:
             raise ValueError(f"a description names its source ({', '.join(SOURCES)}), not {self.source!r}")
         if self.kind == SPEC and ("..." in self.text or "\u2026" in self.text):
             raise ValueError(f"a spec basis quotes whole sentences, uncut: {self.text!r}")
 
     def label(self) -> str:
-        """The kind as a reader needs it: 'spec (V4.0)', 'description (X3DUOM 4.0)', 'convention'."""
+        """The kind as a reader needs it: 'spec (V3 pre-3.3)', 'description (X3DUOM 4.0)', 'convention'."""
         return f"{self.kind} ({self.source})" if self.source else self.kind
 
 
-def spec(quote: str, edition: str = "V4.0") -> Basis:
+def spec(quote: str, edition: str = EDITION) -> Basis:
     return Basis(SPEC, quote, edition)
 
 

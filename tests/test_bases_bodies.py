@@ -274,3 +274,41 @@ def test_frame_rate_differences_are_a_convention(real):
     r = _judge("frame_rate", [a, nudged])
     assert r.verdict == results.CONVENTIONS and not any(m.basis.kind == results.SPEC for m in r.measures)
     assert math.isfinite(r.measures[0].error) and r.measures[0].error > 0
+
+
+def _fall(steps: list[float], g: float = 9.81) -> list[Row]:
+    """free_fall's Ball, one semi-implicit Euler step of each given length per 60 Hz frame."""
+    y, v, out = 10.0, 0.0, _rows("Ball", {"position": [0.0, 10.0, 0.0], "linearVelocity": [0.0, 0.0, 0.0]},
+                                  np.zeros(1))
+    for k, h in enumerate(steps, 1):
+        v -= g * h
+        y += h * v
+        out += _rows("Ball", {"position": [0.0, y, 0.0], "linearVelocity": [0.0, v, 0.0]}, np.array([k / 60]))
+    return out
+
+
+def _x_ite_steps(frames: int = 60) -> list[float]:
+    """X_ITE's physics step: a moving average of the frame period from 0 (docs/spec-loose-ends.md)."""
+    d, out = 0.0, []
+    for _ in range(frames):
+        d = (14 * d + 1 / 60) / 15
+        out.append(d)
+    return out
+
+
+def test_a_clock_that_lags_fails_by_the_clock_s_sentence_alone():
+    lagging = _judge("free_fall", _fall(_x_ite_steps()))
+    assert [m.basis for m in lagging.failing(results.SPEC)] == [C.closed_forms.CLOCK], lagging.reason
+    # the gravity it applies cannot be told from its clock there: graded, never the field's failure
+    assert any(m.graded and "clock does not keep pace" in m.quantity for m in lagging.measures)
+
+
+def test_a_step_a_frame_keeps_pace_and_a_gravity_ignored_is_the_field_s_failure():
+    per_frame = _judge("free_fall", _fall([1 / 60] * 60))
+    assert per_frame.verdict == results.CONVENTIONS and not per_frame.failing(results.SPEC), per_frame.reason
+    weightless = _judge("free_fall", _fall([1 / 60] * 60, g=0.0))
+    assert [m.quantity for m in weightless.failing(results.SPEC)] == ["Ball acceleration (whatever the clock) - "
+                                                                     "(0 -9.81 0)"], weightless.reason
+    default = _judge("free_fall", _fall([1 / 60] * 60, g=9.8))  # X3D's default in the scene's 9.81's place
+    assert [m.quantity for m in default.failing(results.SPEC)] == ["Ball acceleration (whatever the clock) - "
+                                                                  "(0 -9.81 0)"], default.reason

@@ -1,8 +1,8 @@
 """A DoubleAxisHingeJoint whose axis1 and axis2 are parallel has one line where the joint "has two
-independent axes" (V3.3, 37.4.8): every backend refuses it with one message naming the joint and
-both axes, exit 3 (x3d_core.world.parallel, evaluator.run), where ODE refused it, MuJoCo's and
-DART's models were singular (MuJoCo non-finite in the first frame of a driven hinge2, DART warning
-at every step) and Bullet ran it."""
+independent axes" (37.4.8 DoubleAxisHingeJoint): every backend refuses it with one message
+naming the joint and both axes, exit 3 (x3d_core.world.parallel, evaluator.run), where ODE
+refused it, MuJoCo's and DART's models were singular (MuJoCo non-finite in the first frame of a
+driven hinge2, DART warning at every step) and Bullet ran it."""
 
 from __future__ import annotations
 

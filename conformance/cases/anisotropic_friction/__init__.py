@@ -1,8 +1,9 @@
 """anisotropic_friction: frictionCoefficients with FRICTION_COEFFICIENT-2, a friction per friction direction.
 
-The spec applies frictionCoefficients (table 37.2) along two friction directions that the system
-computes (USER_FRICTION's entry: "The system will normally calculate the friction direction vector
-that is perpendicular to the contact normal"). Systems compute them differently: fixed by the
+The spec applies frictionCoefficients (37.2.5.3: the collection's coefficients, "for the primary
+direction for the first value and secondary direction for the second value") along two friction
+directions that the system computes (USER_FRICTION's entry in the UOM: "The system will normally
+calculate the friction direction vector that is perpendicular to the contact normal"). Systems compute them differently: fixed by the
 normal (ODE's dPlaneSpace: -x and +z for an upward normal; Xj3D), or with direction 1 along the
 sliding velocity (Bullet's), where a sliding box meets mu1 whichever way it goes and mu2 only
 resists sideways loads. So the spec measure asks each box, on its own, to slow at mu1 g or at

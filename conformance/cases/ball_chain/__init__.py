@@ -21,11 +21,11 @@ CHAIN_LINKS, CHAIN_R, CHAIN_MASS, CHAIN_I, CHAIN_LENGTH = 5, 0.1, 0.2, 0.001, 1.
 CHAIN_ANCHORS = ((0.0, 0.0, 0.0), (0.2, 0.0, 0.0), (0.2, 0.0, 0.2), (0.4, 0.0, 0.2), (0.4, 0.0, 0.4))
 CHAIN_STARTS = ((0.0, 0.0, 0.0), (0.1, 0.0, 0.0), (0.2, 0.0, 0.1), (0.3, 0.0, 0.2), (0.4, 0.0, 0.3), (0.5, 0.0, 0.4))
 PIVOT = spec("37.4.1 BallJoint: The BallJoint node represents an unconstrained joint between two bodies that pivot "
-             "about a common anchor point.", "V3.3")
+             "about a common anchor point.")
 JOINED = spec("37.4.1 BallJoint: body1AnchorPoint and body2AnchorPoint represent the output that "
               "describes where the anchorPoint is relative to the two bodies local coordinate "
               "reference frame. This can be used to detect if the joint has caused a separation if the "
-              "two values are not the same for a given frame.", "V3.3")
+              "two values are not the same for a given frame.")
 
 
 def _omega_cap(inertia: float) -> float:

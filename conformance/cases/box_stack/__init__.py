@@ -1,7 +1,7 @@
 """box_stack: A stack of five boxes under a sideways gravity holds for 10 s (frictionCoefficients).
 
-The scene applies FRICTION_COEFFICIENT-2 with equal coefficients (table 37.2: "Apply
-frictionCoefficients values"), so that friction holds the stack under every reading of the flag;
+The scene applies FRICTION_COEFFICIENT-2 with equal coefficients (the UOM's table 37.2:
+"Apply frictionCoefficients values"; the clause text's has no rows), so that friction holds the stack under every reading of the flag;
 friction without it would be ODE's reading (X_ITE applies none), a convention."""
 
 from __future__ import annotations

@@ -1,9 +1,8 @@
 """center_of_mass: RigidBody.centerOfMass: the body falls and turns about its centre of mass, not its origin.
 
-Clause 37 has no sentence on centerOfMass (the V3.3 copies carry none; the field is named in
-the node's interface only): the measure of where the centre of mass goes rests on the X3D
-Unified Object Model's description, so a body that ignores the field differs from a
-description, not from the clause. Which velocity linearVelocity reports, and about which
+Clause 37 has no sentence on centerOfMass (the field is named in the node's interface only):
+the measure of where the centre of mass goes rests on the X3D Unified Object Model's
+description, so a body that ignores the field differs from a description, not from the clause. Which velocity linearVelocity reports, and about which
 point the inertia field is taken, are readings the clause leaves open (conventions)."""
 
 from __future__ import annotations

@@ -9,8 +9,8 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
-from conformance.cases.closed_forms import AT_REST, ROUNDING, honoured, max_norm, physics_time, stops_at
-from conformance.results import Measure, Settings, convention
+from conformance.cases.closed_forms import ROUNDING, honoured, max_norm, physics_time, stops_at
+from conformance.results import Measure, Settings, convention, spec
 
 # collection_auto_disable.x3d: body -> (start, linear and angular velocity); disableTime 0.25 s
 CD_TIME = 0.25
@@ -18,6 +18,12 @@ CD_BODIES = {"Slow": ((0.0, 0.0, 0.0), (0.05, 0.0, 0.0), (0.0, 0.0, 0.05)),
              "Coasting": ((0.0, 1.0, 0.0), (0.05, 0.0, 0.0), (0.0, 0.0, 0.5)),
              "Turning": ((0.0, 2.0, 0.0), (0.5, 0.0, 0.0), (0.0, 0.0, 0.05)),
              "OwnRules": ((0.0, 3.0, 0.0), (0.5, 0.0, 0.0), (0.0, 0.0, 0.05))}
+# the collection's own disable fields (37.4.11; closed_forms.AT_REST is RigidBody's sentence)
+AT_REST = spec("37.4.11 RigidBodyCollection: These values define tolerances for which the physics model should start "
+               "to ignore this object in any calculation, thus resulting in them being actually at rest and not "
+               "subject to these instability conditions. Once any one of these values is achieved, the body is "
+               "considered as being at rest, unless acted upon by an external force (e. g., collision or action of "
+               "connected joint).")
 ANY_ONE = convention("any one speed under its threshold, held for disableTime, stops a body (x3drbp, the literal "
                      "reading of 'Once any one of these values is achieved'), the collection's thresholds for a body "
                      "that sets no autoDisable of its own; ODE, Xj3D: both speeds under their thresholds for the time "

@@ -14,12 +14,12 @@ from conformance.results import Measure, Settings, description, spec
 ON_OFFSET, ON_SPACE = (-2.7, 0.4, 0.0), (0.0, 0.1, 0.0)
 OFF = {"OffOffset": (-1.5, 0.1, 0.0), "OffSpace": (1.5, 0.1, 0.0), "OffShape": (3.0, 0.1, 0.0)}
 OFFSET = spec("37.4.2 CollidableOffset: The CollidableOffset node is used to reposition a piece of geometry relative "
-              "to the center of the owning body while keeping it consistent within the geometry space.", "V3.3")
+              "to the center of the owning body while keeping it consistent within the geometry space.")
 SPACE = spec("37.4.6 CollisionSpace: The CollisionSpace node holds a collection of objects in the collidables field "
              "that can be considered as a single entity for resolution of inter-object collisions with other groups "
-             "of collidable objects.", "V3.3")
+             "of collidable objects.")
 ELIGIBLE = spec("37.3.1 X3DNBodyCollidableNode: The enabled field is used to specify whether a collidable object is "
-                "eligible for collision detection interactions.", "V3.3")
+                "eligible for collision detection interactions.")
 SPACE_ENABLED = description("CollisionSpace enabled: \"Enables/disables node operation.\"")
 BASES = {"OffOffset": ELIGIBLE, "OffSpace": SPACE_ENABLED, "OffShape": ELIGIBLE}
 

@@ -9,7 +9,7 @@ from conformance.results import Settings, spec
 # the floor and Kept's shape are in the collection, Ghost's is not
 COLLIDABLES = spec("37.4.4 CollisionCollection: The CollisionCollection node holds a collection of objects in the "
                    "collidables field that can be managed as a single entity for resolution of inter-object "
-                   "collisions with other groups of collidable objects.", "V3.3")
+                   "collisions with other groups of collidable objects.")
 
 
 CASE = Case("collision_filtering", "collision_filtering.x3d",

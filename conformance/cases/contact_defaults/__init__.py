@@ -19,15 +19,16 @@ CD_VALUES = {"bounce": 0.3, "minBounceSpeed": 0.5, "frictionCoefficients": (0.4,
              "surfaceSpeed": (0.0, 0.0)}
 CD_APPLIED = {"BOUNCE", "FRICTION_COEFFICIENT-2", "ERROR_REDUCTION", "CONSTANT_FORCE"}
 DEFAULTS = spec("37.4.4 CollisionCollection: A set of parameters are provided that specify default values that will "
-                "be assigned to all Contact nodes generated from the CollisionSensor node.", "V3.3")
-DIRECTION = spec("37.4.7 Contact: The frictionDirection field describes which way friction is to be applied to the "
-                 "contact location. If there is no friction, the direction should be set to 0, 0, 0.", "V3.3")
+                "be assigned to all Contact nodes generated from the CollisionSensor node.")
+DIRECTION = spec("37.4.7 Contact: The frictionDirection field is used to control the vector that describes which "
+                 "way friction is to be applied to the contact location. If there is no friction, the direction "
+                 "should be set to 0, 0, 0.")
 SOFT = convention("ODE's contact softness with ERROR_REDUCTION and CONSTANT_FORCE: the contact's rows take "
                   "softnessErrorCorrection as ERP and softnessConstantForceMix as CFM, a spring that rests a body "
                   "m g h CFM / ERP deep; the clause says only that the force mix makes the surfaces 'appear to be "
                   "somewhat soft'")
 SENSED = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were generated as a result "
-              "of the scene graph changes last frame. This field generates instances of the Contact node.", "V3.3")
+              "of the scene graph changes last frame. This field generates instances of the Contact node.")
 
 
 def _applied(text: str | None) -> set[str]:

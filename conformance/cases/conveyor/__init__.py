@@ -5,7 +5,7 @@ direction 1 to the system (any tangent of the belt): that the parcel is driven u
 one fixed horizontal direction is the spec's; that the direction is -x, ODE's first friction
 direction of the belt's upward normal, is a convention (FRICTION_DIRECTIONS). The scene applies
 FRICTION_COEFFICIENT-2 (equal coefficients), so the friction that drives the parcel applies under
-every reading of table 37.2; without the flag, applying mu at all would be ODE's reading."""
+every reading of the UOM's table 37.2; without the flag, applying mu at all would be ODE's reading."""
 
 from __future__ import annotations
 
@@ -24,8 +24,8 @@ from conformance.results import Measure, Settings, spec
 # conveyor.x3d: the box ends moving at surfaceSpeed along ODE's first friction direction (-x)
 CV_MU, CV_SPEED, CV_ODE = 0.5, 1.5, np.array([-1.0, 0.0, 0.0])
 SURFACE_SPEED = spec("37.4.4 CollisionCollection: The surfaceSpeed field defines the speed in the two friction "
-                     "directions in speed base units. This is used to indicate if the contact surface is moving "
-                     "independently of the motion of the bodies.", "V3.3")
+                     "directions in metres per second. This is used to indicate if the contact surface is moving "
+                     "independently of the motion of the bodies.")
 
 
 def belt_direction(tr: TraceView) -> np.ndarray:

@@ -20,7 +20,7 @@ from conformance.results import Measure, Settings, spec
 
 COLLIDES = spec("37.4.4 CollisionCollection: The CollisionCollection node holds a collection of objects in the "
                 "collidables field that can be managed as a single entity for resolution of inter-object collisions "
-                "with other groups of collidable objects.", "V3.3")
+                "with other groups of collidable objects.")
 
 # cylinder_cone_rest.x3d: 1 kg bodies on a floor whose top is y = 0
 CCR_M = 1.0

@@ -42,7 +42,7 @@ DAMP_LINEAR, DAMP_ANGULAR = 0.01, 0.02
 DAMPED = spec("37.4.10 RigidBody: The damping factor fields allow the user to instruct the implementation to "
               "automatically damp the motion of the body over time. The value of the field is used to take a "
               "multiple of the value calculated in the last frame and apply it in opposition to the current motion "
-              "for this frame.", "V3.3")
+              "for this frame.")
 PER_STEP = convention("each velocity is multiplied by (1 - factor) at every physics step, v_n = v0 (1-d)^n after "
                       "n steps (ODE's body damping, x3drbp); alternatives: once a frame, v = v0 (1-d)^frames (the "
                       "spec's words where a frame holds several steps); a force -d v once a frame (Xj3D, H3D); "

@@ -20,7 +20,7 @@ from conformance.results import Measure, Settings, spec
 ENABLED = spec("37.4.10 RigidBody: The enabled field controls whether the information in this node is submitted to "
                "the physics engine for processing. If the enabled field is set TRUE, the node is submitted to the "
                "physics engine. If the enabled field is set FALSE, the node is not submitted to the physics engine "
-               "for processing.", "V3.3")
+               "for processing.")
 
 # disabled_body.x3d: Off's file state, and On's start
 OFF_POSITION, OFF_ORIENTATION = np.array([-1.0, 5.0, 0.0]), np.array([0.0, 0.0, 1.0, 0.3])

@@ -14,13 +14,13 @@ from conformance.results import Measure, Settings, description, spec
 WATCHED, SINKER = (0.0, 0.1, 0.0), (3.0, 0.1, 0.0)
 HELD_POSITION, HELD_ORIENTATION = (-3.0, 5.0, 0.0), (0.0, 0.0, 1.0, 0.3)
 RUN = spec("37.4.11 RigidBodyCollection: The enabled field is used to control whether the physics model for this "
-           "collection should be run this frame.", "V3.3")
+           "collection should be run this frame.")
 COLLIDE = spec("37.4.4 CollisionCollection: The enabled field is used to control whether the collision detection "
                "system for this collection should be run at the end of this frame. A value of TRUE enables it while a "
                "value of FALSE disables it. A CollisionSensor node watching this collection does not report any "
-               "outputs for this collection for this frame if it is not enabled.", "V3.3")
+               "outputs for this collection for this frame if it is not enabled.")
 ACTIVE = spec("37.4.5 CollisionSensor: The CollisionSensor is active (isActive is TRUE) when contacts were located as "
-              "a result of the movement of the watched objects from last frame.", "V3.3")
+              "a result of the movement of the watched objects from last frame.")
 SENSOR_ENABLED = description("CollisionSensor enabled: \"Enables/disables node operation.\"")
 
 

@@ -24,7 +24,10 @@ DP_PHI = (math.radians(30.0), math.radians(45.0))
 DP_INERTIA = {"Upper": np.diag([0.1, 0.1, DP_I1]), "Lower": np.diag([0.05, 0.05, DP_I2])}
 DP_MASS = {"Upper": DP_M1, "Lower": DP_M2}
 HINGES = spec("37.4.12 SingleAxisHingeJoint: This node represents a joint with a single axis about which to "
-              "rotate.", "V3.3")
+              "rotate.")
+# the clause says what the hinges, masses and inertias mean, not that an integrator keeps energy
+ENERGY_BOUND = accuracy("a conservative chain keeps E = E0; over n steps a first-order scheme of the Euler family "
+                        "drifts by at most (E0 - E_min)((1 + (w2 h)^2)^n - 1), w2 the chain's faster mode at rest")
 FIRST_STEP = accuracy("from rest, every one-step scheme of the Euler family gives w(h) = h q''(0) with rigid joints; a "
                       "joint softened by the default constantForceMix, or an iterative solve, starts otherwise and "
                       "converges as h shrinks")
@@ -39,8 +42,9 @@ class Chain:
     i2: float = DP_I2
 
 
-# what the links' fields become where a browser ignores them: X3D's defaults, mass 1 kg and inertia 0.4
-MISREAD = (Chain(m1=1.0), Chain(m2=1.0), Chain(i1=0.4), Chain(i2=0.4))
+# what the links' fields become where a browser ignores them: X3D's defaults, mass 1 kg and the
+# identity inertia (I_zz 1 kg m^2)
+MISREAD = (Chain(m1=1.0), Chain(m2=1.0), Chain(i1=1.0), Chain(i2=1.0))
 WINDOW = 0.5  # s: the motion compared with the closed form's integration, before it turns chaotic
 
 
@@ -161,8 +165,9 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     h |M^-1 K| h^2 |q''(0)| (the configuration moves by h^2 |q''| in a step). That exactness
     holds for rigid joints only: X3D's joints carry the default constantForceMix 1e-4, which
     lets the bodies start part free (ODE at X3D's defaults: 9% and 45% off), so the first step
-    is graded accuracy, not the spec; the energy bound holds any consistent first-order scheme
-    and is both the spec's tolerance and the accuracy bound."""
+    is graded accuracy, not the spec. The energy bound holds any consistent first-order scheme,
+    but no sentence of the clause says a chain keeps its energy: it is graded too, and the
+    motion against the equations of motion is the spec's measure."""
     tr, s = traces[0], settings[0]
     d = double_pendulum()
     t, energy = _dp_energy(tr)
@@ -170,8 +175,8 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     drift = (d["E0"] - d["Emin"]) * ((1.0 + (d["omega_max"] * s.dt) ** 2) ** float(n[-1]) - 1.0)
     out = [_motion_measure(tr, s.dt)]
     energy_tol = drift + ROUNDING * (1 + abs(d["E0"]))
-    out.append(Measure("double pendulum |E - E0|", float(np.max(np.abs(energy - d["E0"]))), energy_tol, "J", HINGES,
-                       energy_tol))
+    out.append(Measure("double pendulum |E - E0|", float(np.max(np.abs(energy - d["E0"]))), energy_tol, "J",
+                       ENERGY_BOUND))
     first = np.flatnonzero(n == 1)
     for k, name in enumerate(DP_MASS):
         a0 = float(d["accel0"][k])

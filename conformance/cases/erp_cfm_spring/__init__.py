@@ -23,7 +23,7 @@ SOFT = spec("37.4.11 RigidBodyCollection: The constantForceMix field can be used
             "calculations by violating the normal constraints by applying a small, constant force to those "
             "calculations. This allows joints and bodies to be a fraction springy, as well as helping to eliminate "
             "numerical instability. The larger the value, the more soft each of the constraints being evaluated. "
-            "A value of zero indicates hard constraints so that everything is exactly honoured.", "V3.3")
+            "A value of zero indicates hard constraints so that everything is exactly honoured.")
 ODE_SPRING = convention("errorCorrection and constantForceMix are ODE's ERP and CFM of every joint row, a spring "
                         "k = ERP/(h CFM) whatever hangs from it (x3drbp, ODE, Xj3D, FreeWRL); alternatives: a "
                         "softness scaled by each row's effective mass (Bullet's, MuJoCo's solref), or other "

@@ -25,7 +25,7 @@ FINITE = spec("37.4.10 RigidBody: The useFiniteRotation field is used to influen
               "calculated. In very fast rotating objects, such as a wheel of a car, an infinitely small time step "
               "can cause the modelling to explode. The default value is to use the faster infinite mode. Setting the "
               "field value to TRUE uses the finite calculation model. Using the finite model is more costly to "
-              "compute but will be more accurate for high rotation speed bodies.", "V3.3")
+              "compute but will be more accurate for high rotation speed bodies.")
 EXACT = accuracy("a torque-free spin about a principal axis keeps its angular velocity, and the finite model turns "
                  "the body by each step's whole rotation: Rz(w t) and w to rounding, whatever the step")
 

@@ -23,7 +23,7 @@ from conformance.results import Measure, Settings, spec
 FIXED = spec("37.4.10 RigidBody: The fixed field is used to indicate that this body does not move. Any calculations "
              "involving collisions with this body should take into account that this body does not move. This is "
              "useful for representing objects such as the ground, walls etc that can be collided with, have an "
-             "effect on other objects, but are not capable of moving themselves.", "V3.3")
+             "effect on other objects, but are not capable of moving themselves.")
 
 # fixed_body_state.x3d
 FB_POSITION, FB_ORIENTATION = np.array([0.0, 2.0, 0.0]), np.array([0.0, 0.0, 1.0, math.pi / 2])

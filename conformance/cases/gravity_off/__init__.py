@@ -15,7 +15,7 @@ from conformance.results import Measure, Settings, spec
 
 NO_GRAVITY = spec("37.4.10 RigidBody: The useGlobalGravity field is used to indicate whether this particular body "
                   "should be influenced by the containing RigidBodyCollection's gravity setting. A value of TRUE "
-                  "indicates that the gravity is used, a value of FALSE indicates that it is not used.", "V3.3")
+                  "indicates that the gravity is used, a value of FALSE indicates that it is not used.")
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:

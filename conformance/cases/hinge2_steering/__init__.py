@@ -25,7 +25,7 @@ H2_PAIRS = {"Up": (np.array([0.0, 0.6, 0.8]), 1.0, 0.5, -0.6),
 H2_AXIS2 = {"Up": np.array([0.0, 0.8, -0.6]), "Down": np.array([0.0, 0.0, 1.0])}
 H2_ANCHOR = {"Up": (-1.0, 0.0, 0.0), "Down": (1.0, 0.0, 0.0)}  # both bodies of a pair start on it, unturned
 MOTOR = spec("37.4.8 DoubleAxisHingeJoint: The maxTorque1 field defines the maximum amount of torque that the motor "
-             "can apply on axis 1 in order to achieve the desired desiredAngularVelocity1 value.", "V3.3")
+             "can apply on axis 1 in order to achieve the desired desiredAngularVelocity1 value.")
 TRAVEL = accuracy("a rigid stop acting on the step after the one that crosses it, the motor still pushing: the turn "
                   "past the stop by one step's travel and the error correction's steady state "
                   "(closed_forms.stop_overshoot), and resting there")

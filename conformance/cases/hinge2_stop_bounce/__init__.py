@@ -20,7 +20,7 @@ HB_CFM, HB_CFM_DEFAULT = 0.005, 0.001  # stop1ConstantForceMix, and its default
 HB_L0 = np.array([0.0, -HB_I2 * HB_W0, 0.0])  # the pair's angular momentum
 BOUNCES = spec("37.4.8 DoubleAxisHingeJoint: The stopBounce1 field is used to set how bouncy the minimum and maximum "
                "angle stops are for axis 1. A value of zero means they are not bouncy while a value of 1 means maximum "
-               "bounciness (full reflection of force arriving at the stop).", "V3.3")
+               "bounciness (full reflection of force arriving at the stop).")
 SOFT_STOP = convention("ODE's soft stop: the stop's row yields by stop1ConstantForceMix times its impulse over h, so "
                        "the rebound falls short of stop1Bounce x the impact rate by c (1 + e) w / (1 + c), c = CFM I / "
                        "h (I the pair's reduced moment); the clause says only that the force mix lets a joint be 'a "

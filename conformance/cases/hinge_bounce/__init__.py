@@ -21,7 +21,7 @@ BOUNCE_MAX = 0.4
 BOUNCES = spec("37.4.12 SingleAxisHingeJoint: The stopBounce field describes how much the joint should bounce the "
                "body back if the joint limit has been reached or exceeded. A value of zero indicates no bounce at "
                "all, and a value of one says that it should bounce with velocity equal and opposite to the "
-               "collision velocity of the contact.", "V3.3")
+               "collision velocity of the contact.")
 LINEAR = convention("the stop's rebound speed is stopBounce x the impact speed (ODE's dParamBounce), so the arm "
                     "rises back to where its energy is stopBounce^2 of the impact's; alternatives: another law "
                     "between the clause's ends (the energy kept)")

@@ -1,6 +1,6 @@
 """incline: CollisionCollection frictionCoefficients: a box sticks on a gentle incline and slides down a steep one.
 
-The scene applies FRICTION_COEFFICIENT-2 with equal coefficients: table 37.2 reads "Apply
+The scene applies FRICTION_COEFFICIENT-2 with equal coefficients: the UOM's table 37.2 reads "Apply
 frictionCoefficients values" for it, which X_ITE takes literally (no friction without the flag)
 and ODE does not (mu always, mu2 with the flag): with it, every reading applies mu. Friction
 without the flag would be a convention (ODE's reading), not the spec's."""

@@ -21,7 +21,7 @@ from conformance.results import Measure, Settings, spec
 
 
 MODEL = spec("37.4.10 RigidBody: The massDensityModel field is used to describe the geometry type and dimensions "
-             "used to calculate the mass density in the physics model.", "V3.3")
+             "used to calculate the mass density in the physics model.")
 
 # mass_density_model.x3d: name -> (torque about z, I_zz of the model, I_zz under each misreading:
 # the model ignored (the inertia field's identity), and the nearest misreading of the shape)

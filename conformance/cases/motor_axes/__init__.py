@@ -17,15 +17,15 @@ MA_I1, MA_I2 = 0.2, 0.4  # rotor (body1) and stator (body2), isotropic
 MA_PAIRS = {"Two": (np.array([0.0, 0.0, 1.0]), 0.4, {2: 0.7}),
             "Three": (np.array([0.6, 0.8, 0.0]), -0.3, {1: 0.2, 3: -0.4})}
 RELATIVE = spec("37.4.9 MotorJoint: The MotorJoint node allows control of the relative angular velocities between "
-                "the two bodies (specified by the body1 and body2 fields) associated with a joint.", "V3.3")
+                "the two bodies (specified by the body1 and body2 fields) associated with a joint.")
 AXES = spec("37.4.9 MotorJoint: The motorAxis fields define the axis vector of the corresponding axis. If the value "
-            "is (0, 0, 0) the corresponding axis is disabled and the motor does not apply a force or torque along "
-            "that axis.", "V3.3")
+            "is 0, 0, 0, the corresponding axis is disabled and the motor does not apply a force or torque along "
+            "that axis.")
 ODE_TORQUE = convention("body1 gets +axisNTorque about motorNAxis and body2 its opposite (ODE's "
                         "dJointAddAMotorTorques, Xj3D, FreeWRL); alternative: the other way round")
 RATE = spec("37.4.9 MotorJoint: The motor angle output fields provide the calculated angle for this motor joint "
             "from the last frame. The motor angle rate output fields describe the rate, in radians, that the motor "
-            "is turning.", "V3.3")
+            "is turning.")
 # autoCalc TRUE, no torque: spinner -> its angular velocity; motor axes 2 and 3 are the defaults (0 1 0), (0 0 1)
 MA_SPINS = {"SpinY": np.array([0.0, 1.5, 0.0]), "SpinZ": np.array([0.0, 0.0, -2.0])}
 USER_ANGLES = convention("in user-calculated mode (autoCalc FALSE) motorNAngle reports the axisNAngle given (ODE's "

@@ -19,7 +19,7 @@ MOTOR_TARGET, MOTOR_MAX_TORQUE, MOTOR_I = 4.0, 0.2, 0.05
 MOTOR_AXIS2 = np.array([0.0, 0.0, 1.0])
 MOTOR = spec("37.4.8 DoubleAxisHingeJoint: The maxTorque1 field defines the maximum amount of torque that the "
              "motor can apply on axis 1 in order to achieve the desired desiredAngularVelocity1 value. Similarly, "
-             "maxTorque2 controls the maximum amount of torque to achieve desiredAngularVelocity2 on axis 2.", "V3.3")
+             "maxTorque2 controls the maximum amount of torque to achieve desiredAngularVelocity2 on axis 2.")
 ODE_RATE = convention("the motor drives hinge2AngleRate = axis2 . (w1 - w2), body1 relative to body2 (ODE's hinge2 "
                       "motor), to desiredAngularVelocity2: the wheel (body2) turns at -4 rad/s about axis2; "
                       "alternative: body2 relative to body1, the wheel turning at +4 rad/s")

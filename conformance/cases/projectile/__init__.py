@@ -8,7 +8,7 @@ from conformance.results import Settings, spec
 
 
 VELOCITY = spec("37.4.10 RigidBody: The velocity fields then report the changed values as a result of the "
-                "application of the physics model in each frame.", "V3.3")
+                "application of the physics model in each frame.")
 
 
 CASE = Case("projectile", "projectile.x3d",

@@ -18,7 +18,7 @@ from conformance.results import Measure, Settings, convention, spec
 # resting_penetration.x3d: boxes (1 kg, 0.2 m tall) on a floor whose top is y = 0
 RP_LAYER, RP_M, RP_HALF = 0.01, 1.0, 0.1
 THICKNESS = spec("37.4.11 RigidBodyCollection: The contactSurfaceThickness field represents how far bodies may "
-                 "interpenetrate after a collision.", "V3.3")
+                 "interpenetrate after a collision.")
 LAYER = convention("ODE's contact surface layer: no error correction within the thickness, so a body resting in it "
                    "stays there and one resting on the surface is not pulled in; 'may interpenetrate' lets an engine "
                    "also push a body out of the layer (the thickness as a bound only) or settle bodies at it")

@@ -9,7 +9,7 @@ from conformance.results import Settings, spec
 SET_CONTACTS = spec("37.4.11 RigidBodyCollection: The set_contacts input field is used to provide per-frame sets "
                     "of information about contacts between bodies in this frame. These contacts are then used to "
                     "modify the location of the bodies within the scene graph when the physics model is evaluated "
-                    "at the end of the frame.", "V3.3")
+                    "at the end of the frame.")
 
 
 CASE = Case("routed_contacts", "routed_contacts.x3d",

@@ -19,24 +19,24 @@ SG_BALL_M, SG_BLOCK_M, SG_R, SG_BLOCK_HALF, SG_WIDTH = 0.2, 1.0, 0.1, 0.1, 0.4
 SG_LOWER = {frozenset(("Floor", "BlockShape")): "Floor", frozenset(("BlockShape", "BallShape")): "BlockShape"}
 SG_BODY = {"Floor": "NULL", "BlockShape": "Block", "BallShape": "Ball"}
 
-# ISO/IEC 19775-1 V3.3: 37.4.5 CollisionSensor, 37.4.7 Contact
+# clause 37's text: 37.4.5 CollisionSensor, 37.4.7 Contact
 ACTIVE = spec("37.4.5 CollisionSensor: The CollisionSensor is active (isActive is TRUE) when contacts were located "
-              "as a result of the movement of the watched objects from last frame.", "V3.3")
+              "as a result of the movement of the watched objects from last frame.")
 INTERSECTIONS = spec("37.4.5 CollisionSensor: The intersections field is used to report the colliding geometry "
-                     "that was detected in this last frame.", "V3.3")
+                     "that was detected in this last frame.")
 CONTACTS = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were "
                 "generated as a result of the scene graph changes last frame. This field generates "
-                "instances of the Contact node.", "V3.3")
-NAMES = spec("37.4.7 Contact: The geometry1 and geometry2 fields specify information about body1 and body2.", "V3.3")
+                "instances of the Contact node.")
+NAMES = spec("37.4.7 Contact: The geometry1 and geometry2 fields specify information about body1 and body2.")
 NORMAL = spec("37.4.7 Contact: The contactNormal field is a unit vector describing the normal between the two "
-              "colliding bodies.", "V3.3")
+              "colliding bodies.")
 NORMAL_DIRECTION = convention(
     "x3drbp's: contactNormal points from geometry1 towards geometry2 (ODE's dContactGeom normal, which points from "
     "geom 2 into geom 1, turned round); Xj3D and X_ITE report it pointing towards geometry1")
 DEPTH = spec("37.4.7 Contact: The depth field indicates how deep the current intersection is along the normal "
-             "vector.", "V3.3")
+             "vector.")
 POSITION = spec("37.4.7 Contact: The position field indicates the exact location of the contact that was made "
-                "between the two objects.", "V3.3")
+                "between the two objects.")
 
 
 SINK = accuracy("how far a resting body sinks into what holds it: one step of unresisted fall g h^2 plus ODE's "

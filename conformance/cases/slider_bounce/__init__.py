@@ -17,16 +17,15 @@ SB_AXIS = np.array([0.8, 0.0, 0.6])
 SB_V0, SB_BOUNCE, SB_ERP, SB_MIN, SB_MAX, SB_M1, SB_M2 = 2.0, 0.5, 0.2, -0.2, 0.31, 1.0, 3.0
 SB_DEFAULT_MIN, SB_DEFAULT_MAX = 0.0, 1.0  # the separations' defaults
 SLIDE = spec("37.4.13 SliderJoint: The SliderJoint node represents a joint where all movement between the bodies "
-             "specified by the body1 and body2 fields is constrained to a single dimension along a user-defined axis.",
-             "V3.3")
+             "specified by the body1 and body2 fields is constrained to a single dimension along a user-defined axis.")
 BOUNCES = spec("37.4.13 SliderJoint: The stopBounce field describes how much the joint should bounce the body back if "
                "the joint limit has been reached or exceeded. A value of zero indicates no bounce at all, and a value "
                "of one indicates that it should bounce with velocity equal and opposite to the collision velocity of "
-               "the contact.", "V3.3")
+               "the contact.")
 SEPARATION = spec("37.4.13 SliderJoint: The separation output field is used to indicate the final separation of the "
-                  "two bodies.", "V3.3")
+                  "two bodies.")
 RATE = spec("37.4.13 SliderJoint: The separationRate output field is used to indicate the change in separation over "
-            "time since the last update.", "V3.3")
+            "time since the last update.")
 LINEAR = convention("ODE's stop bounce: the stop's row targets the rebound rate -stopBounce x the impact rate (or "
                     "the error correction's stopErrorCorrection x depth / h, if larger: at most 0.2 x 2 m/s here, so "
                     "never); the clause fixes only the ends, 0 no bounce and 1 equal and opposite")

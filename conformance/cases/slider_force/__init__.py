@@ -16,7 +16,7 @@ from conformance.results import Measure, Settings, convention, spec
 SF_AXIS = np.array([1.0, 0.0, 0.0])
 SF_FORCE, SF_M1, SF_M2 = 1.2, 2.0, 3.0
 FORCE = spec("37.4.13 SliderJoint: The sliderForce field value is used to apply a force along the axis of the slider "
-             "in equal and opposite directions to the two bodies.", "V3.3")
+             "in equal and opposite directions to the two bodies.")
 ODE_FORCE = convention("body1 gets +sliderForce along the axis and body2 its opposite (ODE's dJointAddSliderForce); "
                        "alternative: the other way round")
 

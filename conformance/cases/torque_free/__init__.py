@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 
@@ -11,11 +12,11 @@ from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import ROUNDING, physics_time, max_norm
-from conformance.results import Measure, Settings, spec
+from conformance.cases.closed_forms import ROUNDING, honoured, max_norm, physics_time
+from conformance.results import Measure, Settings, accuracy, spec
 
 
-INERTIA = spec("37.4.10 RigidBody: The inertia field represents a 3x2 inertia tensor matrix.", "V3.3")
+INERTIA = spec("37.4.10 RigidBody: The inertia field represents a 3x2 inertia tensor matrix.")
 
 
 # torque_free.x3d
@@ -51,7 +52,61 @@ def torque_free_bounds(inertia: np.ndarray = TF_INERTIA, orientation=TF_ORIENTAT
             "momentum_rate": w_max ** 3 * half_spread * (i_max / i_min + 1.5)}  # kg m^2/s, x t dt
 
 
+# what the inertia becomes where a browser misreads it: its products ignored, or X3D's default (the identity)
+MISREAD = (np.diag(np.diag(TF_INERTIA)), np.eye(3))
+CONSERVED = accuracy("a torque-free body keeps E = 1/2 w.Iw and world L = R I R^T w; a first-order rotational update "
+                     "drifts by at most c t dt (torque_free_bounds)")
+
+
+def misread_drift(inertia: np.ndarray, duration: float, h: float = 1e-3) -> tuple[float, float]:
+    """How far E and world L, computed with the scene's tensor, stray over `duration` when the body
+    turns as one with `inertia` would (from the scene's orientation and angular velocity): RK4 on
+    the orientation, w = R inertia^-1 R^T L' with L' conserved, at h = 1 ms (its error, h^4, is
+    far below the drifts it measures)."""
+    q = R.from_axis_angle(np.asarray(TF_ORIENTATION, dtype=np.float64))
+    rot = R.matrix(q)
+    momentum = rot @ inertia @ rot.T @ TF_OMEGA
+    inverse = np.linalg.inv(inertia)
+
+    def rate(q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        m = R.matrix(q / np.linalg.norm(q))
+        w = m @ inverse @ m.T @ momentum
+        return 0.5 * R.multiply(np.concatenate(([0.0], w)), q), w
+
+    b = torque_free_bounds()
+    worst_e = worst_l = 0.0
+    for _ in range(int(round(duration / h))):
+        k1, w = rate(q)
+        m = R.matrix(q)
+        i_world = m @ TF_INERTIA @ m.T
+        worst_e = max(worst_e, abs(0.5 * w @ i_world @ w - b["E0"]) / b["E0"])
+        worst_l = max(worst_l, float(np.linalg.norm(i_world @ w - b["L0"])))
+        k2, _ = rate(q + 0.5 * h * k1)
+        k3, _ = rate(q + 0.5 * h * k2)
+        k4, _ = rate(q + h * k3)
+        q = q + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        q = q / np.linalg.norm(q)
+    return worst_e, worst_l
+
+
+@functools.cache
+def _drifts(duration: float) -> tuple[tuple[float, float], ...]:
+    return tuple(misread_drift(m, duration) for m in MISREAD)
+
+
+def _held(bound: float, drifts: list[float]) -> float:
+    """honoured() over the misreadings this measure can see: the identity turns the body about w
+    itself, which keeps E exactly, so it sets no tolerance for the energy."""
+    seen = [d for d in drifts if d > bound]
+    return honoured(bound, *seen) if seen else bound
+
+
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
+    """E and world L against their start. Spec: the inertia field is the body's tensor
+    (INERTIA), and the motion its tensor makes keeps both; the tolerance is half the drift the
+    nearest misreading shows (closed_forms.honoured: the products ignored, or the identity),
+    never less than the first-order bound, which grades the run (CONSERVED): no sentence
+    of the clause says an integrator conserves them."""
     tr, s = traces[0], settings[0]
     t, rot = tr.series("Tumbler", "orientation")
     _, w = tr.series("Tumbler", "angularVelocity")
@@ -62,12 +117,18 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     energy = 0.5 * np.einsum("ni,ni->n", w, lw)
     T = float(physics_time(t, s.dt)[-1])
     scale_l = float(np.linalg.norm(b["L0"]))
-    energy_tol = b["energy_rate"] * T * s.dt + ROUNDING
-    momentum_tol = b["momentum_rate"] * T * s.dt + ROUNDING * (1 + scale_l)
-    return [Measure("Tumbler.energy (relative)", float(np.max(np.abs(energy - b["E0"]))) / b["E0"], energy_tol, "",
-                    INERTIA, energy_tol),
-            Measure("Tumbler.angularMomentum (world)", max_norm(lw - b["L0"]), momentum_tol, "kg m^2/s", INERTIA,
-                    momentum_tol)]
+    energy_bound = b["energy_rate"] * T * s.dt + ROUNDING
+    momentum_bound = b["momentum_rate"] * T * s.dt + ROUNDING * (1 + scale_l)
+    drifts = _drifts(T)
+    e_error = float(np.max(np.abs(energy - b["E0"]))) / b["E0"]
+    l_error = max_norm(lw - b["L0"])
+    return [Measure("Tumbler.energy (relative)", e_error, _held(energy_bound, [d[0] for d in drifts]), "",
+                    INERTIA, energy_bound),
+            Measure("Tumbler.angularMomentum (world)", l_error, _held(momentum_bound, [d[1] for d in drifts]),
+                    "kg m^2/s", INERTIA, momentum_bound),
+            Measure("Tumbler.energy (relative), against the first-order bound", e_error, energy_bound, "", CONSERVED),
+            Measure("Tumbler.angularMomentum (world), against the first-order bound", l_error, momentum_bound,
+                    "kg m^2/s", CONSERVED)]
 
 
 CASE = Case("torque_free", "torque_free.x3d",

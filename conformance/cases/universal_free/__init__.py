@@ -18,7 +18,7 @@ UF_M1, UF_M2, UF_I1, UF_I2, UF_ARM = 1.0, 2.0, 0.01, 0.02, 0.3
 UF_W0 = 2.0  # Fork's turn about axis2 through the anchor at the start
 UF_P0 = np.array([0.0, UF_M2 * UF_W0 * UF_ARM, 0.0])  # the pair's momentum: Fork's at the start
 LIKE_BALL = spec("37.4.14 UniversalJoint: A universal joint is like a BallJoint that constrains an extra degree of "
-                 "rotational freedom.", "V3.3")
+                 "rotational freedom.")
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
