@@ -63,12 +63,14 @@ def test_every_measure_of_the_contact_cases_has_a_basis(ode_runs):
                 assert m.basis.text.startswith("37."), (name, m.quantity, m.basis.text)
 
 
-def test_contact_normal_towards_geometry1_is_a_convention(ode_runs):
+def test_contact_normal_towards_geometry1_breaks_the_clause_s_direction(ode_runs):
+    """37.2.5.3: "a unit vector describing the surface normal from body 1 to body 2" (Xj3D's and
+    X_ITE's normal, ODE's and Bullet's own, points the other way)."""
     _, rows = ode_runs["sensor_geometry"]
     assert _judge("sensor_geometry", rows)[0] == results.PASS
     verdict, measures = _judge("sensor_geometry", _edit(rows, "Sensor", ".contactNormal", lambda n: [-x for x in n]))
-    assert verdict == results.CONVENTIONS
-    assert _failing(measures, results.CONVENTION) == [
+    assert verdict == results.FAIL
+    assert _failing(measures, results.SPEC) == [
         "contacts whose contactNormal does not point from geometry1 towards geometry2"]
     # a normal off the contact's axis breaks the spec: "a unit vector describing the normal"
     verdict, measures = _judge("sensor_geometry", _edit(rows, "Sensor", ".contactNormal", lambda n: [0.6, 0.8, 0.0]))

@@ -8,7 +8,7 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
 from conformance.cases.closed_forms import falls, rests
-from conformance.results import Measure, Settings, description, spec
+from conformance.results import Measure, Settings, spec
 
 # collidable_layout.x3d: five 1 kg balls of radius 0.1, each put down touching its own floor
 ON_OFFSET, ON_SPACE = (-2.7, 0.4, 0.0), (0.0, 0.1, 0.0)
@@ -20,7 +20,8 @@ SPACE = spec("37.4.6 CollisionSpace: The CollisionSpace node holds a collection 
              "of collidable objects.")
 ELIGIBLE = spec("37.3.1 X3DNBodyCollidableNode: The enabled field is used to specify whether a collidable object is "
                 "eligible for collision detection interactions.")
-SPACE_ENABLED = description("CollisionSpace enabled: \"Enables/disables node operation.\"")
+SPACE_ENABLED = spec("37.3.1 X3DNBodyCollisionSpaceNode: The enabled field specifies whether the collision space is to "
+                     "be considered during collision processing.")
 BASES = {"OffOffset": ELIGIBLE, "OffSpace": SPACE_ENABLED, "OffShape": ELIGIBLE}
 
 
@@ -31,8 +32,8 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     a resting ball whose floor does not collide where the scene puts it (the offset's
     translation or rotation ignored: the box is then far off, or 0.2 m wide under a ball 0.3 m
     off its centre, and the ball falls), and a falling ball held by a floor that should not
-    collide (its acceleration 0, not g). OffSpace's disabled space is held to the UOM's
-    description (no sentence of the clause on a space's enabled was readable)."""
+    collide (its acceleration 0, not g). OffSpace's disabled space is held to the enabled sentence
+    of X3DNBodyCollisionSpaceNode (the text prints it as a second 37.3.1)."""
     tr, s = traces[0], settings[0]
     out = rests(tr, s, "OnOffset", ON_OFFSET, OFFSET) + rests(tr, s, "OnSpace", ON_SPACE, SPACE)
     for name, start in OFF.items():

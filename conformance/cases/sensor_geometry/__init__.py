@@ -11,7 +11,7 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, G, CFM_DEFAULT, ERP_DEFAULT, steps, sensor_contacts
-from conformance.results import Measure, Settings, accuracy, convention, spec
+from conformance.results import Measure, Settings, accuracy, spec
 
 
 # sensor_geometry.x3d: Ball (0.2 kg, r 0.1) on Block (1 kg, 0.4 x 0.2 x 0.4) on the static Floor
@@ -30,9 +30,12 @@ CONTACTS = spec("37.4.5 CollisionSensor: The contacts field is used to report co
 NAMES = spec("37.4.7 Contact: The geometry1 and geometry2 fields specify information about body1 and body2.")
 NORMAL = spec("37.4.7 Contact: The contactNormal field is a unit vector describing the normal between the two "
               "colliding bodies.")
-NORMAL_DIRECTION = convention(
-    "x3drbp's: contactNormal points from geometry1 towards geometry2 (ODE's dContactGeom normal, which points from "
-    "geom 2 into geom 1, turned round); Xj3D and X_ITE report it pointing towards geometry1")
+NORMAL_DIRECTION = spec("37.2.5.3 Collision contact description: When a collision is found between two objects, it is "
+                        "described with the following details: 1. a unit vector describing the surface normal from "
+                        "body 1 to body 2 at the point of contact, 2. a primary direction of motion for body 1 "
+                        "relative to body 2, and 3. a second direction that is perpendicular to both the normal and "
+                        "the primary direction is implied for the purposes of providing various sets of "
+                        "coefficients.")
 DEPTH = spec("37.4.7 Contact: The depth field indicates how deep the current intersection is along the normal "
              "vector.")
 POSITION = spec("37.4.7 Contact: The position field indicates the exact location of the contact that was made "
@@ -52,8 +55,10 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     g h of speed over a step, each (2 g h^2). How deep they are is no sentence's: the resting
     penetration (no surface layer) is graded accuracy: one step of unresisted fall g h^2 plus
     ODE's softness CFM f h / ERP, f the largest load on a contact (ball and block on the floor).
-    Normal: along the vertical (the spec: a unit vector along the normal, either sign), and (0, +-1, 0)
-    by which geometry is lower (x3drbp's direction, a convention); the block may tilt by uneven sinking of its
+    Normal: along the vertical (37.4.7: a unit vector along the normal), and pointing from body 1
+    to body 2 (37.2.5.3): (0, +-1, 0) by which geometry is lower (ODE's dContactGeom normal, which
+    points from geom 2 into geom 1, turned round; Xj3D and X_ITE report ODE's and Bullet's own,
+    towards geometry1, which the clause's direction refuses); the block may tilt by uneven sinking of its
     edges, at most twice the depth bound over its width, and its faces' normals with it.
     Ball's contact position: (x, z) of the ball's centre (off by at most r times the tilt) and
     y within the intersection: between the ball's bottom and the block's top face (Block's
@@ -126,8 +131,8 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
 
 
 CASE = Case("sensor_geometry", "sensor_geometry.x3d",
-            "CollisionSensor contacts of a ball on a block on the floor: contactNormal (0, +-1, 0) (x3drbp's "
-            "direction: from geometry1 towards geometry2), bodies named, position under the ball's centre at the block's top, depth small",
+            "CollisionSensor contacts of a ball on a block on the floor: contactNormal (0, +-1, 0) (37.2.5.3's "
+            "direction: from body 1 to body 2), bodies named, position under the ball's centre at the block's top, depth small",
             (Settings(1.0, 1 / 240),), expect,
             exercises=("CollisionSensor", "CollidableShape.geometry.Sphere", "CollidableShape.geometry.Box"),
             mutations=(
