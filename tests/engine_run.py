@@ -46,11 +46,11 @@ def pendulum(theta0: float, limits: str = "", bob_is_body1: bool = False) -> str
     return PENDULUM.format(x=math.sin(theta0), y=-math.cos(theta0), limits=limits, first=first, second=second)
 
 
-def scene_worlds(tmp_path, body: str) -> list:
+def scene_worlds(tmp_path, body: str, version: str = "4.0") -> list:
     """The worlds of a scene given as the X3D XML text of its Scene's content (which must
-    load without errors)."""
+    load without errors), in a file of that X3D version."""
     p = tmp_path / "s.x3d"
-    p.write_text("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n"
+    p.write_text(f"<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='{version}'><Scene>\n"
                  f"{body}\n</Scene></X3D>\n")
     scene = load(str(p))
     assert not scene.errors, [str(e) for e in scene.errors]
@@ -58,10 +58,10 @@ def scene_worlds(tmp_path, body: str) -> list:
 
 
 def run_x3d(tmp_path, body: str, duration: float = 1.0, frame_rate: float = 60, dt: float = DT,
-            times: np.ndarray | None = None, *, backend) -> Series:
-    """Run the scene (X3D XML text of the Scene's content) and return its trace as
-    (node, field) -> [(time, value)], values parsed with float()."""
-    trace = run(scene_worlds(tmp_path, body), backend, RunSettings(duration, dt, frame_rate), times)
+            times: np.ndarray | None = None, *, backend, version: str = "4.0") -> Series:
+    """Run the scene (X3D XML text of the Scene's content, in a file of that X3D version) and
+    return its trace as (node, field) -> [(time, value)], values parsed with float()."""
+    trace = run(scene_worlds(tmp_path, body, version), backend, RunSettings(duration, dt, frame_rate), times)
     series: Series = {}
     for r in trace.rows:
         series.setdefault((r.node, r.field), []).append((r.time, _value(r.value)))

@@ -16,7 +16,7 @@ from typing import Any, Callable
 import numpy as np
 
 from . import fields as F
-from . import schema
+from . import editions, schema
 from .model import Diagnostic, FieldDecl, LoadError, Location, Node, Route, Scene
 from .units import BASE_CATEGORIES, factor
 
@@ -88,10 +88,11 @@ def _base_names(name: str) -> Iterator[str]:
 
 
 def _base_field(spec: schema.NodeType, name: str) -> schema.FieldDef | None:
-    fd = spec.fields.get(name)
+    """The field a name of the type's edition stands for: its own, or an event name of it."""
+    fd = spec.named(name)
     if fd is not None:
         return fd
-    fds = (spec.fields.get(base) for base in _base_names(name))
+    fds = (spec.named(base) for base in _base_names(name))
     return next((fd for fd in fds if fd is not None and fd.access == "inputOutput"), None)
 
 
@@ -138,7 +139,7 @@ class Builder:
         """A new node, entered as being read until done() is called. An EXTERNPROTO's instance
         is kept untyped even where a later X3D version has a node of its name (4.1's Delay):
         the file's declaration wins over the built-in, whose fields it need not have."""
-        spec = None if type_name in self.externs else schema.node_type(type_name)
+        spec = None if type_name in self.externs else editions.node_type(type_name, self.scene.version)
         if spec is None and not NAME.fullmatch(type_name):
             raise self.fatal(loc, f"{type_name!r} is not a node type name")
         if type_name == "Script":
@@ -167,9 +168,15 @@ class Builder:
 
     # -- field values -------------------------------------------------------
     def field_def(self, node: Node, name: str, loc: Location) -> schema.FieldDef | None:
-        """The definition of a field a file names on a typed node, with an error if unknown."""
+        """The definition of a field a file names on a typed node, with an error if unknown. A
+        name of the other X3D edition is read as the field it names, and the node keeps the
+        file's spelling for writers and diagnostics."""
         assert node.spec is not None
         fd = _base_field(node.spec, name)
+        if fd is None:
+            fd = self.other_edition(node, name, loc, f"{node.label}.{name}")
+            if fd is not None:
+                node.spellings = {**node.spellings, fd.name: name}
         if fd is None and self.prestandard:
             alias = PRESTANDARD_NAMES.get((node.type_name, name)) or PRESTANDARD_NAMES.get(("*", name))
             fd = node.spec.fields.get(alias) if alias else None
@@ -180,10 +187,21 @@ class Builder:
                 if decl.name == name:
                     return None
             import difflib  # here: only a misspelt field needs it (every `x3drbp run` imported it)
-            near = difflib.get_close_matches(name, list(node.spec.fields), n=1, cutoff=0.7)
+            names = [node.spec.spelled(f) for f in node.spec.fields if f not in node.spec.absent]
+            near = difflib.get_close_matches(name, names, n=1, cutoff=0.7)
             hint = f"; did you mean {near[0]!r}?" if near else ""
             self.error(loc, f"{node.label}.{name}", f"{node.type_name} has no field {name!r}{hint}")
         return fd
+
+    def other_edition(self, node: Node, name: str, loc: Location, subject: str) -> schema.FieldDef | None:
+        """The field a name of the other X3D edition (or a slip of clause 37's text) stands for,
+        with the warning that names the spelling of the file's version: a warning, not an
+        error, as x3d_core/editions.py says why."""
+        found = editions.foreign(node.spec, name, self.scene.version)
+        if found is None:
+            return None
+        self.warning(loc, subject, found.message)
+        return found.field
 
     def set_value(self, node: Node, name: str, raw: Any, loc: Location, parse: Parser, encoding: str) -> None:
         """Give a field its value from the file's text (or JSON value)."""
@@ -195,30 +213,35 @@ class Builder:
             node.field_locs[name] = loc
             return
         fd = self.field_def(node, name, loc)
-        if fd is None:
-            return
+        if fd is not None:
+            self.set_field(node, fd, raw, loc, parse)
+
+    def set_field(self, node: Node, fd: schema.FieldDef, raw: Any, loc: Location, parse: Parser) -> None:
+        """Give a field the file named (field_def found it) its value from the file's text."""
+        subject = f"{node.label}.{node.spelling(fd.name)}"
         if fd.type.kind == "node":
-            self.error(loc, f"{node.label}.{fd.name}", f"{fd.type.name} field takes nodes, not a value")
+            self.error(loc, subject, f"{fd.type.name} field takes nodes, not a value")
             return
         if not fd.readable:
-            self.error(loc, f"{node.label}.{fd.name}", f"{fd.access} field cannot be given a value in a file")
+            self.error(loc, subject, f"{fd.access} field cannot be given a value in a file")
             return
         try:
             value = parse(fd.type, raw)
         except F.FieldError as e:
-            self.error(loc, f"{node.label}.{fd.name}", str(e))
+            self.error(loc, subject, str(e))
             return
         self.store(node, fd, value, loc)
 
     def store(self, node: Node, fd: schema.FieldDef, value: Any, loc: Location, convert: bool = True) -> None:
         """Keep a typed value: UNITs applied, then checked against the field's range."""
+        subject = f"{node.label}.{node.spelling(fd.name)}"
         if convert and self.scene.units:
             with np.errstate(over="ignore", invalid="ignore"):  # said below, in one line
                 value = self.to_si(fd, value)
             if not _finite(value):  # the encodings refuse nan and inf, but a UNIT (length 1e300) can make them
                 units = ", ".join(f"{c} {u[0]} {F._num(u[1])}" for c, u in self.scene.units.items())
-                self.error(loc, f"{node.label}.{fd.name}", "not a finite number once converted to SI units by "
-                                                           f"the file's UNIT statements ({units})")
+                self.error(loc, subject, "not a finite number once converted to SI units by "
+                                         f"the file's UNIT statements ({units})")
                 return
         if fd.range is not None and not fd.type.rotation and not fd.range.contains(value):
             numbers = np.asarray(value, dtype=np.float64).ravel()
@@ -226,11 +249,11 @@ class Builder:
                 bad = numbers[~fd.range.inside(numbers)][0]
                 message = f"{F._num(bad)} is out of range; allowed {fd.range}"
                 if node.type_name not in PRESENTATION:
-                    self.error(loc, f"{node.label}.{fd.name}", message)
+                    self.error(loc, subject, message)
                     return
-                self.warning(loc, f"{node.label}.{fd.name}", message + " (kept: it does not affect physics)")
+                self.warning(loc, subject, message + " (kept: it does not affect physics)")
         if fd.name in node.values and fd.name in node.field_locs:
-            self.error(loc, f"{node.label}.{fd.name}", f"field given twice (first at {node.field_locs[fd.name]})")
+            self.error(loc, subject, f"field given twice (first at {node.field_locs[fd.name]})")
             return
         node.values[fd.name] = value
         node.field_locs[fd.name] = loc
@@ -347,7 +370,8 @@ class Builder:
                 self.error(loc, subject, f"no node named {name!r}")
                 return
             if n.spec is not None:
-                end = _base_field(n.spec, fname) or _declared_field(n, fname)
+                end = _base_field(n.spec, fname) or self.other_edition(n, fname, loc, subject) or \
+                    _declared_field(n, fname)
                 if end is None or end.access not in (("inputOutput", "outputOnly") if direction == "out" else
                                                      ("inputOutput", "inputOnly")):
                     what = "output" if direction == "out" else "input"
@@ -517,6 +541,7 @@ def _copy(node: Node, memo: dict[int, Node], prefix: str, budget: _Budget) -> No
     c = Node(node.type_name, node.spec, node.loc, name)
     memo[id(node)] = c
     c.interface = node.interface
+    c.spellings = node.spellings
     for k, v in node.values.items():
         if isinstance(v, Node):
             v = _copy(v, memo, prefix, budget)

@@ -7,7 +7,7 @@ import os
 
 from .inputs import InputRefused, read_regular
 from .model import Diagnostic, LoadError, Location, Scene
-from .validate import apply_version_defaults, by_type, validate
+from .validate import by_type, validate
 from .world import trace_names
 
 ENCODINGS = {".x3d": "xml", ".xml": "xml", ".x3dv": "vrml", ".wrl": "vrml", ".x3dj": "json", ".json": "json"}
@@ -67,10 +67,8 @@ def load(path: str, check: bool = True) -> Scene:
     finally:
         if gc_was_on:
             gc.enable()
-    groups = by_type(scene)
-    apply_version_defaults(scene, groups)
     if check:
-        validate(scene, groups)
+        validate(scene, by_type(scene))
         _warn_derived_names(scene)
     return scene
 

@@ -59,7 +59,7 @@ class Node:
     of a type x3drbp does not model (spec None) holds its fields as text and its child
     nodes under their field names, so that real scenes load and write back."""
 
-    __slots__ = ("type_name", "spec", "values", "def_name", "loc", "field_locs", "interface")
+    __slots__ = ("type_name", "spec", "values", "def_name", "loc", "field_locs", "interface", "spellings")
 
     def __init__(self, type_name: str, spec: NodeType | None, loc: Location, def_name: str | None = None):
         self.type_name = type_name
@@ -69,9 +69,11 @@ class Node:
         self.loc = loc
         self.field_locs: dict[str, Location] = {}
         self.interface: list[FieldDecl] = _NO_FIELDS  # fields a Script (or unknown node) declares
+        # X3D 4.0's name -> the file's, where the file spelt a field otherwise than its edition does
+        self.spellings: dict[str, str] = _NO_SPELLINGS
 
     def get(self, name: str) -> Any:
-        """The field's value: as given in the file, else its X3D 4.0 default."""
+        """The field's value (by its X3D 4.0 name): as given in the file, else its edition's default."""
         v = self.values.get(name, _MISSING)
         if v is not _MISSING:
             return v
@@ -80,6 +82,14 @@ class Node:
         return None
 
     __getitem__ = get
+
+    def spelling(self, name: str) -> str:
+        """How the file names a field the model keys by its X3D 4.0 name (its edition's name
+        where the file gave the field no value): what writers and diagnostics say."""
+        spelt = self.spellings.get(name)
+        if spelt is not None:
+            return spelt
+        return self.spec.spelled(name) if self.spec is not None else name
 
     @property
     def declares_fields(self) -> bool:
@@ -115,6 +125,7 @@ class Node:
 
 _MISSING = object()
 _NO_FIELDS: list[FieldDecl] = []  # shared and never appended to: declare() gives a node its own list
+_NO_SPELLINGS: dict[str, str] = {}  # shared and never written to: the Builder gives a node its own dict
 
 
 @dataclass

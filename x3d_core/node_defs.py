@@ -5,12 +5,15 @@ clause 37 where the UOM leaves a range out (mass (0,inf), errorCorrection [0,1],
 joint angles [-pi,pi], ...). tests/test_uom.py checks names, types, access types,
 defaults and UOM ranges against the UOM itself. Every other X3D 4.0 node type comes from
 standard_nodes.py, generated from the UOM (x3d_core/uom.py); a type defined here wins.
+An X3D 3.x file takes clause 37's 14 node types as the clause's text gives them instead
+(clause37_nodes.py, x3d_core/editions.py), with the units and containerFields given here.
 
 Line forms:
   node NAME : PARENTS @containerField       a concrete node type
   abstract NAME : PARENTS                   an abstract type (fields only where x3drbp needs them)
   FIELD TYPE ACCESS [RANGE] [u:UNIT] [<ACCEPTED|TYPES>] [= DEFAULT]
-RANGE is an interval such as [0,1] or (0,inf); UNIT names the UNIT category the
+RANGE is an interval such as [0,1] or (0,inf), or one with a whole value besides
+([0,inf)|-1,-1,-1: clause37_nodes.py's "[0,∞) or -1 -1 -1"); UNIT names the UNIT category the
 field's value scales with; DEFAULT is in ClassicVRML encoding (omitted: the
 type's empty value). Everything after '#' is a comment.
 """

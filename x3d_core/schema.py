@@ -1,4 +1,5 @@
-"""Node types and field definitions: node_defs.py's by hand, standard_nodes.py's from the UOM."""
+"""Node types and field definitions: node_defs.py's by hand, standard_nodes.py's from the UOM
+(X3D 4.0's; editions.py gives a 3.x file clause 37's own)."""
 
 from __future__ import annotations
 
@@ -24,9 +25,13 @@ class Range:
     hi: float
     lo_open: bool
     hi_open: bool
+    # the one value also allowed outside the interval, whole (clause 37's "[0,∞) or -1 -1 -1")
+    alone: tuple[float, ...] = ()
 
     def contains(self, numbers: Any) -> bool:
         """Whether every number of a value (a number, or an array) lies in the range."""
+        if self.alone and np.array_equal(np.ravel(numbers), self.alone):
+            return True
         if isinstance(numbers, (int, float)):
             return (numbers > self.lo if self.lo_open else numbers >= self.lo) and \
                 (numbers < self.hi if self.hi_open else numbers <= self.hi)
@@ -39,13 +44,24 @@ class Range:
         return lo_ok & hi_ok
 
     def __str__(self) -> str:
-        def num(x: float) -> str:
-            if math.isinf(x):
-                return "inf" if x > 0 else "-inf"
-            if abs(abs(x) - math.pi) < 1e-12:
-                return "-pi" if x < 0 else "pi"
-            return F._num(x)
-        return f"{'(' if self.lo_open else '['}{num(self.lo)},{num(self.hi)}{')' if self.hi_open else ']'}"
+        """As a diagnostic says it: [0,inf) or -1."""
+        return self._interval() + (f" or {' '.join(map(_num, self.alone))}" if self.alone else "")
+
+    def token(self) -> str:
+        """As a definition's line writes it, one word: [0,inf)|-1,-1,-1."""
+        return self._interval() + (f"|{','.join(map(_num, self.alone))}" if self.alone else "")
+
+    def _interval(self) -> str:
+        return f"{'(' if self.lo_open else '['}{_num(self.lo)},{_num(self.hi)}{')' if self.hi_open else ']'}"
+
+
+def _num(x: float) -> str:
+    """A bound as a definition writes it: inf and pi by name."""
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    if abs(abs(x) - math.pi) < 1e-12:
+        return "-pi" if x < 0 else "pi"
+    return F._num(x)
 
 
 @dataclass(frozen=True)
@@ -74,7 +90,27 @@ class NodeType:
     parents: tuple[str, ...]
     container_field: str = "children"
     component: str = ""
-    fields: dict[str, FieldDef] = field(default_factory=dict)
+    fields: dict[str, FieldDef] = field(default_factory=dict)  # by X3D 4.0's names, whatever the edition
+    # an edition's spelling of a field whose X3D 4.0 name (the key) it spells otherwise: 3.x's stopBounce1
+    spellings: dict[str, str] = field(default_factory=dict)
+    # X3D 4.0 fields the edition lacks, kept with 4.0's definitions so that a file using one still loads
+    absent: frozenset[str] = frozenset()
+
+    def spelled(self, name: str) -> str:
+        """A field's name in the type's edition."""
+        return self.spellings.get(name, name)
+
+    def named(self, name: str) -> FieldDef | None:
+        """The field a name of the type's edition stands for; None for another edition's name
+        (editions.foreign says which field that is) or a field the edition lacks."""
+        key = self._by_spelling.get(name)
+        if key is None and (name in self.spellings or name in self.absent):
+            return None
+        return self.fields.get(key or name)
+
+    @functools.cached_property
+    def _by_spelling(self) -> dict[str, str]:
+        return {spelling: name for name, spelling in self.spellings.items()}
 
     @functools.cached_property
     def ancestors(self) -> frozenset[str]:
@@ -98,7 +134,7 @@ CLOSED_ABSTRACT = frozenset({"X3DNBodyCollidableNode", "X3DNBodyCollisionSpaceNo
                              "X3DRigidJointNode", "X3DMetadataObject"})
 
 _TOKEN = re.compile(r'"(?:[^"\\]|\\.)*"|[^\s,\[\]]+')
-_RANGE = re.compile(r"^([\[(])([^,]+),([^\])]+)([\])])$")
+_RANGE = re.compile(r"^([\[(])([^,]+),([^\])|]+)([\])])(?:\|(\S+))?$")
 
 
 def _bound(text: str) -> float:
@@ -116,7 +152,8 @@ def _field(node: str, line: str) -> FieldDef:
     accepts: tuple[str, ...] = ()
     for p in parts[3:]:
         if m := _RANGE.match(p):
-            rng = Range(_bound(m.group(2)), _bound(m.group(3)), m.group(1) == "(", m.group(4) == ")")
+            alone = tuple(map(_bound, m.group(5).split(","))) if m.group(5) else ()
+            rng = Range(_bound(m.group(2)), _bound(m.group(3)), m.group(1) == "(", m.group(4) == ")", alone)
         elif p.startswith("u:"):
             unit = p[2:]
         elif p.startswith("<"):
@@ -156,7 +193,7 @@ def _read(block: str) -> NodeType:
     return t
 
 
-class _Types(Mapping[str, NodeType]):
+class Types(Mapping[str, NodeType]):
     """Types by name, each read from its definition on first use (then always the same object):
     a run reads the few its scene uses, where reading node_defs.py's every type at import cost
     each `x3drbp run` 3 ms."""
@@ -182,7 +219,7 @@ class _Types(Mapping[str, NodeType]):
 
 
 # The hand-written types (with ranges and units)
-NODE_TYPES: Mapping[str, NodeType] = _Types(DEFINITIONS)
+NODE_TYPES: Mapping[str, NodeType] = Types(DEFINITIONS)
 
 
 @functools.cache

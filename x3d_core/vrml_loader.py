@@ -239,10 +239,11 @@ class _Parser:
                 return
         if fd is not None and fd.type.kind == "node":
             if fd.name in node.field_locs:
-                self.b.error(at, f"{node.label}.{fd.name}", f"field given twice (first at {node.field_locs[fd.name]})")
+                self.b.error(at, f"{node.label}.{node.spelling(fd.name)}",
+                             f"field given twice (first at {node.field_locs[fd.name]})")
             self.node_value(node, fd.name, fd.type.multi)
         elif fd is not None:
-            self.b.set_value(node, fd.name, self.value_tokens(fd.type), at, F.parse_vrml, "vrml")
+            self.b.set_field(node, fd, self.value_tokens(fd.type), at, F.parse_vrml)
         else:
             self.generic_value(node, name, at)
 

@@ -1,7 +1,8 @@
 """What the XML and ClassicVRML writers share: names for shared nodes, and field order.
 
 Writers write the model as it is: SI values (no UNIT statements), PROTO instances
-expanded, pre-standard names in their standard spelling. A node that is used more
+expanded, pre-standard names in their standard spelling, and every other field as the
+file spelt it (X3D 3.x's stopBounce1 in a 3.x file, even a 4.0 name it used instead). A node that is used more
 than once or routed gets a DEF name, invented where the file had none.
 """
 
@@ -42,11 +43,12 @@ def node_names(scene: Scene) -> dict[int, str]:
 
 
 def value_fields(node: Node) -> Iterator[tuple[str, Any, F.FieldType | None]]:
-    """Fields that hold values, not nodes, in definition order: (name, value, type or None if raw)."""
+    """Fields that hold values, not nodes, in definition order: (name as the file spells it, value,
+    type or None if raw)."""
     if node.spec is not None:
         for name, fd in node.spec.fields.items():
             if name in node.values and fd.type.kind != "node":
-                yield name, node.values[name], fd.type
+                yield node.spelling(name), node.values[name], fd.type
     else:
         for name, v in node.values.items():
             if isinstance(v, RawValue):
@@ -54,11 +56,11 @@ def value_fields(node: Node) -> Iterator[tuple[str, Any, F.FieldType | None]]:
 
 
 def node_fields(node: Node) -> Iterator[tuple[str, list[Node] | Node | None, bool]]:
-    """Fields that hold nodes: (name, value, multi)."""
+    """Fields that hold nodes: (name as the file spells it, value, multi)."""
     if node.spec is not None:
         for name, fd in node.spec.fields.items():
             if name in node.values and fd.type.kind == "node":
-                yield name, node.values[name], fd.type.multi
+                yield node.spelling(name), node.values[name], fd.type.multi
     else:
         for name, v in node.values.items():
             if isinstance(v, (list, Node)) or v is None:
