@@ -63,8 +63,9 @@ def native(*features: str) -> dict[str, Declared]:
     return {f: Declared(Support.NATIVE) for f in features}
 
 
-def approximate(note: str, *features: str) -> dict[str, Declared]:
-    return {f: Declared(Support.APPROXIMATE, note) for f in features}
+def approximate(note: str, *features: str, native_at: Any = None) -> dict[str, Declared]:
+    """Features the engine honours only as the note says, exactly at native_at where one is given."""
+    return {f: Declared(Support.APPROXIMATE, note, native_at) for f in features}
 
 
 def unsupported(note: str, *features: str, native_at: Any = None) -> dict[str, Declared]:
@@ -79,17 +80,19 @@ EVALUATOR: dict[str, Declared] = native(
     "RigidBody.angularDampingFactor", "RigidBodyCollection.enabled",
     *(f"{j}.forceOutput" for j in ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint",
                                    "UniversalJoint", "MotorJoint")),
-    # MotorJoint is ODE's AMotor: torques the evaluator applies through set_loads
+    # MotorJoint is ODE's AMotor: torques the evaluator applies through set_loads, along the axes
+    # where 37.4.9 anchors them (axis 1 in the world, 2 on body1, 3 on body2; 0 0 0: disabled)
     "MotorJoint", "MotorJoint.enabledAxes",
     *(f"MotorJoint.axis{k}{f}" for k in (1, 2, 3) for f in ("Angle", "Torque")),
     *(f"MotorJoint.motor{k}Axis" for k in (1, 2, 3)),
     # ODE's dJointAddSliderForce, applied by the evaluator through set_loads as the motors' torques
     "SliderJoint.sliderForce",
-    # all three engines turn a body by the exponential map of its angular velocity: ODE's
-    # finite rotation mode, whatever the flag says
+    # all three engines turn a body by the exponential map of its angular velocity, whatever the
+    # flag says: ODE's finite rotation mode with a zero axis (X3D 3.x's default finiteRotationAxis)
     "RigidBody.useFiniteRotation") | approximate(
     "motorNAngle is the twist of body1's rotation relative to body2 (from the start) about each motor axis "
-    "separately; ODE's Euler mode (Xj3D) splits that rotation into three Euler angles about axis 1, the axis "
+    "separately, each where 37.4.9 anchors it (axis 1 in the world, 2 on body1, 3 on body2); ODE's Euler mode "
+    "(Xj3D) anchors axis 1 to body1 and splits that rotation into three Euler angles about axis 1, the axis "
     "perpendicular to 1 and 3, and axis 3: the same with one axis, different where several axes turn at once",
     "MotorJoint.autoCalc") | approximate(
     "bodies on no joint stop after disableTime with any one speed under its threshold (the clause's 'any one "
@@ -107,7 +110,8 @@ EVALUATOR: dict[str, Declared] = native(
     "collision set", "RigidBodyCollection.set_contacts.fromOtherCollider") | approximate(
     "the exponential map turns the body about its whole angular velocity, not split along this axis as ODE's "
     "finite rotation axis does; the two differ only for fast spin about the axis with a slow tumble",
-    "RigidBody.finiteRotationAxis") | approximate(
+    # 0 0 0 (X3D 3.x's default) is ODE's full finite rotation, no axis: the exponential map itself
+    "RigidBody.finiteRotationAxis", native_at=(0.0, 0.0, 0.0)) | approximate(
     "no effect: the joint has no stop angles for these to act on",
     *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")),
     *(f"UniversalJoint.stop{k}{f}" for k in (1, 2) for f in ("Bounce", "ErrorCorrection")))

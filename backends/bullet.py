@@ -35,7 +35,8 @@ within theirs (edges rounded by it); createCollisionShapeArray takes no vertices
 is a pyramid along btPlaneSpace1's directions, ODE's, once cone friction is off; restitution
 needs a contactProcessingThreshold under the way a bouncing body goes in one step (a contact
 taken before it touches is speculative, and brought to rest: _processing) and no contact ERP
-(which it would add to).
+(which it would add to). A set only sensors watch (world.watched) is shapes in no body, tested
+by pybullet's shape query where the bodies are at each frame's end (_Watched).
 """
 
 from __future__ import annotations
@@ -46,7 +47,7 @@ import numpy as np
 import pybullet as p
 
 from x3d_core import rotation as R
-from x3d_core.collision import ContactPoints, friction_directions
+from x3d_core.collision import Collisions, ContactPoints, friction_directions
 from x3d_core.engine import BlewUp, Unsupported
 from x3d_core.world import STATIC, Joint, State, World
 
@@ -121,6 +122,15 @@ def _spacing(g) -> tuple[float, float]:
     return float(g.vertices[1, 0] - g.vertices[0, 0]), float(g.vertices[nx, 2] - g.vertices[0, 2])
 
 
+def _grid_centre(g) -> np.ndarray:
+    """Where pybullet centres an elevation grid's heightfield, in the grid's frame: pybullet ignores
+    a heightfield's frame, so what holds it is posed there, turned by _Z_TO_Y."""
+    nx, nz = g.grid
+    xs, zs = _spacing(g)
+    heights = g.vertices[:, 1]
+    return np.array([(nx - 1) * xs / 2, (heights.min() + heights.max()) / 2, (nz - 1) * zs / 2])
+
+
 def _friction_frame(up: np.ndarray) -> np.ndarray:
     """The orientation whose y is the unit normal up and whose z and x are ODE's second and (but for
     its sign) first friction directions for that normal."""
@@ -192,6 +202,43 @@ class _Tree:
         return out
 
 
+class _Watched:
+    """A set only sensors watch (world.watched): a collision shape per geometry in no body, so the
+    simulation never meets it, tested where the bodies are by pybullet's shape query
+    (getClosestPoints on two shapes at given poses), every pair may_touch allows, once a frame."""
+
+    def __init__(self, sim: BulletSimulation, c: Collisions):
+        b = sim.world.bodies
+        self.collisions = c
+        still = [g.body == STATIC or bool(b.fixed[g.body]) for g in c.geometries]
+        self.shapes = [sim._shape(g, np.zeros(3), R.IDENTITY, moving=not s) for g, s in zip(c.geometries, still)]
+        grid = [g.kind == "heightfield" and s for g, s in zip(c.geometries, still)]  # posed as _contacts_setup does
+        self.shift = np.array([_grid_centre(g) if on else np.zeros(3) for g, on in zip(c.geometries, grid)]).reshape(-1, 3)
+        self.turn = np.array([_Z_TO_Y if on else R.IDENTITY for on in grid]).reshape(-1, 4)
+        i, j = np.triu_indices(len(c.geometries), 1)
+        kept = c.may_touch(i, j)
+        self.pairs = list(zip(i[kept].tolist(), j[kept].tolist()))
+
+    def contacts(self, client: int, s: State) -> ContactPoints:
+        """The points where two of the set's shapes meet in state s (lower index first, the
+        normal from it towards the other, depth minus pybullet's distance), as contacts() reads them."""
+        position, orientation = self.collisions.placed(s)
+        where = (position + R.rotate(orientation, self.shift)).tolist()
+        turned = R.multiply(orientation, self.turn)[:, [1, 2, 3, 0]].tolist()  # pybullet's x y z w
+        shapes, rows = self.shapes, []
+        for a, b in self.pairs:
+            for cp in p.getClosestPoints(-1, -1, 0.0, collisionShapeA=shapes[a], collisionShapeB=shapes[b],
+                                         collisionShapePositionA=where[a], collisionShapePositionB=where[b],
+                                         collisionShapeOrientationA=turned[a], collisionShapeOrientationB=turned[b],
+                                         physicsClientId=client):
+                rows.append((a, b, *cp[5], *cp[6], *cp[7], -cp[8]))  # cp[7]: on B, from B towards A
+        if not rows:
+            return ContactPoints.none()
+        m = np.array(rows, dtype=np.float64)
+        return ContactPoints(position=(m[:, 2:5] + m[:, 5:8]) / 2, normal=-m[:, 8:11], depth=m[:, 11],
+                             geometry1=m[:, 0].astype(int), geometry2=m[:, 1].astype(int))
+
+
 class BulletSimulation:
     def __init__(self, world: World, dt: float):
         self.world = world
@@ -244,6 +291,7 @@ class BulletSimulation:
             self._loop(world.joints[k])
         if world.collisions is not None:
             self._contacts_setup()
+        self.watched = [_Watched(self, c) for c in world.watched]
         self.moving = np.flatnonzero(~b.fixed)
         with np.errstate(over="ignore", invalid="ignore"):  # an overflowing weight blows up as a non-finite state
             self.weight = -b.mass[:, None] * world.gravity * ~b.use_gravity[:, None]  # cancels gravity where it is off
@@ -474,11 +522,7 @@ class BulletSimulation:
             up = R.rotate(orientation, np.array([0.0, 1.0, 0.0]))
             if g.kind == "heightfield":  # its frame is its body's
                 shape = self._shape(g, np.zeros(3), R.IDENTITY, moving=False)
-                xs, zs = _spacing(g)
-                nx, nz = g.grid
-                heights = g.vertices[:, 1]
-                centre = np.array([(nx - 1) * xs / 2, (heights.min() + heights.max()) / 2, (nz - 1) * zs / 2])
-                position, frame = position + R.rotate(orientation, centre), R.multiply(orientation, _Z_TO_Y)
+                position, frame = position + R.rotate(orientation, _grid_centre(g)), R.multiply(orientation, _Z_TO_Y)
                 # the frame axis nearest ODE's second friction direction there takes mu2 (below)
                 second = R.rotate(R.conjugate(frame), friction_directions(up)[1][0])
                 self.second_axis[gi] = int(np.argmax(np.abs(second)))
@@ -567,6 +611,9 @@ class BulletSimulation:
         m = np.array(rows, dtype=np.float64)
         return ContactPoints(position=(m[:, 2:5] + m[:, 5:8]) / 2, normal=m[:, 8:11], depth=m[:, 11],
                              geometry1=m[:, 0].astype(int), geometry2=m[:, 1].astype(int))
+
+    def watched_contacts(self, k: int) -> ContactPoints:
+        return self.watched[k].contacts(self.client, self.state())
 
     # -- running ------------------------------------------------------------
     def step(self, n: int = 1) -> None:
@@ -782,6 +829,8 @@ class BulletBackend(Backend):
         **unsupported("pybullet has no limit on the speed that corrects a contact's penetration (without a "
                       "collider the value has no effect)",
                       "RigidBodyCollection.maxCorrectionSpeed"),
+        # a set only sensors watch: its shapes in no body, tested by pybullet's shape query (_Watched)
+        **native("CollisionSensor.collider.watchedOnly"),
         **unsupported("pybullet picks its contacts' friction directions itself (ODE's, from the normal)",
                       "CollisionCollection.appliedParameters.USER_FRICTION"),
         **unsupported("pybullet's contacts have no surface velocity (no conveyor)",

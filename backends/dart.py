@@ -41,7 +41,9 @@ collection's values exactly. Its contact normal points from collisionObject2 tow
 collisionObject1 (measured), the point lies on object 1, the depth is positive when
 overlapping. Its contact error correction is fixed (ERP 0.01, at most 1 mm/s, no surface
 layer) and it bounces only where e times the approach speed exceeds 0.1 m/s: constants
-of its ContactConstraint, which dartpy does not bind.
+of its ContactConstraint, which dartpy does not bind. A set only sensors watch (world.watched)
+is ShapeNodes without a collision aspect, in a collision group of their own collided at each
+frame's end (_Watched): nothing in the world's step meets them.
 """
 
 from __future__ import annotations
@@ -68,6 +70,7 @@ _LOOPS = dart.constraint.DynamicJointConstraint  # holds the loop constraints' c
 # 1 s; 3e-14 with massless links): linear in it, so no rounding trouble down to here
 _LINK_MASS = 1e-12
 _Z_TO_Y = np.array([[1.0, 0, 0], [0, 0, 1], [0, -1, 0]])  # DART's cylinders and cones lie along z, X3D's along y
+_WATCHED_CAP = 1 << 16  # contacts a watched set's collision group returns at most (set on its own option)
 _MAX_CONTACTS = 1000  # DART's CollisionOption.maxNumContacts: dartpy returns the option by value, so it stays
 
 
@@ -218,6 +221,75 @@ def _triangles(vertices: np.ndarray, triangles: np.ndarray) -> list[dart.dynamic
     return shapes
 
 
+def _points(result: dart.collision.CollisionResult, geometry_of: dict[str, int], split: bool) -> ContactPoints:
+    """A collision result's contacts, copied out at once (DART's objects must not outlive the
+    world), each named by its geometries; DART's normal points from object 2 towards object 1:
+    turned round. split: some geometry is several shapes (a mesh's triangles meeting at a point
+    each report it: kept once)."""
+    found = result.getContacts()
+    k = len(found)
+    position, normal, depth = np.empty((k, 3)), np.empty((k, 3)), np.empty(k)
+    first, second = np.empty(k, dtype=int), np.empty(k, dtype=int)
+    for i, c in enumerate(found):
+        position[i] = c.point
+        normal[i] = c.normal
+        depth[i] = c.penetrationDepth
+        first[i] = geometry_of[c.collisionObject1.getShapeFrame().getName()]
+        second[i] = geometry_of[c.collisionObject2.getShapeFrame().getName()]
+    del found
+    if split and k > 1:
+        key = np.column_stack([first, second, np.round(position * 1e9), np.round(normal * 1e9)])
+        _, keep = np.unique(key, axis=0, return_index=True)
+        keep.sort()
+        position, normal, depth = position[keep], normal[keep], depth[keep]
+        first, second = first[keep], second[keep]
+    return ContactPoints(position, -normal, depth, first, second)
+
+
+class _Watched:
+    """A set only sensors watch (world.watched): ShapeNodes with no collision aspect (the world's
+    detector never meets them) on the bodies' nodes, the static ones on a node of a skeleton of
+    their own outside the world, collided where the bodies are when asked in a collision group of
+    a Bullet detector of its own, made afresh each time: a kept group keeps Bullet's persistent
+    manifold, whose points outlive the overlap (measured: a ball 8 cm out of a box still reported
+    at the depth its old normal gives, 0.78 m). The pairs may_touch rules out are dropped after."""
+
+    def __init__(self, sim: DartSimulation, n: int, c: Collisions):
+        self.collisions = c
+        self.detector = dart.collision.BulletCollisionDetector()
+        self.frames: list[dart.dynamics.ShapeNode] = []
+        self.option = dart.collision.CollisionOption(True, _WATCHED_CAP)
+        self.geometry_of: dict[str, int] = {}
+        self.split = False
+        self.static = dart.dynamics.Skeleton(f"watched{n}")  # held: its node holds the static shapes
+        _, static = self.static.createWeldJointAndBodyNodePair(None)
+        for k, g in enumerate(c.geometries):
+            node = static if g.body == STATIC else sim.nodes[g.body]
+            for m, (shape, turn) in enumerate(_shapes(g)):
+                frame = node.createShapeNode(shape, f"w{n}.{k}" if m == 0 else f"w{n}.{k}.{m}")
+                pose = dart.math.Isometry3()
+                pose.set_rotation(R.matrix(g.orientation) @ turn)
+                pose.set_translation(np.asarray(g.position, dtype=np.float64))
+                frame.setRelativeTransform(pose)
+                self.frames.append(frame)
+                self.geometry_of[frame.getName()] = k
+                self.split |= m > 0
+
+    def contacts(self) -> ContactPoints:
+        result = dart.collision.CollisionResult()
+        group = self.detector.createCollisionGroup()
+        for frame in self.frames:
+            group.addShapeFrame(frame)
+        group.collide(self.option, result)
+        if result.getNumContacts() >= _WATCHED_CAP:
+            raise BlewUp(f"{_WATCHED_CAP} contacts in a watched collection: the cap set on its collision group "
+                         "leaves the others out")
+        pts = _points(result, self.geometry_of, self.split)
+        keep = self.collisions.may_touch(pts.geometry1, pts.geometry2)
+        return ContactPoints(pts.position[keep], pts.normal[keep], pts.depth[keep], pts.geometry1[keep],
+                             pts.geometry2[keep])
+
+
 class DartSimulation:
     def __init__(self, world: World, dt: float):
         self.world = world
@@ -259,6 +331,7 @@ class DartSimulation:
         self.split = False  # whether some geometry is built of several shapes (a mesh's triangles)
         if world.collisions is not None:
             self._collide(world.collisions)
+        self.watched = [_Watched(self, n, c) for n, c in enumerate(world.watched)]
         for skeleton in self.skeletons:
             self.dart_world.addSkeleton(skeleton)
         self.drives = [_Drives(s, [m for m in self.motors if m.skeleton is s], dt) for s in self.skeletons
@@ -475,24 +548,10 @@ class DartSimulation:
         the world). DART's normal points from object 2 towards object 1: turned round."""
         if not self.geometry_of:
             return ContactPoints.none()
-        found = self.dart_world.getLastCollisionResult().getContacts()
-        k = len(found)
-        position, normal, depth = np.empty((k, 3)), np.empty((k, 3)), np.empty(k)
-        first, second = np.empty(k, dtype=int), np.empty(k, dtype=int)
-        for i, c in enumerate(found):
-            position[i] = c.point
-            normal[i] = c.normal
-            depth[i] = c.penetrationDepth
-            first[i] = self.geometry_of[c.collisionObject1.getShapeFrame().getName()]
-            second[i] = self.geometry_of[c.collisionObject2.getShapeFrame().getName()]
-        del found
-        if self.split and k > 1:  # a mesh's triangles meeting at a point each report it: keep one
-            key = np.column_stack([first, second, np.round(position * 1e9), np.round(normal * 1e9)])
-            _, keep = np.unique(key, axis=0, return_index=True)
-            keep.sort()
-            position, normal, depth = position[keep], normal[keep], depth[keep]
-            first, second = first[keep], second[keep]
-        return ContactPoints(position, -normal, depth, first, second)
+        return _points(self.dart_world.getLastCollisionResult(), self.geometry_of, self.split)
+
+    def watched_contacts(self, k: int) -> ContactPoints:
+        return self.watched[k].contacts()
 
     def state(self) -> State:
         n = len(self.nodes)
@@ -548,6 +607,8 @@ class DartBackend(Backend):
                  # DART's own contact points (Bullet's: the point on geometry1's surface), copied out;
                  # a point several of a mesh's triangles report once
                  "CollisionSensor",
+                 # a set only sensors watch: shapes no world collision group holds, in a group of its own (_Watched)
+                 "CollisionSensor.collider.watchedOnly",
                  # resolved by x3d_core; each parameter it applies is declared below
                  "CollisionCollection.appliedParameters",
                  # these act only where appliedParameters names SLIP-n, SPEED-n, ERROR_REDUCTION or

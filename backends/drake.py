@@ -69,9 +69,9 @@ from __future__ import annotations
 import numpy as np
 from pydrake.common import MemoryFile
 from pydrake.geometry import (AddCompliantHydroelasticProperties, AddContactMaterial, AddRigidHydroelasticProperties,
-                              Box, CollisionFilterDeclaration, Convex, Cylinder, GeometrySet, InMemoryMesh,
-                              MeshSource, ProximityProperties,
-                              Sphere)
+                              Box, CollisionFilterDeclaration, Convex, Cylinder, FramePoseVector, GeometryFrame,
+                              GeometryInstance, GeometrySet, InMemoryMesh, MeshSource, ProximityProperties,
+                              SceneGraph, Sphere)
 from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.common.eigen_geometry import Quaternion
 from pydrake.multibody.math import SpatialForce, SpatialVelocity
@@ -146,6 +146,62 @@ def _limited(world: World) -> bool:
     return False
 
 
+def _point_pairs(pairs, geometry_of: dict) -> ContactPoints:
+    """SceneGraph's point-pair penetrations between geometries geometry_of names, as ContactPoints:
+    the point midway between the two, Drake's normal (from B into A) turned round."""
+    pairs = [pp for pp in pairs if pp.id_A in geometry_of and pp.id_B in geometry_of]
+    n = len(pairs)
+    if n == 0:
+        return ContactPoints.none()
+    pos, nrm, depth = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n)
+    g1, g2 = np.zeros(n, dtype=int), np.zeros(n, dtype=int)
+    for k, pp in enumerate(pairs):
+        pos[k] = 0.5 * (np.asarray(pp.p_WCa) + np.asarray(pp.p_WCb))
+        nrm[k] = -np.asarray(pp.nhat_BA_W)
+        depth[k] = pp.depth
+        g1[k], g2[k] = geometry_of[pp.id_A], geometry_of[pp.id_B]
+    return ContactPoints(pos, nrm, depth, g1, g2)
+
+
+class _Watched:
+    """A set only sensors watch (world.watched): its shapes in a SceneGraph of their own, outside
+    the plant's diagram (every proximity geometry of the plant's SceneGraph is in its contact
+    model, so one there would push the bodies), a frame per body posed from the state when asked,
+    SceneGraph's point pairs from its query object. Geometries on one frame, and two anchored ones,
+    are never paired (SceneGraph's own filter); joined bodies' are filtered out."""
+
+    def __init__(self, sim: DrakeSimulation, c: Collisions):
+        graph = self.scene_graph = SceneGraph()
+        self.source = graph.RegisterSource("watched")
+        self.frames = {}  # body row -> its FrameId
+        self.geometry_of: dict = {}
+        for k, g in enumerate(c.geometries):
+            shape, X = sim._shape(g)
+            instance = GeometryInstance(X, shape, f"w{k}")
+            if g.body == STATIC:
+                gid = graph.RegisterAnchoredGeometry(self.source, instance)
+            else:
+                if g.body not in self.frames:
+                    self.frames[g.body] = graph.RegisterFrame(self.source, GeometryFrame(f"b{g.body}"))
+                gid = graph.RegisterGeometry(self.source, self.frames[g.body], instance)
+            graph.AssignRole(self.source, gid, ProximityProperties())
+            self.geometry_of[gid] = k
+        self.context = graph.CreateDefaultContext()
+        manager = graph.collision_filter_manager(self.context)
+        for lo, hi in c.excluded:
+            if lo in self.frames and hi in self.frames:
+                manager.Apply(CollisionFilterDeclaration().ExcludeBetween(GeometrySet(self.frames[lo]),
+                                                                          GeometrySet(self.frames[hi])))
+
+    def contacts(self, s: State) -> ContactPoints:
+        poses = FramePoseVector()
+        for row, frame in self.frames.items():
+            poses.set_value(frame, _pose(s.position[row], s.orientation[row]))
+        self.scene_graph.get_source_pose_port(self.source).FixValue(self.context, poses)
+        query = self.scene_graph.get_query_output_port().Eval(self.context)
+        return _point_pairs(query.ComputePointPairPenetration(), self.geometry_of)
+
+
 class DrakeSimulation:
     def __init__(self, world: World, dt: float):
         self.world, self.dt = world, dt
@@ -186,6 +242,7 @@ class DrakeSimulation:
         self.geometry_of: dict = {}
         if world.collisions is not None:
             self._collisions(world.collisions)
+        self.watched = [_Watched(self, c) for c in world.watched]
         plant.Finalize()
         if self.discrete:
             self.diagram = builder.Build()
@@ -438,19 +495,10 @@ class DrakeSimulation:
         if self.world.collisions is None:
             return ContactPoints.none()
         query = self.plant.get_geometry_query_input_port().Eval(self.context)
-        pairs = [pp for pp in query.ComputePointPairPenetration()
-                 if pp.id_A in self.geometry_of and pp.id_B in self.geometry_of]
-        n = len(pairs)
-        if n == 0:
-            return ContactPoints.none()
-        pos, nrm, depth = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n)
-        g1, g2 = np.zeros(n, dtype=int), np.zeros(n, dtype=int)
-        for k, pp in enumerate(pairs):
-            pos[k] = 0.5 * (np.asarray(pp.p_WCa) + np.asarray(pp.p_WCb))
-            nrm[k] = -np.asarray(pp.nhat_BA_W)  # Drake's normal points from B into A
-            depth[k] = pp.depth
-            g1[k], g2[k] = self.geometry_of[pp.id_A], self.geometry_of[pp.id_B]
-        return ContactPoints(pos, nrm, depth, g1, g2)
+        return _point_pairs(query.ComputePointPairPenetration(), self.geometry_of)
+
+    def watched_contacts(self, k: int) -> ContactPoints:
+        return self.watched[k].contacts(self.state())
 
 
 def _scheme(accuracy: float) -> str:
@@ -525,6 +573,8 @@ class DrakeBackend(Backend):
         **approximate("SceneGraph's point-pair penetrations at the state after each step (one point, normal and "
                       "depth per touching pair), not the hydroelastic contact surfaces the dynamics used",
                       "CollisionSensor"),
+        # a set only sensors watch: its shapes in a SceneGraph of their own, queried at frame ends (_Watched)
+        **native("CollisionSensor.collider.watchedOnly"),
         **approximate("Drake has no ERP or CFM: tree joints are exact (generalized coordinates); contacts are "
                       "Drake's compliant hydroelastic contact (see CollisionCollection)",
                       "RigidBodyCollection.errorCorrection", "RigidBodyCollection.constantForceMix",

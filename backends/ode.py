@@ -30,7 +30,9 @@ and never tests two unmoving geoms unless a sensor reports them. ODE's contact n
 2 into geom 1: turned round for ContactPoints. Every contact gets one dContact surface,
 the collection's parameters as ODE's own mode bits (appliedParameters is ODE's mode
 word), with dContactApprox1 so that mu is Coulomb's coefficient (without it ODE reads
-mu as a force bound in newtons).
+mu as a force bound in newtons). A set only sensors watch (world.watched) gets geoms of its own
+on the same bodies, tested the same way where the bodies are at each frame's end, and no
+contact joint: ODE reports them and nothing feels them.
 """
 
 from __future__ import annotations
@@ -102,14 +104,13 @@ def _refused(world: World, dt: float) -> str | None:
             if not np.isfinite(float(value) / dt):
                 return (f"{name} = {float(value):g}: ODE divides it by the step ({dt:g} s) and the quotient "
                         "overflows (ODE would abort)")
-        if world.collisions is not None:
-            for g in world.collisions.geometries:
-                extent = [np.abs(g.size).max(initial=0.0)]
-                if g.vertices is not None and len(g.vertices):
-                    extent.append(np.abs(g.vertices).max())
-                if max(extent) > _MAX_LENGTH:
-                    return (f"{g.name}: a {g.kind} {max(extent):g} m across: ODE squares lengths and beyond "
-                            f"{_MAX_LENGTH:.4g} m they overflow (ODE would abort)")
+        for g in (g for c in (world.collisions, *world.watched) if c is not None for g in c.geometries):
+            extent = [np.abs(g.size).max(initial=0.0)]
+            if g.vertices is not None and len(g.vertices):
+                extent.append(np.abs(g.vertices).max())
+            if max(extent) > _MAX_LENGTH:
+                return (f"{g.name}: a {g.kind} {max(extent):g} m across: ODE squares lengths and beyond "
+                        f"{_MAX_LENGTH:.4g} m they overflow (ODE would abort)")
     return None
 
 
@@ -277,10 +278,11 @@ class _Candidates(NamedTuple):
 
 
 class _Contacts:
-    """The world's geoms and, each step, their contact joints (see the module's docstring)."""
+    """The world's geoms and, each step, their contact joints (see the module's docstring); for a
+    set only sensors watch (respond False), its geoms and contacts alone: no joint is made."""
 
-    def __init__(self, sim: OdeSimulation, c: Collisions):
-        self.sim = sim
+    def __init__(self, sim: OdeSimulation, c: Collisions, respond: bool = True):
+        self.sim, self.respond = sim, respond
         b = sim.world.bodies
         self.shapes = [_Shape(g) for g in c.geometries]
         n = len(self.shapes)
@@ -413,6 +415,8 @@ class _Contacts:
                 counts.append(k)
         self.count = found
         self.touching = (first, second, counts)  # as arrays only for points(): a step needs none
+        if not self.respond:
+            return
         world, group, handle = self.sim.ode_world, self.group, self.body_handle
         at = self.address
         for i, j, k in zip(first, second, counts):
@@ -437,6 +441,7 @@ class _Contacts:
 class OdeSimulation:
     def __init__(self, world: World, dt: float):
         self.contacts_: _Contacts | None = None
+        self.watched: list[_Contacts] = []  # world.watched's, in order
         lib.dAllocateODEDataForThread(ode.ALLOCATE_ALL)  # per thread that steps or collides
         lib.dRandSetSeed(0)  # quick-step reorders its rows with ODE's one global generator: same seed, same run
         self.world, self.dt = world, dt
@@ -462,6 +467,8 @@ class OdeSimulation:
                 self._joint(j)
             if world.collisions is not None:
                 self.contacts_ = _Contacts(self, world.collisions)
+            for c in world.watched:  # geoms on the bodies, never given a contact joint
+                self.watched.append(_Contacts(self, c, respond=False))
         except Unsupported:
             self.close()
             raise
@@ -637,11 +644,18 @@ class OdeSimulation:
     def contacts(self) -> ContactPoints:
         return self.contacts_.points() if self.contacts_ is not None else ContactPoints.none()
 
+    def watched_contacts(self, k: int) -> ContactPoints:
+        """dCollide over the watched set's pairs where ODE's bodies are now, no joint made."""
+        c = self.watched[k]
+        c.collide(*self._poses())
+        return c.points()
+
     def close(self) -> None:
         """Free ODE's world, its bodies and joints, and the geoms."""
         if self.ode_world:
-            if self.contacts_ is not None:
-                self.contacts_.destroy()
+            for c in [self.contacts_, *self.watched]:
+                if c is not None:
+                    c.destroy()
             lib.dWorldDestroy(self.ode_world)
             self.ode_world = None
 
@@ -669,7 +683,8 @@ class OdeBackend(Backend):
                  "DoubleAxisHingeJoint.maxTorque1", "DoubleAxisHingeJoint.maxTorque2",
                  # collisions: ODE's own geoms, colliders and contact joints
                  "CollisionCollection", "CollisionCollection.appliedParameters", "CollisionSensor",
-                 "CollidableShape.geometry.Box", "CollidableShape.geometry.Sphere",
+                 # a set only sensors watch: its own geoms on the bodies, dCollide'd, no contact joint
+                 "CollisionSensor.collider.watchedOnly", "CollidableShape.geometry.Box", "CollidableShape.geometry.Sphere",
                  "CollidableShape.geometry.Cylinder", "CollisionCollection.bounce",
                  "CollisionCollection.minBounceSpeed", "CollisionCollection.frictionCoefficients",
                  "CollisionCollection.slipFactors", "CollisionCollection.surfaceSpeed",

@@ -338,6 +338,9 @@ class PymunkBackend(Backend):
     name = "pymunk"
     integration = POSITION_FIRST  # Chipmunk moves a body, then adds the step's loads (module notes)
     declared = {
+        **unsupported("not built: x3d_core.planar cuts 2D sections for a world's collider alone, so a collection "
+                      "only a sensor watches has no Chipmunk shapes (shapes_collide could test them without a response)",
+                      "CollisionSensor.collider.watchedOnly"),
         # planar worlds only (x3d_core.planar): out-of-plane values are refused, in-plane ones native
         **native(*(f for f in BODIES if f != "RigidBodyCollection.gravity"), *JOINTS,
                  "RigidBodyCollection.gravity", "RigidBodyCollection.errorCorrection",

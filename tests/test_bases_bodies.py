@@ -164,6 +164,17 @@ def test_hinge_resting_at_max_angle_with_the_other_sign_conforms(real):
     assert _failing(_judge("hinge_limits", other), results.CONVENTION) == ["Hinge.angle farthest - minAngle"]
 
 
+def test_an_arm_past_its_stop_breaks_the_limits_sentence(real):
+    """37.4.12: minAngle and maxAngle "control the maximum angles through which the hinge is allowed
+    to travel": an arm that stops 0.35 rad past minAngle fails it (before, only graded)."""
+    rows = real["hinge_limits"][1][0]
+    past = [Row(r.time, r.node, r.field, repr(LIMITS.HINGE_MIN - 0.35))  # at the stop, read 0.35 rad past it
+            if r.node == "Hinge" and r.field == "angle" and float(r.value) < LIMITS.HINGE_MIN + 0.05 else r
+            for r in rows]
+    failing = _failing(_judge("hinge_limits", past), results.SPEC)
+    assert "Hinge.angle beyond limits" in failing, failing
+
+
 # -- hinge_bounce: the impact at minAngle (ODE's sign) or maxAngle ---------------------------
 
 def _bounce(stop: float, ratio: float = BOUNCE.BOUNCE) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -236,8 +247,8 @@ def test_motor_joint_torque_only_in_user_calculated_mode_conforms(real):
         "AutoRotor.angularVelocity, either sense (the torque acts with autoCalc TRUE)"]
     stuck_rate = _judge("motor_joint_torque", _zeroed(rows, {"AutoMotor"}))
     assert "|AutoMotor.motor1AngleRate| = |motor1Axis . (w1 - w2)|" in _failing(stuck_rate, results.SPEC)
-    no_torque = _judge("motor_joint_torque", _zeroed(rows, {"UserRotor", "UserStator", "AutoRotor", "AutoStator",
-                                                            "AutoMotor"}))
+    no_torque = _judge("motor_joint_torque", _zeroed(rows, {"UserRotor", "UserStator", "UserMotor", "AutoRotor",
+                                                            "AutoStator", "AutoMotor"}))
     assert _failing(no_torque, results.SPEC) == ["UserRotor.angularVelocity, either sense"]
 
 

@@ -13,7 +13,8 @@ from conformance import results
 from conformance.runner import probe, verdicts
 
 MINE = ("bounce_apex", "incline", "anisotropic_friction", "conveyor", "resting_penetration", "box_stack",
-        "collision_filtering", "routed_contacts", "sensor_geometry", "newtons_cradle")
+        "collision_filtering", "routed_contacts", "sensor_geometry", "newtons_cradle", "contact_unapplied",
+        "collidable_layout")
 CASES = {c.name: c for c in C.CASES if c.name in MINE}
 
 _ODE = probe.backend_table().get("ode")
@@ -78,6 +79,20 @@ def test_contact_normal_towards_geometry1_breaks_the_clause_s_direction(ode_runs
     assert "contactNormal - (0, 1, 0) or (0, -1, 0), the nearer (worst contact)" in _failing(measures, results.SPEC)
 
 
+def test_a_disabled_space_that_still_collides_breaks_its_sentence(ode_runs):
+    """X3DNBodyCollisionSpaceNode (printed 37.3.1): "The enabled field specifies whether the collision
+    space is to be considered during collision processing." OffSpace held at its start, as its disabled
+    space's floor would hold it, fails a spec measure (it was the UOM's description: conventions)."""
+    _, rows = ode_runs["collidable_layout"]
+    assert _judge("collidable_layout", rows)[0] == results.PASS
+    start = next(r.value for r in rows if r.node == "OffSpace" and r.field == "position")
+    held = [Row(r.time, r.node, r.field, start if r.field == "position" else "0.0 0.0 0.0")
+            if r.node == "OffSpace" and r.field in ("position", "linearVelocity") else r for r in rows]
+    verdict, measures = _judge("collidable_layout", held)
+    assert verdict == results.FAIL
+    assert any(q.startswith("OffSpace") for q in _failing(measures, results.SPEC)), _failing(measures, results.SPEC)
+
+
 def test_surface_speed_along_the_other_direction_is_a_convention(ode_runs):
     _, rows = ode_runs["conveyor"]
     assert _judge("conveyor", rows)[0] == results.PASS
@@ -128,3 +143,25 @@ def test_friction_axes_swapped_or_along_the_motion_is_a_convention(ode_runs):
                     "Along2", "linearVelocity", lambda v: [0.0, 0.0, 3.0])
     verdict, measures = _judge("anisotropic_friction", ignored)
     assert verdict == results.FAIL and len(_failing(measures, results.SPEC)) == 2
+
+
+def test_a_contact_s_applied_parameters_read_in_either_spelling_and_any_order(ode_runs):
+    """contact_unapplied: what the clause leaves free (the spelling of a name, the order of an
+    MFString) passes; a Contact that carries what was applied, its own default appliedParameters
+    or a friction direction where there is no friction breaks a spec sentence."""
+    _, rows = ode_runs["contact_unapplied"]
+    assert _judge("contact_unapplied", rows)[0] == results.PASS
+
+    def texts(field: str, value: str) -> list[Row]:
+        return [Row(r.time, r.node, r.field, value) if r.node == "Sensor" and r.field.endswith(field) else r
+                for r in rows]
+    for free in ('"FRICTION_COEFFICIENT_2"', '"FRICTION_COEFFICIENT-2" "FRICTION_COEFFICIENT_2"'):
+        assert _judge("contact_unapplied", texts(".appliedParameters", free))[0] == results.PASS, free
+    for broken, measure in (
+            (texts(".appliedParameters", '"BOUNCE"'), "contacts whose appliedParameters are not the collection's"),
+            (texts(".appliedParameters", ""), "contacts whose appliedParameters are not the collection's"),
+            (texts(".bounce", "0"), "contacts whose parameters are not the collection's"),  # BOUNCE is not applied
+            (texts(".surfaceSpeed", "0 0"), "contacts whose parameters are not the collection's"),
+            (texts(".frictionDirection", "-1 0 0"), "contacts without friction whose frictionDirection is not 0 0 0")):
+        verdict, measures = _judge("contact_unapplied", broken)
+        assert verdict == results.FAIL and _failing(measures, results.SPEC) == [measure], measure

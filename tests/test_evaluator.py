@@ -195,6 +195,34 @@ def test_collision_sensor_rows_name_bodies_collidables_and_parameters(tmp_path):
     assert (rows["intersections[0]"], rows["intersections[1]"]) == ("Floor", "BallShape")
 
 
+def test_sensor_contacts_carry_the_collections_values_that_it_does_not_apply(tmp_path):
+    """37.4.4: a Contact carries the collection's parameters, applied or not, and its
+    appliedParameters; frictionCoefficients 0 0 both ways is no friction: frictionDirection 0 0 0."""
+    from x3d_core.evaluator import run
+    s = scene(tmp_path, """
+<Group><CollidableShape DEF='BallShape'><Shape containerField='shape'><Sphere radius='0.5'/></Shape></CollidableShape>
+  <CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape containerField='shape'><Box size='4 1 4'/></Shape>
+  </CollidableShape></Group>
+<RigidBodyCollection><RigidBody DEF='Ball' position='0 1 0'><CollidableShape USE='BallShape' containerField='geometry'/>
+  </RigidBody>
+  <CollisionCollection DEF='C' bounce='0.5' surfaceSpeed='0.3 -0.7' slipFactors='0.01 0.02'
+      appliedParameters='"FRICTION_COEFFICIENT_2"'><CollidableShape USE='BallShape'/><CollidableShape USE='Floor'/>
+  </CollisionCollection></RigidBodyCollection>
+<CollisionSensor DEF='Sensor'><CollisionCollection USE='C' containerField='collider'/></CollisionSensor>""")
+    (w,) = worlds(s)
+    p = w.collisions.parameters  # what the physics applies: none of them
+    assert p.bounce == 0.0 and not p.surface_speed.any() and not p.slip.any() and p.frictionless
+    rows = {(r.field): r.value for r in run([w], _FakeEngine(), RunSettings(0.1, 0.05, 10)).rows
+            if r.node == "Sensor" and r.time == 0.1}
+    assert {f: rows[f"contacts[0].{f}"] for f in ("bounce", "surfaceSpeed", "slipCoefficients", "minBounceSpeed",
+                                                  "frictionCoefficients", "softnessErrorCorrection",
+                                                  "softnessConstantForceMix", "appliedParameters",
+                                                  "frictionDirection")} == {
+        "bounce": "0.5", "surfaceSpeed": "0.3 -0.7", "slipCoefficients": "0.01 0.02", "minBounceSpeed": "0.1",
+        "frictionCoefficients": "0 0", "softnessErrorCorrection": "0.8", "softnessConstantForceMix": "0.0001",
+        "appliedParameters": '"FRICTION_COEFFICIENT-2"', "frictionDirection": "0 0 0"}
+
+
 def test_collision_plan_follows_the_collider_spaces_and_offsets(tmp_path):
     s = scene(tmp_path, """
 <Group>
@@ -262,8 +290,11 @@ def test_contacts_routed_from_a_sensor_collide_with_its_collider(tmp_path):
 def test_without_the_route_or_from_another_collider_nothing_new_collides(tmp_path):
     from x3d_core.analysis import run_features
     s = _routed_contacts_scene(tmp_path, "", route=False)
-    assert worlds(s)[0].collisions is None
-    assert not [f for f in run_features(s) if f.startswith(("Collision", "Collidable"))]
+    (w,) = worlds(s)
+    assert w.collisions is None  # the sensor's collection acts on nothing: it is only watched
+    assert [c.collider.def_name for c in w.watched] == ["Watched"]
+    needed = run_features(s)
+    assert "CollisionSensor.collider.watchedOnly" in needed and "CollisionCollection.bounce" not in needed
     other = _routed_contacts_scene(tmp_path, "<CollisionCollection DEF='Own' containerField='collider'>"
                                              "<CollidableShape USE='BallShape'/></CollisionCollection>", route=True)
     assert worlds(other)[0].collisions.collider.def_name == "Own"

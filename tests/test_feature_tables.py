@@ -12,7 +12,7 @@ from x3d_core.schema import node_type
 # names analysis derives beyond TYPE and TYPE.field
 DERIVED = {"inertia.offDiagonal", "limits"}
 PREFIXED = {"massDensityModel": ("Box", "Sphere", "Cone"), "appliedParameters": CANONICAL,
-            "set_contacts": ("fromSensor", "fromOtherCollider")}
+            "set_contacts": ("fromSensor", "fromOtherCollider"), "collider": ("watchedOnly",)}
 
 BACKENDS = [b for b in base.available().values() if not isinstance(b, str)]
 

@@ -30,7 +30,7 @@ from . import fields as F
 from .applied import applied
 from .collision import STATIC, collider, foreign_contacts
 from .model import Node, Scene
-from .world import World, slider_stops, worlds
+from .world import World, forced_outputs, slider_stops, worlds
 
 RBP_TYPES = ("RigidBodyCollection", "RigidBody", "BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint",
              "SliderJoint", "UniversalJoint", "MotorJoint", "CollisionCollection", "CollisionSpace",
@@ -98,6 +98,10 @@ def summarize(scene: Scene) -> Summary:
 # (outcome.py says so, and that a node it looks up by name is not followed), the second only
 # through its ROUTEs, each counted in features() itself.
 SCRIPT_DIRECT_OUTPUT = "Script.directOutput"
+# A CollisionSensor watching a collection that no enabled RigidBodyCollection collides with: the
+# engine must detect that collection's contacts for the sensor without acting on them
+# (x3d_core/collision.py, watch); counted where such a set is planned
+WATCHED_ONLY = "CollisionSensor.collider.watchedOnly"
 
 
 @dataclass(frozen=True)
@@ -155,13 +159,16 @@ class Use:
     value: Any = None
     ftype: F.FieldType | None = None
     where: str = ""  # what in the file makes a use no field value says (a Script's Reach)
+    spelled: str = ""  # the field's name in the file, where it is not the feature's (X3D 3.x's stopBounce1)
 
     def __str__(self) -> str:
         """As a refusal names it: 'RigidBodyCollection.constantForceMix = 0.5',
-        'Script.directOutput (Script Mover holds RigidBody Ball in its field ball)'."""
+        'Script.directOutput (Script Mover holds RigidBody Ball in its field ball)',
+        'DoubleAxisHingeJoint.stop1Bounce = 0.5 (stopBounce1 in the file)'."""
         if self.where:
             return f"{self.feature} ({self.where})"
-        return self.feature if self.value is None else f"{self.feature} = {F.format_xml(self.ftype, self.value)}"
+        said = self.feature if self.value is None else f"{self.feature} = {F.format_xml(self.ftype, self.value)}"
+        return f"{said} ({self.spelled} in the file)" if self.spelled else said
 
 
 _UNSEEN = ("bboxCenter", "bboxSize", "bboxDisplay", "visible", "metadata", "description")  # no physics
@@ -197,8 +204,10 @@ def _derived(n: Node) -> Iterator[str]:
         if fc[0] == fc[1]:  # one coefficient both ways: what every reading of the flag applies
             on = on - {"FRICTION_COEFFICIENT-2"}
         yield from (f"{t}.appliedParameters.{p}" for p in sorted(on))
-    if n.spec.is_a("X3DRigidJointNode") and n.get("forceOutput") != ["NONE"]:
-        yield f"{t}.forceOutput"
+    if n.spec.is_a("X3DRigidJointNode"):
+        outputs = tuple(f for f, fd in n.spec.fields.items() if fd.access == "outputOnly")
+        if forced_outputs(outputs, n.get("forceOutput")):  # a selection of none uses nothing
+            yield f"{t}.forceOutput"
 
 
 def _node_uses(n: Node) -> Iterator[Use]:
@@ -208,7 +217,8 @@ def _node_uses(n: Node) -> Iterator[Use]:
     for name, value in n.values.items():
         fd = n.spec.fields[name]
         if fd.type.kind != "node" and name not in _UNSEEN and not F.values_equal(fd.type, value, fd.default):
-            yield Use(f"{t}.{name}", value, fd.type)
+            spelled = n.spelling(name)
+            yield Use(f"{t}.{name}", value, fd.type, spelled=spelled if spelled != name else "")
     yield from map(Use, _derived(n))
 
 
@@ -227,6 +237,9 @@ def _uses(scene: Scene) -> Iterator[tuple[Node, Use]]:
         else:
             yield r.to_node, Use(f"{r.to_node.type_name}.{r.to_field}.routed")
     yield from ((r.script, Use(SCRIPT_DIRECT_OUTPUT, where=str(r))) for r in script_reach(scene))
+    used = {id(collider(c, scene.routes)) for c in scene.of_type("RigidBodyCollection") if c.get("enabled")}
+    yield from ((s, Use(WATCHED_ONLY)) for s in scene.of_type("CollisionSensor")
+                if s.get("enabled") and s.get("collider") is not None and id(s.get("collider")) not in used)
 
 
 def features(scene: Scene) -> list[str]:
@@ -249,12 +262,14 @@ CONTACT_FIELDS = frozenset({("RigidBodyCollection", f) for f in ("contactSurface
 
 @dataclass(frozen=True)
 class _Reach:
-    """What a run's enabled collections act on, by node id: whether any has a collider, the
-    collections whose joints constrain two bodies, and the collections and colliders under
-    which two collidables can touch."""
+    """What a run's enabled collections act on, by node id: whether any has a collider or a
+    sensor watches a set no collection collides with, the collections whose joints constrain two
+    bodies, the collections and colliders under which two collidables can touch, and the sensors
+    of the watched sets."""
     colliding: bool
     jointed: frozenset[int]
     touching: frozenset[int]
+    watched: frozenset[int]
 
 
 def _constrains(w: World) -> bool:
@@ -275,9 +290,11 @@ def _can_touch(w: World) -> bool:
 def _reach(scene: Scene, ws: list[World]) -> _Reach:
     """What the worlds a run builds act on (x3d_core/world.py, the same worlds and collision sets)."""
     touching = [w for w in ws if _can_touch(w)]
-    return _Reach(colliding=any(collider(w.node, scene.routes) is not None for w in ws),
+    watching = frozenset(id(s) for w in ws for c in w.watched for _, s in c.sensors)
+    return _Reach(colliding=bool(watching) or any(collider(w.node, scene.routes) is not None for w in ws),
                   jointed=frozenset(id(w.node) for w in ws if _constrains(w)),
-                  touching=frozenset(id(n) for w in touching for n in (w.node, w.collisions.collider)))
+                  touching=frozenset(id(n) for w in touching for n in (w.node, w.collisions.collider)),
+                  watched=watching)
 
 
 def _acts(node: Node, use: Use, r: _Reach) -> bool:
@@ -286,6 +303,8 @@ def _acts(node: Node, use: Use, r: _Reach) -> bool:
     field_name = rest.partition(".")[0]
     if kind == "Contact":  # only set_contacts gives a Contact an effect, and its route counts
         return False
+    if use.feature == WATCHED_ONLY:
+        return id(node) in r.watched
     if kind == "SliderJoint" and field_name.startswith("stop") and not use.feature.endswith(".routed"):
         return slider_stops(node) is not None  # a stop's bounce or correction: nothing where there are no stops
     if kind == "RigidBodyCollection" and field_name in JOINT_SOFTNESS:
@@ -298,7 +317,8 @@ def _acts(node: Node, use: Use, r: _Reach) -> bool:
 def run_uses(scene: Scene, ws: list[World] | None = None) -> list[Use]:
     """The uses a run of the scene needs, sorted, each (feature, value) once: a use counts only
     where what it governs exists. Collision geometry and sensors only where some enabled
-    RigidBodyCollection has a collider, its own or the one its routed contacts come from;
+    RigidBodyCollection has a collider, its own or the one its routed contacts come from, or a
+    sensor watches a set that none collides with (WATCHED_ONLY, where one is planned);
     contact parameters (its collider's, and its contactSurfaceThickness and
     maxCorrectionSpeed) only where that collider holds two collidables that can touch, one
     on a moving body; errorCorrection and constantForceMix only where the collection has

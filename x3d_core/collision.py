@@ -25,6 +25,15 @@ The rules (clause 37.4), as x3drbp reads them:
   are the contacts it has already. Contacts from a collider other than the collection's
   own, or from two colliders, are refused (analysis names the feature): x3drbp gives a
   collection one collision set.
+- A CollisionCollection that an enabled CollisionSensor watches and that no enabled
+  RigidBodyCollection collides with is still detected, for the sensor alone: the sensor "is
+  used to send collision detection information into the scene graph for user processing"
+  (37.4.5), and nothing in the clause makes such contacts act. It is planned once (watch),
+  into the first world whose bodies carry one of its collidables (the first world where none
+  does; a collidable on another world's body is static there, as in any set), as one of that
+  world's watched sets: each frame's end the engine detects its contacts where the bodies
+  are, its sensors report them, and no body feels them. Disabled, it is not run and its
+  sensors report nothing (37.4.4).
 """
 
 from __future__ import annotations
@@ -39,8 +48,8 @@ from . import rotation as R
 from .applied import applied
 from .model import Node, Route
 
-if TYPE_CHECKING:  # world builds its collision plan here: World is only a type to this module
-    from .world import World
+if TYPE_CHECKING:  # world builds its collision plan here: World and State are only types to this module
+    from .world import State, World
 
 STATIC = -1  # body index of the static environment (a NULL body, or a fixed RigidBody)
 
@@ -75,6 +84,24 @@ class ContactParameters:
     softness_cfm: float | None  # None unless CONSTANT_FORCE applies
     surface_thickness: float  # the collection's contactSurfaceThickness
     applied: frozenset[str] = field(default_factory=frozenset)
+
+    @property
+    def frictionless(self) -> bool:
+        """Whether these contacts apply no friction (37.4.7: "If there is no friction, the
+        direction should be set to 0, 0, 0."): both coefficients in effect are 0, mu1 being
+        frictionCoefficients[0] always and mu2 frictionCoefficients[1] where
+        FRICTION_COEFFICIENT-2 applies, else mu1 (docs/spec-loose-ends.md, section 3).
+        surfaceSpeed and slip act through friction, so without it they apply nothing either."""
+        return not np.any(self.friction)
+
+
+# 37.4.4: the collection's parameters "specify default values that will be assigned to all
+# Contact nodes generated from the CollisionSensor node": each Contact field (key) carries the
+# collection's field (value) as given, whatever appliedParameters applies (a Contact carries
+# that too, to say which apply)
+CONTACT_DEFAULTS = {f: f for f in ("bounce", "minBounceSpeed", "frictionCoefficients", "surfaceSpeed",
+                                   "softnessConstantForceMix", "softnessErrorCorrection")} | {
+    "slipCoefficients": "slipFactors"}
 
 
 @dataclass
@@ -120,6 +147,25 @@ class Collisions:
         np.add.at(blocked, pairs[:, 0], count[pairs[:, 1]])
         np.add.at(blocked, pairs[:, 1], count[pairs[:, 0]])
         return len(body) - blocked[body + 1] > 0
+
+    def placed(self, s: State) -> tuple[np.ndarray, np.ndarray]:
+        """Each geometry's world position and orientation with the bodies where state s has them
+        (a static one where the plan put it): for an engine that tests shapes at poses it is given
+        rather than on its own bodies (a watched set's)."""
+        body, _, _ = self._pair_keys
+        position, orientation = self._local
+        on = body != STATIC
+        if not on.any():
+            return position.copy(), orientation.copy()
+        row = np.maximum(body, 0)
+        q = np.where(on[:, None], s.orientation[row], R.IDENTITY)
+        return np.where(on[:, None], s.position[row], 0.0) + R.rotate(q, position), R.multiply(q, orientation)
+
+    @cached_property
+    def _local(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every geometry's position and orientation in its body's frame (the world's for STATIC)."""
+        return (np.array([g.position for g in self.geometries], dtype=np.float64).reshape(-1, 3),
+                np.array([g.orientation for g in self.geometries], dtype=np.float64).reshape(-1, 4))
 
     @cached_property
     def _pair_keys(self) -> tuple[np.ndarray, int, np.ndarray]:
@@ -203,6 +249,29 @@ def plan(world: World, names: dict[int, str], routes: list[Route]) -> Collisions
     collider_node = collider(world.node, routes)
     if collider_node is None or not collider_node.get("enabled"):
         return None
+    return gather(world, collider_node, names)
+
+
+def watch(worlds: list[World], sensors: list[Node], names: dict[int, str], routes: list[Route]) -> None:
+    """Each enabled collection the sensors (the enabled ones) watch that none of the worlds
+    collides with (collider() names it for none), planned once for reporting only (the module's
+    docstring) into the first world whose bodies carry one of its collidables, else the first
+    world: appended to that world's watched, with its sensors."""
+    if not worlds:
+        return
+    used = {id(collider(w.node, routes)) for w in worlds}
+    watched = {id(c): c for c in (s.get("collider") for s in sensors) if c is not None}
+    for node in watched.values():
+        if id(node) in used or not node.get("enabled"):
+            continue
+        sets = [gather(w, node, names) for w in worlds]
+        k = next((k for k, c in enumerate(sets) if any(g.body != STATIC for g in c.geometries)), 0)
+        sets[k].sensors = [(names[id(s)], s) for s in sensors if s.get("collider") is node]
+        worlds[k].watched.append(sets[k])
+
+
+def gather(world: World, collider_node: Node, names: dict[int, str]) -> Collisions:
+    """One CollisionCollection's collision set as the world's bodies carry it."""
     owner: dict[int, int] = {}  # top-level collidable -> body row
     for row, body in enumerate(world.bodies.nodes):
         for g in body.get("geometry"):

@@ -105,6 +105,12 @@ class Simulation(Protocol):
         """The contact points of the last step (only asked for where a CollisionSensor or
         the trace needs them; a world without collisions has none)."""
 
+    def watched_contacts(self, k: int) -> ContactPoints:
+        """The contact points of world.watched[k], a set only sensors watch, detected where the
+        bodies are now (asked for at frame ends) and never acted on: geometry indices into that
+        set's geometries. Only a backend that declares CollisionSensor.collider.watchedOnly
+        supported is asked (x3d_core.analysis refuses the others)."""
+
     def set_loads(self, forces: np.ndarray, torques: np.ndarray) -> None:
         """The force (at the centre of mass) and torque every body gets at each step from
         now on, world frame; a build starts with the world's forces and torques fields."""

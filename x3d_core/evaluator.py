@@ -16,10 +16,10 @@ import numpy as np
 
 from . import rotation as R
 from . import fields as F
-from .collision import ContactPoints, friction_directions
+from .collision import CONTACT_DEFAULTS, Collisions, ContactPoints, friction_directions
 from . import engine as _engine
 from .engine import BlewUp, Engine, Simulation, Stopped, Unsupported
-from .joint_outputs import JointOutputs
+from .joint_outputs import JointOutputs, MotorAxes
 from .trace import Column, Trace
 from .world import STATIC, State, World, parallel, undirected
 
@@ -70,24 +70,25 @@ class _Damping:
 
 
 class _Motors:
-    """MotorJoint as ODE's AMotor: each enabled axis (carried by body1, or fixed in the
-    world where body1 is the static environment) gets axisNTorque, body1 the torque and
-    body2 its opposite, at every step."""
+    """MotorJoint torques as ODE's AMotor applies them (dJointAddAMotorTorques): each of the
+    enabledAxes first axes, where 37.4.9 anchors it (joint_outputs.MotorAxes: axis 1 fixed in the
+    world, axis 2 turning with body1, axis 3 with body2), gets axisNTorque along its current
+    direction, body1 the torque and body2 its opposite, at every step. A disabled axis (0 0 0)
+    adds nothing."""
 
     def __init__(self, world: World):
         self.motors = []
         for j in world.joints:
             n = int(j.params.get("enabledAxes", 0)) if j.type == "MotorJoint" else 0
-            torques = np.array([j.params[f"axis{k + 1}Torque"] for k in range(n)])
-            if n and np.any(torques):
-                q1 = R.IDENTITY if j.body1 == STATIC else world.bodies.orientation[j.body1]
-                self.motors.append((j, R.rotate(R.conjugate(q1), j.axes[:n]), torques))
+            torques = np.zeros(3)
+            torques[:n] = [j.params[f"axis{k + 1}Torque"] for k in range(n)]
+            if np.any(torques[:, None] * j.axes):
+                self.motors.append((j, MotorAxes(j, world.bodies), torques))
         self.active = bool(self.motors)
 
     def add_torques(self, torques: np.ndarray, s: State) -> None:
-        for j, local_axes, amounts in self.motors:
-            q1 = R.IDENTITY if j.body1 == STATIC else s.orientation[j.body1]
-            tau = amounts @ R.rotate(q1, local_axes)
+        for j, axes, amounts in self.motors:
+            tau = amounts @ axes.current(s.orientation)
             if j.body1 != STATIC:
                 torques[j.body1] += tau
             if j.body2 != STATIC:
@@ -317,28 +318,26 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
 class _Sensors:
     """CollisionSensor outputs from the engine's contact points, in the spec's terms: per
     contact a Contact node (position, contactNormal from body1 towards body2, depth, the
-    bodies and collidables, the first friction direction and the collection's applied
-    parameters), the collidables in contact as intersections, and isActive. Recorded as
+    bodies and collidables, the first friction direction, 0 0 0 where the contacts apply no
+    friction, and the collection's contact parameters with its appliedParameters, which say
+    which of them apply), the collidables in contact as intersections, and isActive. Recorded as
     columns (Trace.add_table): a frame costs a few array operations however many contacts."""
 
-    def __init__(self, world: World):
-        c = world.collisions
+    def __init__(self, world: World, c: Collisions):
         self.names = [n for n, _ in c.sensors]
         self.geometry_names = np.array([g.name for g in c.geometries], dtype=object)
         self.body_names = np.array([world.bodies.names[g.body] if g.body != STATIC else "NULL"
                                     for g in c.geometries], dtype=object)
         p = c.parameters
-        f = F.FIELD_TYPES
+        # the collection's own values (collision.CONTACT_DEFAULTS), not those applied: which of them
+        # apply is what appliedParameters says, written as the set of names x3drbp reads (X3D 4.0 spelling)
         self.constant = [
-            Column("appliedParameters", None, F.format_xml(f["MFString"], sorted(p.applied)), True),
-            *(Column(name, f[ftype], value, True) for name, ftype, value in (
-                ("bounce", "SFFloat", p.bounce), ("minBounceSpeed", "SFFloat", p.min_bounce_speed),
-                ("frictionCoefficients", "SFVec2f", p.friction), ("slipCoefficients", "SFVec2f", p.slip),
-                ("surfaceSpeed", "SFVec2f", p.surface_speed),
-                ("softnessErrorCorrection", "SFFloat", p.softness_erp if p.softness_erp is not None
-                 else c.collider.get("softnessErrorCorrection")),
-                ("softnessConstantForceMix", "SFFloat", p.softness_cfm if p.softness_cfm is not None
-                 else c.collider.get("softnessConstantForceMix"))))]
+            Column("appliedParameters", None, F.format_xml(F.FIELD_TYPES["MFString"], sorted(p.applied)), True),
+            *(Column(name, c.collider.spec.fields[source].type, c.collider.get(source), True)
+              for name, source in CONTACT_DEFAULTS.items())]
+        # 37.4.7: "If there is no friction, the direction should be set to 0, 0, 0." (None: there is)
+        self.no_direction = (Column("frictionDirection", F.FIELD_TYPES["SFVec3f"], np.zeros(3), True)
+                             if p.frictionless else None)
 
     def __bool__(self) -> bool:
         return bool(self.names)
@@ -347,13 +346,14 @@ class _Sensors:
         k = len(pts.depth)
         f = F.FIELD_TYPES
         g1, g2 = pts.geometry1, pts.geometry2
+        direction = self.no_direction
+        if direction is None:
+            direction = Column("frictionDirection", f["SFVec3f"], friction_directions(pts.normal)[0] if k else pts.normal)
         contacts = [Column("position", f["SFVec3f"], pts.position), Column("contactNormal", f["SFVec3f"], pts.normal),
                     Column("depth", f["SFFloat"], pts.depth),
                     Column("body1", None, self.body_names[g1]), Column("body2", None, self.body_names[g2]),
                     Column("geometry1", None, self.geometry_names[g1]),
-                    Column("geometry2", None, self.geometry_names[g2]),
-                    Column("frictionDirection", f["SFVec3f"], friction_directions(pts.normal)[0] if k else pts.normal),
-                    *self.constant]
+                    Column("geometry2", None, self.geometry_names[g2]), direction, *self.constant]
         # the collidables in contact, each once, in the order the contacts first name them
         both = np.column_stack([g1, g2]).ravel()
         unique, first = np.unique(both, return_index=True)
@@ -374,7 +374,9 @@ class _Recorder:
         self.rows = np.flatnonzero(world.bodies.enabled)
         self.names = [world.bodies.names[i] for i in self.rows]
         self.all = len(self.rows) == len(world.bodies)
-        self.sensors = _Sensors(world) if world.collisions is not None and world.collisions.sensors else None
+        self.sensors = _Sensors(world, world.collisions) if world.collisions is not None and world.collisions.sensors \
+            else None
+        self.watched = [_Sensors(world, c) for c in world.watched]  # each a set only its sensors watch
 
     def record(self, trace: Trace, t: float) -> None:
         try:
@@ -402,6 +404,8 @@ class _Recorder:
             trace.add(t, joint, field, _OUTPUT_TYPES[field], value)
         if self.sensors:
             self.sensors.record(trace, t, self.sim.contacts())
+        for k, sensors in enumerate(self.watched):
+            sensors.record(trace, t, self.sim.watched_contacts(k))
 
     def _blew_up(self, s: State, t: float) -> None:
         """BlewUp naming the first body whose state is not finite, else the first beyond STATE_BOUND."""

@@ -4,6 +4,7 @@ Angles and separations are relative to the initial configuration (clause 37.2.5.
 Signs follow ODE, the engine the component's parameters come from: an angle or a
 separation measures body1 relative to body2 (a hinge's angleRate is axis . (w1 - w2),
 a slider's separationRate is axis . (v1 - v2)); the static environment is at rest.
+A MotorJoint's axes are anchored as 37.4.9 says (MotorAxes), for its torques and outputs alike.
 """
 
 from __future__ import annotations
@@ -17,6 +18,29 @@ from . import rotation as R
 from .world import STATIC, Bodies, Joint, State
 
 
+class MotorAxes:
+    """A MotorJoint's axes where 37.4.9 anchors them: "The motorAxis1 field is anchored to the
+    global frame. The motorAxis2 field is anchored to body1's frame of reference, and the
+    motorAxis3 field is anchored to body2's frame of reference." Each is given in world
+    coordinates at the start (as ODE's dJointSetAMotorAxis takes an axis and its anchor) and then
+    turns with its carrier; where that is the static environment (NULL, a fixed body), it stays
+    put. A zero axis stays 0 0 0: the clause's disabled axis, along which nothing acts."""
+
+    def __init__(self, joint: Joint, bodies: Bodies):
+        self.carriers = np.array([STATIC, joint.body1, joint.body2])
+        self.moving = self.carriers != STATIC
+        q0 = np.tile(R.IDENTITY, (3, 1))
+        q0[self.moving] = bodies.orientation[self.carriers[self.moving]]
+        self.local = R.rotate(R.conjugate(q0), joint.axes)  # each axis in its carrier's frame
+        self.directed = np.any(joint.axes != 0.0, axis=1)  # the axes not disabled
+
+    def current(self, orientation: np.ndarray) -> np.ndarray:
+        """(3, 3) the axes in world coordinates for the bodies' orientations (n, 4)."""
+        q = np.tile(R.IDENTITY, (3, 1))
+        q[self.moving] = orientation[self.carriers[self.moving]]
+        return R.rotate(q, self.local)
+
+
 @dataclass
 class _Frames:
     """A joint's anchor and axes fixed in each body at the start (local coordinates)."""
@@ -26,6 +50,7 @@ class _Frames:
     axes2: np.ndarray  # in body2's frame
     q_rel0_conjugate: np.ndarray  # the conjugate of body1's orientation in body2's frame at the start
     offset0: np.ndarray  # body1's origin minus body2's, in body1's frame, at the start
+    motor: MotorAxes | None = None  # a MotorJoint's axes as anchored
 
 
 def _pose(state: State, row: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -48,7 +73,8 @@ class JointOutputs:
             self.frames.append(_Frames(
                 anchor1=R.rotate(c1, j.anchor - p1), anchor2=R.rotate(c2, j.anchor - p2),
                 axes1=R.rotate(c1, j.axes), axes2=R.rotate(c2, j.axes),
-                q_rel0_conjugate=R.conjugate(R.multiply(c2, q1)), offset0=R.rotate(c1, p1 - p2)))
+                q_rel0_conjugate=R.conjugate(R.multiply(c2, q1)), offset0=R.rotate(c1, p1 - p2),
+                motor=MotorAxes(j, bodies) if j.type == "MotorJoint" else None))
 
     def values(self, state: State) -> list[tuple[str, str, Any]]:
         """(joint name, field, value) for every selected output."""
@@ -59,9 +85,10 @@ class JointOutputs:
         return out
 
 
-_ON_AXES1 = frozenset({"body1Axis", "angleRate", "hinge1AngleRate", "separation", "separationRate",
-                       "motor1AngleRate", "motor2AngleRate", "motor3AngleRate"})
-_ANGLES = frozenset({"angle", "hinge1Angle", "hinge2Angle", "motor1Angle", "motor2Angle", "motor3Angle"})
+_ON_AXES1 = frozenset({"body1Axis", "angleRate", "hinge1AngleRate", "separation", "separationRate"})
+_MOTOR_ANGLES = ("motor1Angle", "motor2Angle", "motor3Angle")
+_MOTOR_RATES = ("motor1AngleRate", "motor2AngleRate", "motor3AngleRate")
+_ANGLES = frozenset({"angle", "hinge1Angle", "hinge2Angle", *_MOTOR_ANGLES})
 
 
 def _compute(j: Joint, f: _Frames, state: State) -> dict[str, Any]:
@@ -104,14 +131,23 @@ def _compute(j: Joint, f: _Frames, state: State) -> dict[str, Any]:
             out["separation"] = float(axes1[0] @ (p1 - p2 - R.rotate(q1, f.offset0)))
         if "separationRate" in want:
             out["separationRate"] = float(axes1[0] @ (v1 - v2))
-    elif t == "MotorJoint" and not j.params["autoCalc"]:  # ODE's user mode: the angles the user gives
-        for k in range(3):
-            out[f"motor{k + 1}Angle"] = j.params[f"axis{k + 1}Angle"]
-            out[f"motor{k + 1}AngleRate"] = 0.0
     elif t == "MotorJoint":
-        for k in range(3):
-            if f"motor{k + 1}Angle" in want:
-                out[f"motor{k + 1}Angle"] = float(R.twist_angle(delta, f.axes2[k]))
-            if f"motor{k + 1}AngleRate" in want:
-                out[f"motor{k + 1}AngleRate"] = float(axes1[k] @ dw)
+        out.update(_motor(j, f.motor, state, q2, delta, dw))
+    return out
+
+
+def _motor(j: Joint, m: MotorAxes, state: State, q2: np.ndarray, delta: np.ndarray | None,
+           dw: np.ndarray) -> dict[str, float]:
+    """A MotorJoint's outputs about its axes as anchored now: motorNAngleRate is the rate the motor
+    is turning, axis . (w1 - w2) (ODE's dJointGetAMotorAngleRate), in either mode; motorNAngle is
+    the user's axisNAngle in user-calculated mode (autoCalc FALSE, ODE's user mode), else the twist
+    of body1's turn since the start relative to body2 about the axis. A disabled axis (0 0 0)
+    reports 0 for both, in either mode: the motor does not act along it, and it has no direction
+    to turn about."""
+    axes, on = m.current(state.orientation), m.directed
+    out = dict(zip(_MOTOR_RATES, np.where(on, axes @ dw, 0.0).tolist()))
+    if delta is not None:  # an angle is wanted
+        angles = (R.twist_angle(delta, R.rotate(R.conjugate(q2), axes)) if j.params["autoCalc"]
+                  else np.array([j.params[f"axis{k}Angle"] for k in (1, 2, 3)]))
+        out.update(zip(_MOTOR_ANGLES, np.where(on, angles, 0.0).tolist()))
     return out

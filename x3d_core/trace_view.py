@@ -25,9 +25,10 @@ class Row:
 def numbers(value: str) -> list[float] | None:
     """A row's value as a view holds it: its numbers where every token reads as one, else
     None (the value is kept as text). Both ways of making a view (ViewBuilder.add_row from
-    the CSV, Trace.view from the arrays) read a row by this one rule."""
+    the CSV, Trace.view from the arrays) read a row by this one rule. A value of no token is
+    text (a Contact's empty appliedParameters), not a row of no numbers: no output is that."""
     try:
-        return [float(x) for x in value.split()]
+        return [float(x) for x in value.split()] or None
     except ValueError:
         return None
 

@@ -13,7 +13,7 @@ from .world import body_inertia
 # A pair of axes counts as perpendicular when |cos| is below this: well under the
 # float32 rounding of an axis written with 6-7 digits, far above any intended angle.
 PERPENDICULAR_COS = 1e-5
-# Joint axes whose X3D 3.x default was 0 0 0 (4.0 gives them a direction)
+# Joint axes, each a direction: X3D 3.x's default, 0 0 0, gives none (4.0's do)
 AXIS_FIELDS = {"SingleAxisHingeJoint": ("axis",), "DoubleAxisHingeJoint": ("axis1", "axis2"),
                "UniversalJoint": ("axis1", "axis2"), "MotorJoint": ("motor1Axis", "motor2Axis", "motor3Axis")}
 
@@ -28,22 +28,14 @@ def by_type(scene: Scene) -> dict[str, list[Node]]:
 
 
 def diagnostic(scene: Scene, node: Node, field: str, message: str, severity: str = "warning") -> Diagnostic:
-    """A diagnostic about a node's field, at the field's place in the file (else the node's)."""
-    subject = f"{node.label}.{field}" if field else node.label
+    """A diagnostic about a node's field (by its X3D 4.0 name), at the field's place in the file
+    (else the node's), named as the file spells it."""
+    subject = f"{node.label}.{node.spelling(field)}" if field else node.label
     return Diagnostic(severity, scene.locate(node.field_locs.get(field, node.loc), subject), subject, message)
 
 
 def _joints(groups: dict[str, list[Node]]) -> list[Node]:
     return [j for t in AXIS_FIELDS.keys() | {"BallJoint", "SliderJoint"} for j in groups.get(t, [])]
-
-
-def apply_version_defaults(scene: Scene, groups: dict[str, list[Node]]) -> None:
-    """An X3D 3.x file that leaves a joint axis out means 0 0 0, its version's default."""
-    if not scene.version[:1].isdigit() or int(scene.version[:1]) >= 4:
-        return
-    for joint in _joints(groups):
-        for f in AXIS_FIELDS.get(joint.type_name, ()):
-            joint.values.setdefault(f, np.zeros(3))
 
 
 def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
@@ -79,7 +71,7 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
             warn(joint, "body1", "joint has neither body1 nor body2 and joins nothing")
         elif b1 is b2:
             warn(joint, "body2", "joint joins a body to itself")
-        _force_output(joint, err)
+        _force_output(joint, err, warn)
         if joint.type_name == "UniversalJoint":
             a1, a2 = joint.get("axis1"), joint.get("axis2")
             n1, n2 = np.linalg.norm(a1), np.linalg.norm(a2)
@@ -87,8 +79,8 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
                 angle = np.degrees(np.arccos(np.clip(np.dot(a1, a2) / (n1 * n2), -1, 1)))
                 warn(joint, "axis2", f"axis1 and axis2 are {angle:.6g} degrees apart, not perpendicular; "
                                      "the spec leaves the joint undefined")
-        for f in AXIS_FIELDS.get(joint.type_name, ()):
-            if not np.any(joint.get(f)):
+        for f in AXIS_FIELDS.get(joint.type_name, ()) if joint.type_name != "MotorJoint" else ():
+            if not np.any(joint.get(f)):  # a MotorJoint's zero axis is defined: "disabled" (37.4.9)
                 warn(joint, f, "axis is 0 0 0 and defines no direction")
     for body in groups.get("RigidBody", []):
         if "inertia" in body.values and body.get("massDensityModel") is None:
@@ -131,16 +123,28 @@ def _physical_inertia(body: Node, err) -> None:
                              "must be positive, each no more than the sum of the other two")
 
 
-def _force_output(joint: Node, err) -> None:
+def _force_output(joint: Node, err, warn) -> None:
+    """37.3.3: the values name outputs "exactly", so an unknown name is an error; but "Other
+    values provided in addition to "NONE" shall be ignored", so beside NONE no value is an
+    error, only warned of, and ALL beside NONE is where the clause says both (world.forced_outputs
+    takes ALL)."""
     outputs = [f for f, fd in joint.spec.fields.items() if fd.access == "outputOnly"]
     names = joint.get("forceOutput")
+    if "NONE" in names:
+        others = [v for v in names if v != "NONE"]
+        if "ALL" in others:
+            warn(joint, "forceOutput", "holds both ALL and NONE, and 37.3.3 gives both: ALL anywhere updates all "
+                                       "fields, NONE updates none; a run updates every output (ALL), and an "
+                                       "implementation that updates none follows the clause too")
+        elif others:
+            warn(joint, "forceOutput", f"{', '.join(map(repr, others))} beside NONE: ignored, as 37.3.3 says of "
+                                       "values in addition to NONE; the joint reports no outputs")
+        return
     for v in names:
-        if v not in ("ALL", "NONE") and v not in outputs:
+        if v != "ALL" and v not in outputs:
             # forceOutput='angle angleRate' in XML is one string: each value needs its own quotes
             words = v.split()
             quote = ("; quote each name: '" + " ".join(f'"{w}"' for w in words) + "'"
                      if len(words) > 1 and all(w in outputs for w in words) else "")
             err(joint, "forceOutput", f"{v!r} is not an output of {joint.type_name}; allowed: "
                                       f"ALL, NONE{', ' if outputs else ''}{', '.join(outputs)}{quote}")
-    if len(names) > 1 and ("ALL" in names or "NONE" in names):
-        err(joint, "forceOutput", "ALL and NONE stand alone, not in a list of names")

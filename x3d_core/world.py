@@ -14,7 +14,7 @@ import numpy as np
 
 from . import fields as F
 from . import rotation as R
-from .collision import STATIC, plan
+from .collision import STATIC, plan, watch
 from .model import Node, Scene
 
 JOINT_TYPES = ("BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint", "SliderJoint", "UniversalJoint",
@@ -104,6 +104,8 @@ class World:
     order: list[int] = field(default_factory=list)  # bodies, every parent before its children
     loop_joints: list[int] = field(default_factory=list)
     collisions: Any = None  # x3d_core.collision.Collisions, or None: nothing collides
+    # collision sets only CollisionSensors watch (collision.watch): detected each frame's end, never acted on
+    watched: list[Any] = field(default_factory=list)
 
     FREE = -2
 
@@ -153,6 +155,7 @@ def worlds(scene: Scene) -> list[World]:
         w.collisions = plan(w, names, scene.routes)
         if w.collisions is not None:
             w.collisions.sensors = [(names[id(s)], s) for s in sensors if s.get("collider") is w.collisions.collider]
+    watch(out, sensors, names, scene.routes)
     return out
 
 
@@ -217,21 +220,21 @@ def undirected(w: World) -> list[str]:
     """The axes the world's joints need that are 0 0 0, each named as JointType NAME.field: a
     zero axis defines no direction and the spec gives none in its place (it is X3D 3.3's
     default for most joint axes), so every backend refuses it rather than each failing its
-    own way. A joint needs the axes of its type (a MotorJoint: its enabledAxes first ones)
-    where it joins two ends an engine builds it between (not a body to itself, or static to static)."""
+    own way. A joint needs the axes of its type where it joins two ends an engine builds it
+    between (not a body to itself, or static to static). A MotorJoint needs none: its zero axis
+    is one the clause defines, "disabled" (37.4.9), and pushes nothing (evaluator._Motors)."""
     out = []
     for j in w.joints:
-        if j.body1 == j.body2:
+        if j.body1 == j.body2 or j.type == "MotorJoint":
             continue
-        fields = _AXES.get(j.type, ())[:int(j.params["enabledAxes"]) if j.type == "MotorJoint" else None]
-        out += [f"{j.type} {j.name}.{f}" for k, f in enumerate(fields) if not np.any(j.axes[k])]
+        out += [f"{j.type} {j.name}.{f}" for k, f in enumerate(_AXES.get(j.type, ())) if not np.any(j.axes[k])]
     return out
 
 
 def slider_stops(node: Node) -> tuple[float, float] | None:
     """A SliderJoint's stops (minSeparation, maxSeparation), or None: "If minSeparation is greater
-    than maxSeparation, the stops become ineffective as if the object has no stops at all" (V3.3,
-    37.4.13). Decided here once, so that no backend swaps them into stops of its own."""
+    than maxSeparation, the stops become ineffective as if the object has no stops at all" (37.4.13
+    SliderJoint). Decided here once, so that no backend swaps them into stops of its own."""
     lo, hi = float(node.get("minSeparation")), float(node.get("maxSeparation"))
     return None if lo > hi else (lo, hi)
 
@@ -242,8 +245,8 @@ PARALLEL = 1e-9
 
 def parallel(w: World) -> list[str]:
     """The DoubleAxisHingeJoints of the world whose axis1 and axis2 are parallel, each named with
-    both axes as the scene gives them: the joint "has two independent axes" (V3.3, 37.4.8), and
-    one line is not two. ODE refused it; MuJoCo's and DART's models were singular (MuJoCo
+    both axes as the scene gives them: the joint "has two independent axes" (37.4.8
+    DoubleAxisHingeJoint), and one line is not two. ODE refused it; MuJoCo's and DART's models were singular (MuJoCo
     non-finite in the first frame of a driven hinge2, DART warning at every step), Bullet ran it:
     every backend refuses it now. Only joints that join two ends and whose axes are not zero
     (undirected names those). A UniversalJoint's axes are the spec's to leave undefined where
@@ -263,6 +266,15 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / n if n > 0 else np.zeros(3)
 
 
+def forced_outputs(outputs: tuple[str, ...], wanted: list[str]) -> tuple[str, ...]:
+    """The outputs a forceOutput value selects (37.3.3): all where "ALL" is anywhere in it,
+    beside "NONE" too (the clause says both there: docs/spec-loose-ends.md, section 22);
+    none where "NONE" is (the other values ignored) or it is empty; else those it names."""
+    if "ALL" in wanted:
+        return outputs
+    return () if "NONE" in wanted else tuple(f for f in outputs if f in wanted)
+
+
 def _joint(node: Node, rows: dict[int, int], fixed: np.ndarray, names: dict[int, str]) -> Joint:
     def row(f: str) -> int:
         b = node.get(f)
@@ -277,8 +289,7 @@ def _joint(node: Node, rows: dict[int, int], fixed: np.ndarray, names: dict[int,
     params = {f: float(node.get(f)) for f, fd in spec.fields.items()
               if fd.access != "outputOnly" and fd.type.name in ("SFFloat", "SFInt32", "SFBool")}
     outputs = tuple(f for f, fd in spec.fields.items() if fd.access == "outputOnly")
-    wanted = node.get("forceOutput")
-    selected = outputs if "ALL" in wanted else tuple(f for f in outputs if f in wanted)
+    selected = forced_outputs(outputs, node.get("forceOutput"))
     anchor = np.asarray(node.get("anchorPoint"), dtype=np.float64) if "anchorPoint" in spec.fields else np.zeros(3)
     stops = slider_stops(node) if node.type_name == "SliderJoint" else None
     return Joint(names[id(node)], node.type_name, node, row("body1"), row("body2"), anchor, axes, params, selected,

@@ -61,6 +61,9 @@ class Case:
     # Mutations, or (old, new) pairs for scene edits: at least one per case
     mutations: tuple[Mutation, ...] = field(default_factory=tuple)
     folder: str = ""  # the case's folder (discover() sets it; "": conformance/cases/NAME)
+    # the subjects ("TYPE DEF.field") of the loader's warnings the scene provokes on purpose: a case
+    # about what the clause makes of a value authors are warned of (forceOutput's names beside NONE)
+    warned: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mutations", tuple(m if isinstance(m, Mutation) else Mutation(*m)

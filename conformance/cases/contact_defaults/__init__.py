@@ -9,7 +9,8 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import CFM_DEFAULT, ERP_DEFAULT, G, honoured, rests, sensor_contacts, steps
+from conformance.cases.closed_forms import (CFM_DEFAULT, ERP_DEFAULT, G, applied_names, honoured, rests,
+                                            sensor_contacts, steps)
 from conformance.results import Measure, Settings, convention, spec
 
 # contact_defaults.x3d: the collection's parameters, as every reported Contact must carry them
@@ -29,11 +30,6 @@ SOFT = convention("ODE's contact softness with ERROR_REDUCTION and CONSTANT_FORC
                   "somewhat soft'")
 SENSED = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were generated as a result "
               "of the scene graph changes last frame. This field generates instances of the Contact node.")
-
-
-def _applied(text: str | None) -> set[str]:
-    """An MFString as the trace writes it ('"A" "B"'), as a set of its strings."""
-    return set() if text is None else {w.strip('"') for w in text.split('" "')}
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
@@ -59,7 +55,7 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
                        c["softnessConstantForceMix"], c["slipCoefficients"], c["surfaceSpeed"])
             wrong += any(value is None or not np.allclose(np.ravel(value), np.ravel(want), rtol=1e-6, atol=0.0)
                          for value, want in zip(carried, CD_VALUES.values()))
-            wrong += _applied(c["appliedParameters"]) != CD_APPLIED
+            wrong += applied_names(c["appliedParameters"]) != CD_APPLIED
             d = c["frictionDirection"]
             skewed += (d is None or abs(float(np.linalg.norm(d)) - 1.0) > 1e-9
                        or abs(float(d @ c["contactNormal"])) > 1e-9)

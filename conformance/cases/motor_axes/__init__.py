@@ -52,7 +52,7 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     AutoY and AutoZ (autoCalc TRUE, no torque) join the fixed Base to a spinner turning at a
     constant rate about axis 2 (y) or axis 3 (z): |motor2AngleRate| and |motor3AngleRate| are
     |axis . (w1 - w2)| (the spec's "rate ... that the motor is turning"), to rounding, against not
-    being reported (0, as in user mode). With the default axes 1 (x) and 3 (z) ODE's Euler frame
+    being reported (0). With the default axes 1 (x) and 3 (z) ODE's Euler frame
     has the same axis 2 (y), and a spinner about y or z keeps the other rate 0 in either frame."""
     tr, s = traces[0], settings[0]
     rates = {"AutoY": (tr.series("AutoY", "motor2AngleRate")[1], tr.series("AutoY", "motor3AngleRate")[1]),
