@@ -298,8 +298,8 @@ def hinge_limit(tr: TraceView, s: Settings, joint: str, lo: float, hi: float, od
     limits is the spec's too ("the maximum angles through which the hinge is allowed to
     travel"), with the same tolerance: a stop that yields less (ODE's quick-step at the scene's
     10 iterations: 0.23 rad past, then thrown back) is graded against the bound, not accused;
-    one that lets the arm go past by more than half what ignoring the limits would fails. Where the arm is at the end is graded only
-    (the clause fixes the limits of travel, not a rest).
+    one that lets the arm go past by more than half what ignoring the limits would fails. Where
+    the arm is at the end is graded only (the clause fixes the limits of travel, not a rest).
 
     Convention (ODE's sign): the fall reaches ode_limit, not the other (hi - lo apart)."""
     _, ang = tr.series(joint, "angle")
