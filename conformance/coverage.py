@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 from lxml import etree
 
 from x3d_core import atomic, schema, uom
+from x3d_core.world import forced_outputs
 
 from conformance.cases import CASES, ROOT, closed_forms
 from conformance.cases.case import Case, Mutation
@@ -41,8 +42,6 @@ Field = tuple[str, str]  # (node type, field name)
 PENDING: dict[str, str] = {
     "RigidBody.fixed": "a fixed body's state: it stays where it is put, whatever acts on it",
     "CollisionCollection.slipFactors": "SLIP-1/SLIP-2 in appliedParameters apply slipFactors",
-    "CollidableShape.geometry.Cylinder": "a Cylinder's collisions",
-    "CollidableShape.geometry.Cone": "a Cone's collisions",
 }
 
 # Why no verdict can turn on a field no case covers or judges: nothing observable depends on it,
@@ -165,8 +164,9 @@ def touched(case: Case, mutation: Mutation) -> set[Field]:
     return set(_diff(a, b, defs))
 
 
-def _edit(mutation: Mutation) -> str:
-    """A mutation as the table shows it: the text it replaces, and by what."""
+def edit(mutation: Mutation) -> str:
+    """A scene edit as the tables show it (this one, and docs/clause-coverage.md's): the text it
+    replaces, and by what."""
     old, new = (" ".join(s.split()) for s in (mutation.old, mutation.new))
     return f"`{old}` → " + (f"`{new}`" if new else "removed") + ("" if mutation.spec else " (conventions)")
 
@@ -210,8 +210,8 @@ def _reported(case: Case) -> set[Field]:
             continue
         if t.is_a("X3DRigidJointNode"):
             chosen = re.findall(r'"([^"]*)"', el.get("forceOutput", ""))
-            out |= {(el.tag, f) for f, d in t.fields.items() if d.access == "outputOnly" and
-                    ("ALL" in chosen or f in chosen)}
+            outputs = tuple(f for f, d in t.fields.items() if d.access == "outputOnly")
+            out |= {(el.tag, f) for f in forced_outputs(outputs, chosen)}
         elif el.tag == "CollisionSensor":
             out |= {(el.tag, f) for f, d in t.fields.items() if d.access == "outputOnly"}
             out |= {("Contact", f) for f in schema.definition("Contact").fields}
@@ -251,7 +251,7 @@ def rows() -> list[Row]:
         for m in case.mutations:
             for f in sorted(touched(case, m)):
                 if f in by_key:
-                    by_key[f].covered.append(f"{case.name}: {_edit(m)}")
+                    by_key[f].covered.append(f"{case.name}: {edit(m)}")
         for f in sorted(judged(case)):
             if f in by_key:
                 by_key[f].judged.append(case.name)

@@ -14,11 +14,11 @@ import pytest
 
 from backends import base
 from conformance import cases as C
-from conformance.results import BLEW_UP, CONVENTIONS, FAIL, PASS, UNSUPPORTED
+from conformance.results import BLEW_UP, CONVENTION, CONVENTIONS, FAIL, PASS, SPEC, UNSUPPORTED, Result
 from conformance.runner import verdicts
 
-from conformance.mutants import site
-from conformance.mutants.score import worse
+from conformance.mutants import report, site
+from conformance.mutants.score import REFUSED, Fate, Score, worse
 from conformance.mutants.table import BASES, BY_NAME, CONTROLS, MUTANTS
 
 try:
@@ -60,6 +60,23 @@ def test_a_verdict_worse_than_the_base_kills():
     assert not worse(BLEW_UP, FAIL) and not worse(FAIL, UNSUPPORTED)  # where the base fails or never ran: nothing
 
 
+def test_a_kill_says_whether_a_spec_measure_turned_or_a_convention_alone():
+    """A kill to fail turns a sentence of the clause; one to conventions alone only a reading where it is
+    silent; one that only stops the run (a refusal, a crash) neither. The report counts each."""
+    mutant = MUTANTS[0]
+
+    def fate(*verdicts: str) -> Fate:
+        return Fate(mutant, [(Result(f"case{k}", mutant.backend, v), PASS) for k, v in enumerate(verdicts)])
+    spec_kill, convention_kill = fate(CONVENTIONS, FAIL, PASS), fate(CONVENTIONS, PASS)
+    refused, survivor = fate(UNSUPPORTED, CONVENTIONS), fate(PASS)
+    assert [f.turned for f in (spec_kill, convention_kill, refused, survivor)] == [SPEC, CONVENTION, REFUSED, None]
+    score = Score([spec_kill, convention_kill, refused, survivor], [], {}, 1.0)
+    head = report.markdown(score, 3).splitlines()[0]
+    assert ("3 of 4 mutants killed (75%)**, 1 by a spec measure, 1 by a convention alone, 1 by a refusal or crash "
+            "alone") in head
+    assert report.to_json(score, [])["by_convention"] == 1
+
+
 def test_every_mutant_is_killed_by_its_cases_or_names_its_gap():
     assert len(MUTANTS) >= 30 and len(BY_NAME) == len(MUTANTS) + len(CONTROLS)
     for m in MUTANTS:
@@ -98,3 +115,9 @@ def test_the_mutant_is_killed(verdict, mutant):
     spared = {c: (verdict[(c, mutant.base)], verdict[(c, mutant.backend)]) for c in mutant.kills
               if not worse(verdict[(c, mutant.backend)], verdict[(c, mutant.base)])}
     assert not spared, f"{mutant.name} ({mutant.bug}) survives (base, mutant verdicts): {spared}"
+    # a kill by conventions alone says why the clause cannot judge the bug; a mutant that says so is never a fail
+    got = {verdict[(c, mutant.backend)] for c in mutant.kills}
+    if FAIL in got:
+        assert not mutant.silent, f"{mutant.name}: killed by a spec measure, yet its row says the clause is silent"
+    elif got == {CONVENTIONS}:
+        assert mutant.silent, f"{mutant.name}: killed by conventions alone: its row must say why the clause is silent"

@@ -294,9 +294,10 @@ def hinge_limit(tr: TraceView, s: Settings, joint: str, lo: float, hi: float, od
     Spec: the limits bound the hinge's travel, so the farthest the arm goes is the limit its
     fall reaches. The tolerance (closed_forms.honoured) is half the nearest misreading's error:
     the limits read in degrees (the arm stops within |limit| degrees of the start) or ignored
-    (the arm swings to the vertical at least: pi/2 - |limit| past it). The angle beyond the
-    limits is the spec's too ("the maximum angles through which the hinge is allowed to
-    travel"), with the same tolerance: a stop that yields less (ODE's quick-step at the scene's
+    (the arm swings to the vertical at least: pi/2 - |limit| past it), taken at whichever limit
+    gives the larger, so that the other sign's reading (the fall reaching the other limit) is
+    held as this one is. The angle beyond the limits is the spec's too ("the maximum angles
+    through which the hinge is allowed to travel"), with the same tolerance: a stop that yields less (ODE's quick-step at the scene's
     10 iterations: 0.23 rad past, then thrown back) is graded against the bound, not accused;
     one that lets the arm go past by more than half what ignoring the limits would fails. Where
     the arm is at the end is graded only (the clause fixes the limits of travel, not a rest).
@@ -310,7 +311,9 @@ def hinge_limit(tr: TraceView, s: Settings, joint: str, lo: float, hi: float, od
     beyond = max(float(np.max(ang)) - hi, lo - float(np.min(ang)), 0.0)
     extreme = float(ang[np.argmax(np.abs(ang))])
     limit = lo if extreme <= 0 else hi
-    travel = honoured(bound, abs(limit) - math.radians(abs(limit)), math.pi / 2 - abs(limit))
+    # the same tolerance whichever limit the fall reaches: which one it is, is a convention (the sign), and
+    # the nearer limit's would accuse a reading of the other sign for a stop that yields as ODE's does
+    travel = max(honoured(bound, abs(x) - math.radians(abs(x)), math.pi / 2 - abs(x)) for x in (lo, hi))
     end = float(ang[-1])
     named = "minAngle" if ode_limit == lo else "maxAngle"
     ode_sign = convention(

@@ -2,7 +2,10 @@
 
 A mutant is killed by a case where its verdict is worse than its base's: pass < conventions <
 fail, and a run that gives no judged verdict (crashed, timed out, blew up, error, or refused
-as unsupported) is worse than any judged one. Only a case its base passes or conforms to in
+as unsupported) is worse than any judged one. How it is killed matters as much (Fate.turned):
+a kill to "fail" turns a spec measure, a sentence of the clause the bug breaks; a kill to
+"conventions" alone turns only a reading where the clause is silent, which an implementer
+would be told is a difference in conventions, not a bug. Only a case its base passes or conforms to in
 all but conventions can kill: where the base fails already, or never ran, a bug changes
 nothing the verdict could show. So each mutant runs on those cases of its base alone.
 """
@@ -14,7 +17,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from conformance.cases.case import Case
-from conformance.results import CONVENTIONS, FAIL, PASS, Result
+from conformance.results import CONVENTION, CONVENTIONS, FAIL, PASS, SPEC, Result
 from conformance.runner import verdicts
 from conformance.runner.children import DEFAULT_TIMEOUT
 
@@ -23,6 +26,7 @@ from conformance.mutants.table import Mutant
 RANK = {PASS: 0, CONVENTIONS: 1, FAIL: 2}
 UNJUDGED = 3  # crashed, timed out, blew up, error, unsupported
 KILLABLE = (PASS, CONVENTIONS)
+REFUSED = "refused"  # killed only by runs with no judged verdict (a crash, a refusal, a blow-up)
 
 
 def worse(mutated: str, base: str) -> bool:
@@ -44,6 +48,17 @@ class Fate:
     def killed(self) -> bool:
         return bool(self.kills)
 
+    @property
+    def turned(self) -> str | None:
+        """What the kills turned: SPEC where one of them is a fail (a spec measure), else REFUSED where
+        one is a run with no judged verdict, else CONVENTION (conventions only); None if not killed."""
+        verdicts = {r.verdict for r, _ in self.kills}
+        if not verdicts:
+            return None
+        if FAIL in verdicts:
+            return SPEC
+        return CONVENTION if verdicts == {CONVENTIONS} else REFUSED
+
 
 @dataclass
 class Score:
@@ -55,6 +70,10 @@ class Score:
     @property
     def killed(self) -> int:
         return sum(f.killed for f in self.fates)
+
+    def turning(self, how: str) -> list[Fate]:
+        """The killed mutants whose kills turned `how` (SPEC, CONVENTION or REFUSED)."""
+        return [f for f in self.fates if f.turned == how]
 
     @property
     def percent(self) -> float:

@@ -15,12 +15,14 @@ import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
 from x3d_core import rotation as R
-from x3d_core.collision import Collisions, Geometry
+from x3d_core.collision import Collisions, Geometry, _geometry
 from x3d_core.engine import Simulation
+from x3d_core.model import Node
 from x3d_core.world import STATIC, Joint, World
 
 from conformance.mutants.edits import (BodyFrameLoads, BodyFrameSpin, FlippedNormals, LateState, Relay, WorldEdit,
@@ -42,6 +44,9 @@ class Mutant:
     kills: tuple[str, ...] = ()  # the cases that kill it (a short list: the tests run them)
     gap: str = ""  # where no case kills it yet: the case that would
     base: str = BASE  # the backend it wraps
+    # where its kills turn conventions alone: why no sentence of the clause judges the bug (an implementer
+    # with it is told it differs in conventions, which is then all the clause allows anyone to say)
+    silent: str = ""
 
     @property
     def backend(self) -> str:
@@ -72,6 +77,24 @@ def _default_stops(j: Joint) -> None:
 
 def _stops_swapped(j: Joint) -> None:
     j.stops = tuple(sorted((j.params["minSeparation"], j.params["maxSeparation"])))
+
+
+def _stops_other_sense(j: Joint) -> None:
+    j.params["minAngle"], j.params["maxAngle"] = -j.params["maxAngle"], -j.params["minAngle"]
+
+
+def _outputs(j: Joint) -> tuple[str, ...]:
+    return tuple(f for f, fd in j.node.spec.fields.items() if fd.access == "outputOnly")
+
+
+def _names_beside_none(j: Joint) -> None:
+    wanted = j.node.get("forceOutput")
+    if "NONE" in wanted and "ALL" not in wanted:
+        j.outputs = tuple(f for f in _outputs(j) if f in wanted)
+
+
+def _every_output(j: Joint) -> None:
+    j.outputs = _outputs(j)
 
 
 def _at_origin(j: Joint) -> None:
@@ -109,6 +132,36 @@ def _along_z(g: Geometry) -> Geometry:
     return replace(g, orientation=R.multiply(g.orientation, R.from_axis_angle(np.array([1.0, 0.0, 0.0, math.pi / 2]))))
 
 
+def _as_box(g: Geometry) -> Geometry:
+    if g.kind not in ("cylinder", "cone"):
+        return g
+    r, h = g.size
+    return replace(g, kind="box", size=np.array([2 * r, h, 2 * r]))
+
+
+class _Unbounded:
+    """A Shape as collision.py reads it, but with no bboxSize given."""
+
+    def __init__(self, shape: Node):
+        self.shape = shape
+
+    def get(self, name: str) -> Any:
+        return (-1.0, -1.0, -1.0) if name == "bboxSize" else self.shape.get(name)
+
+
+def _bbox_ignored(g: Geometry) -> Geometry:
+    """The geometry itself in place of the box its Shape's explicit bboxSize gives."""
+    shape = g.node.get("shape")
+    if shape is None or np.any(np.asarray(shape.get("bboxSize"), dtype=np.float64) < 0):
+        return g
+    found = _geometry(shape.get("geometry"), _Unbounded(shape))
+    if found is None:
+        return g
+    kind, size, centre, vertices, triangles, grid = found
+    at = g.position + R.rotate(g.orientation, centre - np.asarray(shape.get("bboxCenter"), dtype=np.float64))
+    return replace(g, kind=kind, size=size, position=at, vertices=vertices, triangles=triangles, grid=grid)
+
+
 def _thickness_ignored(world: World) -> None:
     world.contact_surface_thickness = 0.0
     reset("collisions.parameters.surface_thickness", lambda _: 0.0)(world)
@@ -122,7 +175,8 @@ def _routed_contacts_ignored(world: World) -> None:
 MUTANTS: tuple[Mutant, ...] = (
     # -- bodies: mass properties, initial state, gravity, damping, what takes part
     Mutant("center-of-mass-ignored", "RigidBody.centerOfMass ignored: the mass sits at the body's origin",
-           f"{X_ITE} (in effect)", reset("bodies.com", np.zeros_like), kills=("center_of_mass",)),
+           f"{X_ITE} (in effect)", reset("bodies.com", np.zeros_like), kills=("center_of_mass",),
+           silent="37.4.10 gives centerOfMass a signature row and no sentence: what it does is the UOM's and ODE's"),
     Mutant("mass-ignored", "RigidBody.mass ignored: every body weighs the default 1 kg", IGNORED,
            reset("bodies.mass", np.ones_like), kills=("constant_force",)),
     Mutant("mass-in-grams", "RigidBody.mass read in grams: a thousandth of the mass", "wrong units",
@@ -146,6 +200,9 @@ MUTANTS: tuple[Mutant, ...] = (
            IGNORED, reset("bodies.linear_velocity", np.zeros_like), kills=("projectile",)),
     Mutant("angular-velocity-ignored", "RigidBody.angularVelocity's initial value ignored", IGNORED,
            reset("bodies.angular_velocity", np.zeros_like), kills=("torque_free",)),
+    Mutant("torques-two-thirds", "RigidBody.torques applied at two thirds of their size",
+           "a load misscaled on its way to the engine (any error under half the load, which constant_torque passes)",
+           reset("bodies.torques", lambda t: t * (2.0 / 3.0)), kills=("load_magnitude",)),
     Mutant("fixed-as-dynamic", "RigidBody.fixed TRUE ignored: the body is integrated, and falls with what hangs "
            "on it", IGNORED, hold(lambda w: ~w.bodies.enabled), kills=("pendulum_period",)),
     Mutant("enabled-ignored", "RigidBody.enabled FALSE ignored: the body takes part in the physics", IGNORED,
@@ -174,16 +231,24 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("axis-ignored", "SingleAxisHingeJoint/SliderJoint axis ignored: the default 0 1 0", IGNORED,
            joints((HINGE, SLIDER), _default_axis), kills=("pendulum_period",)),
     Mutant("axis-flipped", "every joint axis taken with its sense flipped", "wrong sign",
-           joints((HINGE, SLIDER, DOUBLE, UNIVERSAL), _flip_axes), kills=("hinge_limits", "slider_stops")),
+           joints((HINGE, SLIDER, DOUBLE, UNIVERSAL), _flip_axes), kills=("hinge_limits", "slider_stops", "hinge2_steering")),
+    Mutant("hinge-stops-other-sense", "SingleAxisHingeJoint stops enforced in the other sense from the angle it "
+           "reports: the limits -maxAngle..-minAngle", "limits handed to an engine that measures the hinge angle the "
+           "other way (body2 relative to body1), the angle reported in the scene's sense",
+           joints((HINGE,), _stops_other_sense), kills=("hinge_limit_sense",)),
     Mutant("joint-bodies-swapped", "joint body1 and body2 swapped", "swapped bodies",
            joints((HINGE, SLIDER, DOUBLE, MOTOR, BALL, UNIVERSAL), _swap_bodies),
-           kills=("hinge_limits", "motor_joint_torque")),
+           kills=("hinge_limits", "motor_joint_torque", "hinge2_steering")),
     Mutant("double-axis-colinear", "DoubleAxisHingeJoint axis2 made axis1", f"{X_ITE} forces the axes colinear",
            joints((DOUBLE,), _colinear), kills=("motor_speed",)),
     Mutant("motor-max-torque-ignored", "DoubleAxisHingeJoint maxTorque1/2 ignored: the motors never drive",
            IGNORED, params((DOUBLE,), maxTorque1=lambda _: 0.0, maxTorque2=lambda _: 0.0), kills=("motor_speed",)),
     Mutant("motor-reaction-missing", "MotorJoint torques body1 alone: no reaction on body2", "missing reaction",
            joints((MOTOR,), _no_reaction), kills=("motor_joint_torque",)),
+    Mutant("force-output-beside-none", "forceOutput's names beside NONE reported: NONE heeded only alone", X_ITE,
+           joints((HINGE, SLIDER, DOUBLE, MOTOR, BALL, UNIVERSAL), _names_beside_none), kills=("force_output",)),
+    Mutant("force-output-ignored", "forceOutput ignored: every joint reports every output", IGNORED,
+           joints((HINGE, SLIDER, DOUBLE, MOTOR, BALL, UNIVERSAL), _every_output), kills=("force_output",)),
     # -- contacts
     Mutant("bounce-ignored", "CollisionCollection.bounce ignored: contacts never bounce", IGNORED,
            reset("collisions.parameters.bounce", lambda _: 0.0), kills=("newtons_cradle",)),
@@ -193,16 +258,21 @@ MUTANTS: tuple[Mutant, ...] = (
            FREEWRL, reset("collisions", _friction_from_slip), kills=("incline", "conveyor")),
     Mutant("friction-second-ignored", "FRICTION_COEFFICIENT-2 ignored: the first coefficient both ways",
            IGNORED, reset("collisions.parameters.friction", lambda f: f[[0, 0]]),
-           kills=("anisotropic_friction",)),
+           kills=("anisotropic_friction",),
+           silent="the clause contradicts itself on the primary direction (docs/spec-loose-ends.md, 22): taken as "
+                  "37.2.5.3's 'primary direction of motion', a sliding box always meets the first coefficient"),
     Mutant("surface-speed-ignored", "CollisionCollection.surfaceSpeed ignored: no conveyor", IGNORED,
            reset("collisions.parameters.surface_speed", np.zeros_like), kills=("conveyor",)),
     Mutant("slip-ignored", "CollisionCollection.slipFactors ignored (SLIP-1/2)", IGNORED,
-           reset("collisions.parameters.slip", np.zeros_like), kills=("contact_slip",)),
+           reset("collisions.parameters.slip", np.zeros_like), kills=("contact_slip",),
+           silent="slipFactors and slipCoefficients have signature rows and no sentence, and Table 37.2 no rows"),
     Mutant("contact-softness-ignored", "softnessErrorCorrection/softnessConstantForceMix ignored: rigid contacts",
            f"{X_ITE} ignores ERP and CFM",
            reset("collisions.parameters", lambda p: replace(p, softness_erp=None, softness_cfm=None)),
            gap="a body resting on a contact with CONSTANT_FORCE applied: the soft contact holds it m g h CFM / ERP "
-               "deep (a spring k = ERP / (h CFM)), a rigid one near 0"),
+               "deep (a spring k = ERP / (h CFM)), a rigid one near 0",
+           silent="37.4.4 asks only that the surfaces 'appear to be somewhat soft', which the world's default "
+                  "constantForceMix already makes them: how soft is ODE's model"),
     Mutant("constant-force-mix-ignored", "RigidBodyCollection.constantForceMix ignored: rigid joints",
            f"{X_ITE} ignores ERP and CFM", reset("constant_force_mix", lambda _: 0.0), kills=("erp_cfm_spring",)),
     Mutant("error-correction-ignored", "RigidBodyCollection.errorCorrection ignored: X3D's default 0.8",
@@ -216,22 +286,34 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("collidable-rotation-ignored", "CollidableShape/CollidableOffset rotation ignored", IGNORED,
            geometries(lambda g: replace(g, orientation=R.IDENTITY.copy())), kills=("incline",)),
     Mutant("round-shapes-along-z", "Cylinder and Cone collide with their axis along z, not y",
-           "a port to ODE, whose cylinder's axis is z", geometries(_along_z), kills=("cylinder_cone_rest",)),
+           "a port to ODE, whose cylinder's axis is z", geometries(_along_z), kills=("cylinder_cone_rest",),
+           silent="37.4.3: 'If there is no bounding box, the results are implementation-dependent.'"),
+    Mutant("cylinder-cone-as-boxes", "Cylinder and Cone collide as their bounding boxes",
+           "an engine without cylinders or cones (a reading the clause allows: cylinder_cone_shape's conventions)",
+           geometries(_as_box), kills=("cylinder_cone_shape",),
+           silent="37.4.3: 'If there is no bounding box, the results are implementation-dependent.'"),
+    Mutant("shape-bbox-ignored", "a collidable Shape's explicit bboxSize ignored: its geometry collides instead",
+           IGNORED, geometries(_bbox_ignored), kills=("cylinder_cone_shape",)),
     Mutant("collider-not-filtering", "the collider does not filter: every body's collidables collide",
            X_ITE, every_body_collides, kills=("collision_filtering",)),
     Mutant("routed-contacts-ignored", "contacts ROUTEd into set_contacts ignored", f"{X_ITE} ignores set_contacts",
            _routed_contacts_ignored, kills=("routed_contacts",)),
     Mutant("joined-bodies-collide", "the collidables of two joined bodies collide", "missing exclusion",
-           reset("collisions", lambda c: replace(c, excluded=set())), kills=("joined_overlap",)),
+           reset("collisions", lambda c: replace(c, excluded=set())), kills=("joined_overlap",),
+           silent="the clause says nothing of whether two joined bodies' collidables collide (ODE's rule, Xj3D's)"),
+    Mutant("watched-collections-unrun", "a collection only a CollisionSensor watches is never run: the sensor "
+           "reports nothing", "collision detection run only for the colliders bodies use (x3drbp before issue 35)",
+           reset("watched", lambda _: []), kills=("sensor_only",)),
     # -- what the simulation reports or receives
     Mutant("forces-in-body-frame", "RigidBody.forces applied in the body's frame, not the world's", "wrong frame",
-           relay=functools.partial(BodyFrameLoads, forces=True), kills=("world_frame_loads",)),
+           relay=functools.partial(BodyFrameLoads, forces=True), kills=("world_frame_loads", "load_magnitude")),
     Mutant("torques-in-body-frame", "RigidBody.torques applied in the body's frame, not the world's",
-           "wrong frame", relay=functools.partial(BodyFrameLoads, torques=True), kills=("world_frame_loads",)),
+           "wrong frame", relay=functools.partial(BodyFrameLoads, torques=True),
+           kills=("world_frame_loads", "motor_anchoring")),
     Mutant("angular-velocity-in-body-frame", "angularVelocity reported in the body's frame", "wrong frame",
            relay=BodyFrameSpin, kills=("torque_free",)),
     Mutant("outputs-late", "body states reported one step late (before the last step call)", "late output",
-           relay=LateState, kills=("free_fall",)),
+           relay=LateState, kills=("free_fall", "auto_disable")),
     Mutant("contact-normal-flipped", "Contact.contactNormal points from geometry2 towards geometry1",
            "Xj3D and X_ITE (x3drbp's reading is ODE's)", relay=FlippedNormals, kills=("sensor_geometry",)),
 )
