@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -58,10 +58,17 @@ class Basis:
     DESCRIPTION: `text` quotes a description from outside the clause (`source`: the X3D Unified
     Object Model or the tooltips): a weaker basis, failing it is not a violation.
     ACCURACY: `text` names the closed form or invariant and how the bound follows from the step
-    and the integrator's order; the error is graded against the bound, never a violation."""
+    and the integrator's order; the error is graded against the bound, never a violation.
+
+    A SPEC basis's `also` holds further quotes of the same form, from other subclauses (or other
+    sentences of its own that do not join its text), which the same measure enforces with the same
+    tolerance: a mass in kilograms by the force it turns into an acceleration, say. Each is held
+    to the text as `text` is (tests/test_spec_quotes.py), and each counts as checked
+    (docs/clause-coverage.md)."""
     kind: str
     text: str
     source: str = ""
+    also: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS or not self.text.strip():
@@ -70,16 +77,29 @@ class Basis:
             raise ValueError(f"a spec basis names its edition ({EDITION}), not {self.source!r}")
         if self.kind == DESCRIPTION and self.source not in SOURCES:
             raise ValueError(f"a description names its source ({', '.join(SOURCES)}), not {self.source!r}")
-        if self.kind == SPEC and ("..." in self.text or "\u2026" in self.text):
-            raise ValueError(f"a spec basis quotes whole sentences, uncut: {self.text!r}")
+        if self.also and self.kind != SPEC:
+            raise ValueError(f"only a spec basis quotes the clause further, not a {self.kind}")
+        for quote in self.quotes:
+            if "..." in quote or "\u2026" in quote:
+                raise ValueError(f"a spec basis quotes whole sentences, uncut: {quote!r}")
+
+    @property
+    def quotes(self) -> tuple[str, ...]:
+        """Every quote of the clause the measure is held to: a SPEC basis's text, then `also`."""
+        return (self.text, *self.also) if self.kind == SPEC else ()
 
     def label(self) -> str:
         """The kind as a reader needs it: 'spec (V3 pre-3.3)', 'description (X3DUOM 4.0)', 'convention'."""
         return f"{self.kind} ({self.source})" if self.source else self.kind
 
 
-def spec(quote: str, edition: str = EDITION) -> Basis:
-    return Basis(SPEC, quote, edition)
+def spec(quote: str, edition: str = EDITION, *, also: tuple[str, ...] = ()) -> Basis:
+    return Basis(SPEC, quote, edition, tuple(also))
+
+
+def also(basis: Basis, *quotes: str) -> Basis:
+    """The same spec basis, holding its measure to further sentences the measure enforces too."""
+    return replace(basis, also=(*basis.also, *quotes))
 
 
 def convention(reading: str) -> Basis:
@@ -187,6 +207,7 @@ class Measure:
                 "basis": None if self.basis is None else self.basis.kind,
                 "basis_source": None if self.basis is None else self.basis.source,
                 "basis_text": None if self.basis is None else self.basis.text,
+                "basis_also": [] if self.basis is None else list(self.basis.also),
                 "bound": None if self.bound is None else _finite_or_str(self.bound),
                 "accuracy": None if self.accuracy is None else _finite_or_str(self.accuracy)}
 

@@ -60,7 +60,8 @@ def basis_cell(m: Measure) -> str:
     convention or description it checks, or the accuracy it grades."""
     if m.basis is None:
         return "spec (not quoted)"
-    return f"{m.basis.label()}: {escape(m.basis.text)}"
+    further = "".join(f" Also {escape(q)}" for q in m.basis.also)
+    return f"{m.basis.label()}: {escape(m.basis.text)}{further}"
 
 
 def grade_cell(m: Measure) -> str:

@@ -6,7 +6,8 @@ The bases are the module-level Basis constants of each case package and of close
 where the measures' quotes are defined (an expectation only picks them). The clause's text, the
 one this project judges by, is ../shared/reference/clause37-rigid-body-physics.txt (from the
 project root): it ships with the project's shared folder, not with x3drbp, so the tests that
-read it skip where it is absent.
+read it skip where it is absent. conformance/clause_text.py cuts it into subclauses and
+sentences, the cut docs/clause-coverage.md's statements are made by too.
 """
 
 from __future__ import annotations
@@ -15,15 +16,15 @@ import functools
 import importlib
 import re
 import types
-from pathlib import Path
 
 import pytest
 
+from conformance import clause_text
 from conformance.cases import CASES
+from conformance.clause_text import STOP, quoted
 from conformance.results import EDITION, SPEC, Basis
 from x3d_core import schema
 
-CLAUSE = Path(__file__).resolve().parents[2] / "shared" / "reference" / "clause37-rigid-body-physics.txt"
 # the subclauses of clause 37 (number, name) as its text heads them: 37.2's concepts, 37.3's
 # abstract types (the text prints 37.3.1 twice, the second for X3DNBodyCollisionSpaceNode) and
 # 37.4's nodes, alphabetical (37.4.1 BallJoint ... 37.4.14 UniversalJoint)
@@ -36,11 +37,6 @@ ABSTRACT = (("37.3.1", "X3DNBodyCollidableNode"), ("37.3.1", "X3DNBodyCollisionS
             ("37.3.3", "X3DRigidJointNode"))
 NODES = sorted(n for n, t in schema.NODE_TYPES.items() if t.component.startswith("RigidBodyPhysics") and not t.abstract)
 CLAUSES = frozenset(CONCEPTS + ABSTRACT + tuple((f"37.4.{i}", name) for i, name in enumerate(NODES, 1)))
-HEAD = re.compile(r"^(37(?:\.\d+)+) ([A-Za-z][A-Za-z0-9 ]*?): \S")
-# a heading line of the text: "37.4.1 BallJoint", " cube 37.2 Concepts"
-HEADING = re.compile(r"^[ \t]*(?:cube )?(37(?:\.\d+)+) (\S.*?)[ \t]*$", re.M)
-# where a sentence ends: a stop, then perhaps a closing bracket or quote
-STOP = re.compile(r"[.?!][)\"\u2019]?$")
 
 
 def _modules() -> list[types.ModuleType]:
@@ -49,49 +45,25 @@ def _modules() -> list[types.ModuleType]:
 
 
 def _spec_bases() -> list[tuple[str, Basis]]:
-    return [(f"{m.__name__.rsplit('.', 1)[-1]}.{name}", value) for m in _modules()
-            for name, value in vars(m).items() if isinstance(value, Basis) and value.kind == SPEC]
+    """Every spec quote of the cases: each basis's text, and each of its `also` quotes as a basis of its own."""
+    found = [(f"{m.__name__.rsplit('.', 1)[-1]}.{name}", value) for m in _modules()
+             for name, value in vars(m).items() if isinstance(value, Basis) and value.kind == SPEC]
+    return [(where if k == 0 else f"{where}.also[{k - 1}]", Basis(SPEC, quote, basis.source))
+            for where, basis in found for k, quote in enumerate(basis.quotes)]
 
 
 SPEC_BASES = _spec_bases()
 
 
 @functools.cache
-def _subclauses() -> dict[tuple[str, str], list[str]]:
+def _subclauses() -> dict[tuple[str, str], tuple[str, ...]]:
     """The text's subclauses, (number, name) -> its paragraphs, whitespace-normalised: each up to
     the next heading of any level, so a quote is held to the subclause its head names."""
-    if not CLAUSE.is_file():
-        pytest.skip(f"clause 37's text is not at {CLAUSE} (it ships with the project's shared folder, not with x3drbp)")
-    text = CLAUSE.read_text(encoding="utf-8")
-    heads = list(HEADING.finditer(text))
-    ends = [h.start() for h in heads[1:]] + [len(text)]
-    return {(h.group(1), h.group(2)): [" ".join(p.split()) for p in re.split(r"\n\s*\n", text[h.end():end])
-                                       if p.strip()] for h, end in zip(heads, ends)}
-
-
-def _starts_sentence(text: str, i: int, starts: set[int]) -> bool:
-    """A sentence starts at text[i]: a paragraph's start, or after a stop and a space and not in
-    lower case (so none starts at the "g" of "e. g.")."""
-    return i in starts or (text[i - 1] == " " and STOP.search(text, 0, i - 1) is not None and not text[i].islower())
-
-
-def _whole_sentences(quote: str, paragraphs: list[str]) -> bool:
-    """`quote`, whitespace-normalised, is a run of whole sentences of `paragraphs`."""
-    text, starts, at = " ".join(paragraphs), set(), 0
-    for p in paragraphs:
-        starts.add(at)
-        at += len(p) + 1
-    q = " ".join(quote.split())
-    if not q or STOP.search(q) is None:
-        return False
-    i = text.find(q)
-    while i >= 0:
-        j = i + len(q)
-        ends = j == len(text) or (text[j] == " " and _starts_sentence(text, j + 1, starts))
-        if ends and _starts_sentence(text, i, starts):
-            return True
-        i = text.find(q, i + 1)
-    return False
+    text = clause_text.read()
+    if text is None:
+        pytest.skip(f"clause 37's text is not at {clause_text.TEXT} (it ships with the project's shared folder, "
+                    "not with x3drbp)")
+    return {sub.key: sub.paragraphs for sub in clause_text.subclauses(text)}
 
 
 def test_the_abstract_types_are_the_schema_s():
@@ -105,12 +77,16 @@ def test_the_clauses_are_the_text_s():
 
 
 def test_whole_sentences_are_whole():
-    """The check that holds each quote: a run of sentences passes, a cut one does not."""
-    paragraphs = ["One is here. Two (e. g., this one) is there.", "body1 starts a paragraph."]
-    assert all(_whole_sentences(q, paragraphs) for q in ("One is  here.", "Two (e. g., this one) is there.",
-                                                         "Two (e. g., this one) is there. body1 starts a paragraph."))
-    assert not any(_whole_sentences(q, paragraphs) for q in ("One is", "Two (e.", "g., this one) is there.", "is here.",
-                                                             "is there. body1 starts a paragraph."))
+    """The check that holds each quote: a run of sentences passes, a cut one does not; a numbered
+    list is part of the sentence whose colon introduces it."""
+    paragraphs = ["One is here. Two (e. g., this one) is there.", "body1 starts a paragraph.", "It has these:",
+                  "1. one, and 2. two."]
+    whole = ("One is  here.", "Two (e. g., this one) is there.", "Two (e. g., this one) is there. body1 starts a "
+             "paragraph.", "It has these: 1. one, and 2. two.")
+    cut = ("One is", "Two (e.", "g., this one) is there.", "is here.", "is there. body1 starts a paragraph.",
+           "1. one, and 2. two.")
+    assert all(quoted(q, paragraphs) is not None for q in whole)
+    assert not any(quoted(q, paragraphs) is not None for q in cut)
 
 
 def test_the_cases_quote_the_clause():
@@ -120,7 +96,7 @@ def test_the_cases_quote_the_clause():
 @pytest.mark.parametrize("where, basis", SPEC_BASES, ids=[w for w, _ in SPEC_BASES])
 def test_spec_basis_names_its_clause_and_edition(where: str, basis: Basis):
     assert basis.source == EDITION, f"{where}: not the clause text's edition ({basis.source!r})"
-    head = HEAD.match(basis.text)
+    head = clause_text.HEAD.match(basis.text)
     assert head, f"{where}: does not start '37.x.y Name: ': {basis.text[:60]!r}"
     assert head.groups() in CLAUSES, f"{where}: {' '.join(head.groups())} is no subclause of the text"
     assert "..." not in basis.text and "\u2026" not in basis.text, f"{where}: cut with an ellipsis"
@@ -129,10 +105,10 @@ def test_spec_basis_names_its_clause_and_edition(where: str, basis: Basis):
 
 @pytest.mark.parametrize("where, basis", SPEC_BASES, ids=[w for w, _ in SPEC_BASES])
 def test_spec_basis_quotes_its_subclause_verbatim(where: str, basis: Basis):
-    head = HEAD.match(basis.text)
-    assert head, f"{where}: does not start '37.x.y Name: ': {basis.text[:60]!r}"
-    paragraphs = _subclauses().get(head.groups())
-    assert paragraphs is not None, f"{where}: the text has no subclause {' '.join(head.groups())}"
-    quote = basis.text[head.end(2) + 2:]
-    assert _whole_sentences(quote, paragraphs), \
-        f"{where}: not whole sentences of {' '.join(head.groups())} as the text has them: {quote!r}"
+    split = clause_text.split_basis(basis.text)
+    assert split, f"{where}: does not start '37.x.y Name: ': {basis.text[:60]!r}"
+    (number, name), quote = split
+    paragraphs = _subclauses().get((number, name))
+    assert paragraphs is not None, f"{where}: the text has no subclause {number} {name}"
+    assert quoted(quote, paragraphs) is not None, \
+        f"{where}: not whole sentences of {number} {name} as the text has them: {quote!r}"

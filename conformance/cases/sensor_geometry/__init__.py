@@ -27,7 +27,9 @@ INTERSECTIONS = spec("37.4.5 CollisionSensor: The intersections field is used to
 CONTACTS = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were "
                 "generated as a result of the scene graph changes last frame. This field generates "
                 "instances of the Contact node.")
-NAMES = spec("37.4.7 Contact: The geometry1 and geometry2 fields specify information about body1 and body2.")
+NAMES = spec("37.4.7 Contact: The body1 and body2 fields specify two top-level nodes that should be evaluated in the "
+             "physics model as a single set of interactions with respect to each other. The geometry1 and geometry2 "
+             "fields specify information about body1 and body2.")
 NORMAL = spec("37.4.7 Contact: The contactNormal field is a unit vector describing the normal between the two "
               "colliding bodies.")
 NORMAL_DIRECTION = spec("37.2.5.3 Collision contact description: When a collision is found between two objects, it is "
