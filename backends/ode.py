@@ -38,6 +38,7 @@ contact joint: ODE reports them and nothing feels them.
 from __future__ import annotations
 
 import ctypes
+import math
 import sys
 from typing import NamedTuple
 
@@ -93,7 +94,7 @@ def _refused(world: World, dt: float) -> str | None:
     for name, arr in (("position", b.position), ("orientation", b.orientation), ("linearVelocity", b.linear_velocity),
                       ("angularVelocity", b.angular_velocity), ("forces", b.forces), ("torques", b.torques),
                       ("mass", b.mass), ("inertia", b.inertia)):
-        bad = ~np.isfinite(arr).reshape(len(arr), -1).all(axis=1)
+        bad = ~np.isfinite(arr).reshape(len(arr), math.prod(arr.shape[1:])).all(axis=1)  # per body, none too
         if bad.any():
             return f"RigidBody {b.names[int(np.flatnonzero(bad)[0])]}: a non-finite {name} (ODE would abort)"
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):

@@ -543,7 +543,8 @@ class PhysxBackend(Backend):
                           ("angularVelocity", b.angular_velocity), ("forces", b.forces), ("torques", b.torques),
                           ("mass", b.mass), ("inertia", b.inertia)):
             with np.errstate(over="ignore", invalid="ignore"):
-                bad = ~(np.isfinite(arr) & (np.abs(arr) <= _FLOAT32_MAX)).reshape(len(arr), -1).all(axis=1)
+                ok = (np.isfinite(arr) & (np.abs(arr) <= _FLOAT32_MAX)).reshape(len(arr), math.prod(arr.shape[1:]))
+                bad = ~ok.all(axis=1)  # per body (a collection of none has none)
             if bad.any():
                 raise Unsupported(f"RigidBody {b.names[int(np.flatnonzero(bad)[0])]}: a {name} beyond single "
                                   "precision (PhysX holds float32)")

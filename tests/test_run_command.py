@@ -69,3 +69,19 @@ def test_backends_lists_engines_with_versions_and_features():
     import mujoco
     assert f"mujoco {mujoco.__version__}" in r.stdout
     assert "  SingleAxisHingeJoint.stopBounce: unsupported (" in r.stdout
+
+
+@pytest.mark.parametrize("backend", ["ode", "bullet", "mujoco", "dart", "physx", "drake", "pymunk"])
+def test_a_collection_of_no_bodies_beside_one_that_has_some_runs(tmp_path, backend):
+    """An empty RigidBodyCollection is a world of no bodies: it simulates nothing and breaks nothing
+    (ode and physx stopped at their bulk checks of the bodies, 'cannot reshape array of size 0')."""
+    from backends import base
+    if isinstance(base.available().get(backend, "absent"), str):
+        pytest.skip(f"{backend} is not available here")
+    scene = tmp_path / "s.x3dv"
+    scene.write_text("#X3D V4.0 utf8\nDEF Empty RigidBodyCollection { }\n"
+                     "DEF World RigidBodyCollection { bodies DEF Ball RigidBody { } }\n")
+    out = tmp_path / "t.csv"
+    r = x3drbp("run", str(scene), "--backend", backend, "--duration", "0.05", "--trace", str(out))
+    assert r.returncode == 0, r.stderr
+    assert {row.node for row in read_trace(str(out))} == {"Ball"}
