@@ -159,7 +159,11 @@ def _negated(rows: list[Row], fields: set[str], cap: float | None = None) -> lis
 def test_hinge_resting_at_max_angle_with_the_other_sign_conforms(real):
     rows = real["hinge_limits"][1][0]
     other = _negated(rows, {"angle", "angleRate"}, cap=LIMITS.HINGE_MAX)  # the fall is positive: maxAngle stops it
-    broken = _negated(rows, {"angle", "angleRate"})  # the other sign, but the arm goes on past maxAngle
+    # the other sign, but the arm goes on 0.35 rad past maxAngle: more than the yield ODE's own stop shows at
+    # minAngle (0.23 rad), which either sign is allowed alike
+    broken = [Row(r.time, r.node, r.field, repr(max(float(r.value), LIMITS.HINGE_MAX + 0.35)))
+              if r.node == "Hinge" and r.field == "angle" and float(r.value) > LIMITS.HINGE_MAX - 0.05 else r
+              for r in _negated(rows, {"angle", "angleRate"})]
     _split(_judge("hinge_limits", rows), _judge("hinge_limits", other), _judge("hinge_limits", broken))
     assert _failing(_judge("hinge_limits", other), results.CONVENTION) == ["Hinge.angle farthest - minAngle"]
 

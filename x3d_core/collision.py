@@ -10,7 +10,8 @@ The rules (clause 37.4), as x3drbp reads them:
 - A Shape with an explicit bboxSize collides as that box (the spec's approximation).
   CollisionSpace useGeometry is read as the speed hint it describes ("only make
   approximations using the bounds... using the geometry will be more accurate"): the
-  geometry itself is always used, as every browser does; a literal reading would turn
+  geometry itself is always used, as every browser does (what TRUE asks for, and what
+  FALSE allows without requiring it); a literal reading would turn
   the wheels of Xj3D's own toy car (in a space, useGeometry left FALSE) into boxes.
 - Collidables of one body never collide with each other, and neither do the collidables
   of two bodies joined by a joint (ODE's usual rule, and Xj3D's).

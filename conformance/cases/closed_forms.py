@@ -585,10 +585,11 @@ def falls(traces: Sequence[TraceView], settings: Sequence[Settings], body: str, 
             for m in ballistic(body, start, (0, 0, 0), (0, -G, 0), basis)(traces, settings)]
 
 
-def kept_rests_ghost_falls(basis: Basis) -> Expectation:
+def kept_rests_ghost_falls(basis: Basis, kept: Basis | None = None) -> Expectation:
     """Ghost falls (nothing touches it), Kept rests on the floor (rests). Every measure held to
-    `basis`: the sentence that says which shapes collide."""
+    `basis`: the sentence that says which shapes collide; Kept's to `kept` where given (`basis`
+    with sentences only a body that collides shows)."""
     def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
-        return (rests(traces[0], settings[0], "Kept", KEPT_START, basis)
+        return (rests(traces[0], settings[0], "Kept", KEPT_START, basis if kept is None else kept)
                 + falls(traces, settings, "Ghost", GHOST_START, basis))
     return expect

@@ -162,6 +162,24 @@ def _bbox_ignored(g: Geometry) -> Geometry:
     return replace(g, kind=kind, size=size, position=at, vertices=vertices, triangles=triangles, grid=grid)
 
 
+def _nested_spaces_ignored(c: Collisions) -> Collisions:
+    """The collider's collidables and its spaces' own: what a space within a space holds drops out."""
+    deep: set[int] = set()
+
+    def walk(node: Node, depth: int) -> None:
+        if node.type_name == "CollisionSpace":
+            for child in node.get("collidables"):
+                walk(child, depth + 1)
+            return
+        while depth >= 2 and node is not None:  # a CollidableOffset's collidable with it
+            deep.add(id(node))
+            node = node.get("collidable") if node.type_name == "CollidableOffset" else None
+
+    for top in c.collider.get("collidables"):
+        walk(top, 0)
+    return replace(c, geometries=[g for g in c.geometries if id(g.node) not in deep])
+
+
 def _thickness_ignored(world: World) -> None:
     world.contact_surface_thickness = 0.0
     reset("collisions.parameters.surface_thickness", lambda _: 0.0)(world)
@@ -269,10 +287,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("contact-softness-ignored", "softnessErrorCorrection/softnessConstantForceMix ignored: rigid contacts",
            f"{X_ITE} ignores ERP and CFM",
            reset("collisions.parameters", lambda p: replace(p, softness_erp=None, softness_cfm=None)),
-           gap="a body resting on a contact with CONSTANT_FORCE applied: the soft contact holds it m g h CFM / ERP "
-               "deep (a spring k = ERP / (h CFM)), a rigid one near 0",
-           silent="37.4.4 asks only that the surfaces 'appear to be somewhat soft', which the world's default "
-                  "constantForceMix already makes them: how soft is ODE's model"),
+           kills=("contact_softness",)),
     Mutant("constant-force-mix-ignored", "RigidBodyCollection.constantForceMix ignored: rigid joints",
            f"{X_ITE} ignores ERP and CFM", reset("constant_force_mix", lambda _: 0.0), kills=("erp_cfm_spring",)),
     Mutant("error-correction-ignored", "RigidBodyCollection.errorCorrection ignored: X3D's default 0.8",
@@ -289,9 +304,9 @@ MUTANTS: tuple[Mutant, ...] = (
            "a port to ODE, whose cylinder's axis is z", geometries(_along_z), kills=("cylinder_cone_rest",),
            silent="37.4.3: 'If there is no bounding box, the results are implementation-dependent.'"),
     Mutant("cylinder-cone-as-boxes", "Cylinder and Cone collide as their bounding boxes",
-           "an engine without cylinders or cones (a reading the clause allows: cylinder_cone_shape's conventions)",
-           geometries(_as_box), kills=("cylinder_cone_shape",),
-           silent="37.4.3: 'If there is no bounding box, the results are implementation-dependent.'"),
+           "an engine without cylinders or cones (a reading the clause allows outside a CollisionSpace with "
+           "useGeometry TRUE: cylinder_cone_shape's conventions)",
+           geometries(_as_box), kills=("cylinder_cone_shape", "collision_spaces")),
     Mutant("shape-bbox-ignored", "a collidable Shape's explicit bboxSize ignored: its geometry collides instead",
            IGNORED, geometries(_bbox_ignored), kills=("cylinder_cone_shape",)),
     Mutant("collider-not-filtering", "the collider does not filter: every body's collidables collide",
@@ -304,6 +319,9 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("watched-collections-unrun", "a collection only a CollisionSensor watches is never run: the sensor "
            "reports nothing", "collision detection run only for the colliders bodies use (x3drbp before issue 35)",
            reset("watched", lambda _: []), kills=("sensor_only",)),
+    Mutant("nested-spaces-ignored", "a CollisionSpace inside another CollisionSpace ignored: one level of spaces "
+           "traversed", "a collision traversal one level deep", reset("collisions", _nested_spaces_ignored),
+           kills=("collision_spaces",)),
     # -- what the simulation reports or receives
     Mutant("forces-in-body-frame", "RigidBody.forces applied in the body's frame, not the world's", "wrong frame",
            relay=functools.partial(BodyFrameLoads, forces=True), kills=("world_frame_loads", "load_magnitude")),
@@ -315,7 +333,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("outputs-late", "body states reported one step late (before the last step call)", "late output",
            relay=LateState, kills=("free_fall", "auto_disable")),
     Mutant("contact-normal-flipped", "Contact.contactNormal points from geometry2 towards geometry1",
-           "Xj3D and X_ITE (x3drbp's reading is ODE's)", relay=FlippedNormals, kills=("sensor_geometry",)),
+           "Xj3D and X_ITE (37.2.5.3: from body 1 to body 2)", relay=FlippedNormals, kills=("sensor_geometry",)),
 )
 
 BASES = tuple(dict.fromkeys(m.base for m in MUTANTS))

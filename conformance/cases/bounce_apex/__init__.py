@@ -12,12 +12,20 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import BOUNCE, CFM_DEFAULT, ROUNDING, G, honoured, max_norm, physics_time
-from conformance.results import Measure, Settings, accuracy, convention, spec
+from conformance.results import Measure, Settings, accuracy, also, convention, spec
 
 MIN_BOUNCE = spec("37.4.4 CollisionCollection: The minBounceSpeed field indicates the minimum speed, "
                   "in metres per second, that an object shall have before an object will bounce. If the "
                   "object is below this speed, it will not bounce, effectively having an equivalent "
                   "value for the bounce field of zero.")
+# the first apexes' order: each ball meets the floor where its body has carried its sphere, 1 m below its start; a
+# collidable left where the file puts it (at the body's start, or at its own translation: the origin, off the
+# e = 0.2 and 0.8 floors) never meets its floor as the ball falls, those balls never rise and the order fails (no
+# collidable here has a translation of its own, so both readings of docs/spec-loose-ends.md 22.2 put it at the body)
+LOCATED = also(BOUNCE, "37.4.3 CollidableShape: In addition, it allows the collision detection system to determine "
+               "the location of the geometry primitives that it uses for collision management.",
+               "37.4.10 RigidBody: Collidable nodes have their location set to the same location as the body "
+               "instance in which they are located.")
 # the clause says a slow ball does not bounce, not how soon a contact brings it to rest
 SETTLES = accuracy("a ball that no longer bounces rests on the floor: |v| within one step of unresisted gravity, g h")
 RESTITUTION = convention("bounce is the coefficient of restitution: the rebound speed is bounce x the impact speed, "
@@ -176,7 +184,7 @@ def _order(first: dict[float, tuple[float, float]]) -> Measure:
     slack = [0.0, *(first.get(e, (0.0, BA_R))[1] for e in es), 0.0]
     shortfall = max(slack[i] + slack[i + 1] - (tiers[i + 1] - tiers[i]) for i in range(len(tiers) - 1))
     return Measure("first apexes rise with bounce: 0 < bounce 0.2 < 0.5 < 0.8 < drop height (shortfall)",
-                   max(shortfall, 0.0), ROUNDING, "m", BOUNCE)
+                   max(shortfall, 0.0), ROUNDING, "m", LOCATED)
 
 
 CASE = Case("bounce_apex", "bounce_apex.x3d",

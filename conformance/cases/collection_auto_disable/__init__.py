@@ -23,7 +23,9 @@ AT_REST = spec("37.4.11 RigidBodyCollection: These values define tolerances for 
                "to ignore this object in any calculation, thus resulting in them being actually at rest and not "
                "subject to these instability conditions. Once any one of these values is achieved, the body is "
                "considered as being at rest, unless acted upon by an external force (e. g., collision or action of "
-               "connected joint).")
+               "connected joint).",
+               # Slow's: the collection's autoDisable TRUE ignored, it drifts on at its own speeds, twice the tolerance
+               also=("37.4.11 RigidBodyCollection: It may be enabled by setting the autoDisable field to TRUE.",))
 ANY_ONE = convention("any one speed under its threshold, held for disableTime, stops a body (x3drbp, the literal "
                      "reading of 'Once any one of these values is achieved'), the collection's thresholds for a body "
                      "that sets no autoDisable of its own; ODE, Xj3D: both speeds under their thresholds for the time "

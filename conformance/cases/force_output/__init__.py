@@ -9,8 +9,12 @@ from x3d_core.trace import TraceView
 from conformance.cases.case import Case, Mutation
 from conformance.results import Measure, Settings, spec
 
-EXACTLY = spec("37.3.3 X3DRigidJointNode: The values of the array are to describe the names, exactly, of the output "
-               "field(s) that are to be updated at the start of the next frame.")
+# Named's and Pair's: a forceOutput ignored (every output reported, or none) is whole rows off, at a tolerance of 0
+EXACTLY = spec("37.3.3 X3DRigidJointNode: This field is used to control which of those outputs the author requires "
+               "to be generated. The values of the array are to describe the names, exactly, of the output "
+               "field(s) that are to be updated at the start of the next frame.",
+               also=("37.3.3 X3DRigidJointNode: The forceOutput field is used to control which output fields are to "
+                     "be generated for the next frame.",))
 ALL = spec("37.3.3 X3DRigidJointNode: If \"ALL\" is specified anywhere in the array, all fields are to be updated.")
 NONE_BESIDE = spec("37.3.3 X3DRigidJointNode: If \"NONE\" is specified, no updates are performed. If the list of "
                    "values is empty, it shall be treated as if \"NONE\" were specified. Other values provided in "

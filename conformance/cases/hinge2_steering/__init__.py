@@ -67,8 +67,6 @@ def _pair(tr: TraceView, s: Settings, name: str) -> list[Measure]:
     grown = toward * turn
     momentum = H2_I1 * w1 + H2_I2 * w2
     axis2 = H2_AXIS2[name]
-    # the knuckle's own turn at the stop (the pair's turn shared by inertia): axis 2 moves that far
-    swung = 2 * math.sin(0.5 * abs(stop) * H2_I1 / (H2_I1 + H2_I2))
     bound_l = ROUNDING * (1 + H2_MAX_TORQUE * T)
     return [
         Measure(f"{name}: axis1 . (w1 - w2), torque-limited ramp (t < t*), either sense",
@@ -95,9 +93,11 @@ def _pair(tr: TraceView, s: Settings, name: str) -> list[Measure]:
         Measure(f"{name}Hinge.body1Axis - axis1 as {name}Carrier carries it",
                 max_norm(axis1_out - R.rotate(R.from_axis_angle(o1), axis)), honoured(ROUNDING, 1.0), "", JOINT,
                 ROUNDING),
-        Measure(f"{name}Hinge.body2Axis - axis2 as {name}Knuckle carries it",
-                max_norm(axis2_out - R.rotate(R.from_axis_angle(o2), axis2)), honoured(ROUNDING, swung), "", JOINT,
-                ROUNDING),
+        # in the world as Knuckle carries it, or in Knuckle's own frame (axis2: it starts unturned), either
+        # (docs/spec-loose-ends.md 22.1)
+        Measure(f"{name}Hinge.body2Axis - axis2 as {name}Knuckle carries it (world or its frame)",
+                min(max_norm(axis2_out - R.rotate(R.from_axis_angle(o2), axis2)), max_norm(axis2_out - axis2)),
+                honoured(ROUNDING, 1.0), "", JOINT, ROUNDING),
         anchor_outputs(tr, f"{name}Hinge", f"{name}Carrier", f"{name}Knuckle", H2_ANCHOR[name], H2_ANCHOR[name],
                        H2_ANCHOR[name])]
 
@@ -123,8 +123,9 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     keeps Knuckle's I2 w); an output not reported (0 where the turn is the stop's, the rate w;
     hinge2Angle, 0 throughout, as hinge1Angle's stop); body1Axis and body2Axis are axis1 and axis2
     as body1 and body2 carry them (the clause's "relative to"), to rounding, against an axis not
-    reported (0) or fixed in the world (the knuckle turns axis 2 with it, by its share of the
-    stop's turn); the anchor points (closed_forms.anchor_outputs) a convention.
+    reported (0): body2Axis in the world or in Knuckle's own frame, where it stays axis2 (the clause
+    gives both, docs/spec-loose-ends.md 22.1; body1Axis is the same in either, Carrier turning about
+    axis1 alone); the anchor points (closed_forms.anchor_outputs) a convention.
     Which way the bodies turn is the sense the implementation measures the angle in: the spec
     measures take either (the drive's), the convention holds it to ODE's (body1 relative to
     body2), with twice the target for the other sense."""

@@ -18,8 +18,11 @@ from conformance.results import Measure, Settings, spec
 PEND_M, PEND_L, PEND_I, PEND_THETA0 = 1.0, 1.0, 0.001, math.radians(30.0)
 PEND_BOB = (0.5, -0.8660254037844386, 0.0)  # Bob's start, unturned; the pivot and Anchor at the origin
 # the period and the vertical crossings do not depend on the sign or the zero of the hinge's angle
+# the period: the collection's joints ignored, Bob falls and never crosses the vertical (an infinite error)
 HINGE = spec("37.4.12 SingleAxisHingeJoint: The axis of the hinge is defined to be along the unit vector described "
-             "in the axis field and centered on the anchorPoint described in world coordinates.")
+             "in the axis field and centered on the anchorPoint described in world coordinates.",
+             also=("37.4.11 RigidBodyCollection: The joints field is used to register all the joints between the bodies "
+                   "contained in this collection.",))
 
 
 def pendulum_period(theta0: float = PEND_THETA0, m: float = PEND_M, length: float = PEND_L,
