@@ -139,6 +139,7 @@ REASONS: dict[str, str] = {
                     "has them (BallJoint has none)"),
     "37.3.3 X3DRigidJointNode/17": _ADVICE,
     "37.4.1 BallJoint/3": _FRAME_UNDEFINED,
+    "37.2.5.2 Breaking joints/2": _FRAME_UNDEFINED,
     "37.4.2 CollidableOffset/2": ("what the field holds, which its signature row gives (one X3DNBodyCollidableNode), "
                                   "accounted for there"),
     "37.4.2 CollidableOffset/3": _UNDEFINED,
@@ -271,68 +272,12 @@ _SPACE_GEOMETRY = ("a mutation that edits it, judged where a space with useGeome
 # 37.2.5.2: the clause contradicts itself on what the two anchor outputs are (docs/spec-loose-ends.md 22.1): the
 # anchor in world coordinates as each body carries it (x3drbp's, ODE's), or in each body's own frame; a spec
 # measure of these sentences holds only what both readings give
-_ANCHOR_KINDS = ("the anchor outputs of every joint kind with them (BallJoint, SingleAxisHingeJoint, "
-                 "DoubleAxisHingeJoint, UniversalJoint): a measure that both readings of docs/spec-loose-ends.md 22.1 "
-                 "pass: while the joint holds, each output is the anchor as its own body carries it, in world "
-                 "coordinates or in that body's frame, either accepted (closed_forms.ANCHOR_OUTPUTS accepts only the "
-                 "world one, a convention; ball_chain's anchor gap, held to 37.4.1's sentences, holds the two outputs "
-                 "equal, as only the world reading gives them)")
-_ANCHOR_BREAK = ("only a convention can hold it: the difference tells a break only where the two values share a frame "
-                 "(the world reading; in each body's own frame they differ while the joint holds, and "
-                 "docs/spec-loose-ends.md 22.1 lets both readings conform): closed_forms.ANCHOR_OUTPUTS with a joint "
-                 "pulled apart, the two outputs apart by the gap the bodies' poses show (no case pulls a joint apart "
-                 "under a measure; ball_chain's edit fixing Link5 is graded)")
 _ANCHOR_APART = ("a measure that both readings of docs/spec-loose-ends.md 22.1 pass: a joint pulled apart (a loop "
                  "closed through a fixed body, as ball_chain's graded edit fixing Link5) reports body1AnchorPoint and "
                  "body2AnchorPoint more than rounding apart while its bodies' poses show the anchor parted "
                  "(closed_forms.anchor_gap); no case's measure reads the outputs of a joint pulled apart")
-_DAMPING_SWITCH = ("a case: two bodies with the same damping factors, autoDamp TRUE and FALSE: the second keeps its "
-                   "velocities to rounding while the first is damped, held to sentences 33 and 34 (damping's "
-                   "measures, held to sentences 32 and 35, show TRUE applying it, not that FALSE applies none; "
-                   "free_fall's and projectile's bodies, FALSE at X3D's default factors 0.001, fail if damped, but by "
-                   "their clock measure, 37.2.2.1's: a damped fall reads as a clock that lags, its acceleration then "
-                   "only graded)")
-_DISABLE_CONDITIONS = ("a case: a drifting body whose speeds both stay above disableLinearSpeed and "
-                       "disableAngularSpeed is never disabled, under either reading of 'any one of these values', "
-                       "beside one under both that is: the fields are the conditions ({} bodies are each under one "
-                       "threshold at least, and its at-rest measures, held to sentences {}, show only that a body "
-                       "meeting them is at rest: a browser that disables every autoDisable body after disableTime, "
-                       "whatever its speeds, passes them)")
 GAPS: dict[str, str] = {
-    **dict.fromkeys(_ids("37.2.5.1 Initial coordinate system", 1, 2),
-                    ("a case: a SliderJoint whose bodies start apart along its axis, or a hinge whose body starts "
-                     "turned about it, its angle read: separation (angle) 0 at the start and the stops counted from "
-                     "there (every slider case starts its bodies coincident, and every hinge whose angle is read "
-                     "unturned, so outputs taken from the world frame read alike: slider_bounce's separation measure "
-                     "cannot tell them apart)")),
-    "37.2.5.1 Initial coordinate system/3": (
-        "a case: a joint whose bodies start turned about another direction than its axes, given in world "
-        "coordinates: the bodies turn about the world axes (every joint with an axis joins bodies that start "
-        "unturned, or turned about that axis as newtons_cradle's Ball1, so an axis read in a body's frame passes; "
-        "the anchor half is shown: ball_chain, hinge2_steering and universal_joint fail when their anchorPoint is "
-        "edited, and pendulum_period holds the hinge's own 'centered on the anchorPoint described in world "
-        "coordinates')"),
-    "37.2.5.2 Breaking joints/1": _ANCHOR_KINDS,
-    "37.2.5.2 Breaking joints/2": _ANCHOR_BREAK,
     "37.2.5.2 Breaking joints/3": _ANCHOR_APART,
-    **dict.fromkeys(_ids("37.4.10 RigidBody", 33, 34), _DAMPING_SWITCH),
-    "37.4.10 RigidBody/46": ("a measure: each body's first frame against the file's position and orientation, "
-                             "within one step's motion (every closed form starts there, and the edits of them fail "
-                             "torque_free and pendulum_period, held to the inertia's and the hinge's sentences)"),
-    "37.4.10 RigidBody/47": ("a measure: the reported positions against the motion the reported velocities show, "
-                             "with no clock (closed_forms.clock_free_acceleration fits the two): every case reads "
-                             "position and orientation as the current state, held to what moves its bodies, and "
-                             "ballistic's own position measure is the physics clock's convention"),
-    "37.4.10 RigidBody/50": _DISABLE_CONDITIONS.format("auto_disable's", "52 and 53"),
-    "37.4.11 RigidBodyCollection/35": _DISABLE_CONDITIONS.format("collection_auto_disable's", "37 and 38"),
-    "37.4.12 SingleAxisHingeJoint/4": ("a measure held to sentences 3 and 4 of a hinge between two moving bodies: "
-                                       "pendulum_period's period (sentence 3) fails with Bob off the hinge, but its "
-                                       "body2 is fixed, so a hinge ignoring body2 (body1 hinged to the world) passes "
-                                       "it; double_pendulum_energy's Elbow and newtons_cradle's hinges (body2 the "
-                                       "ball) show both sides, held to sentence 1 and to the bounce sentence"),
-    "37.4.13 SliderJoint/2": ("a measure: the bodies' relative motion across axis stays 0 (slider_bounce's rebound "
-                              "and minimum stop and slider_force's rate fail with axis ignored, held to their own "
-                              "fields' sentences; slider_bounce's momentum, held to sentence 1, holds for any axis)"),
     # rows coverage accounts for by a reason that is an argument from a case, not a field nothing shows
     "RigidBody.useFiniteRotation": ("a mutation that edits it, judged where the rotation update follows it (ODE): "
                                     "finite_rotation sets it and its spec measure fails the first-order update, but "

@@ -152,8 +152,10 @@ def test_joint_expectations_fail_on_a_broken_joint():
         return verdicts.evaluate(chain, "fake", [TraceView(rows)], chain.runs)
     soft = apart(0.001)  # 1 mm: a soft joint's gap, graded beyond the rigid bound, no violation
     assert soft.verdict == results.PASS and soft.accuracy() > 1 and "Joint3" in soft.accuracy_text()
-    broken = apart(0.06)  # 6 cm: more than half an anchor's lever arm, the joint came apart
-    assert broken.verdict == results.FAIL and "Joint3" in broken.reason
+    # 6 cm: more than half an anchor's lever arm; told by the outputs alone (the links' poses say nothing here), which
+    # the clause gives in each body's frame as well as comparable (spec-loose-ends 22): x3drbp's reading, a convention
+    broken = apart(0.06)
+    assert broken.verdict == results.CONVENTIONS and "Joint3" in broken.reason
     uj = C.BY_NAME["universal_joint"]
     anchor = ["0.6 -0.8 0"] * 3  # the arms report no pose: each carries the anchor where the scene puts it
 

@@ -256,7 +256,7 @@ MUTANTS: tuple[Mutant, ...] = (
            joints((HINGE,), _stops_other_sense), kills=("hinge_limit_sense",)),
     Mutant("joint-bodies-swapped", "joint body1 and body2 swapped", "swapped bodies",
            joints((HINGE, SLIDER, DOUBLE, MOTOR, BALL, UNIVERSAL), _swap_bodies),
-           kills=("hinge_limits", "motor_joint_torque", "hinge2_steering")),
+           kills=("hinge_limits", "motor_joint_torque", "motor_anchoring")),
     Mutant("double-axis-colinear", "DoubleAxisHingeJoint axis2 made axis1", f"{X_ITE} forces the axes colinear",
            joints((DOUBLE,), _colinear), kills=("motor_speed",)),
     Mutant("motor-max-torque-ignored", "DoubleAxisHingeJoint maxTorque1/2 ignored: the motors never drive",

@@ -32,7 +32,7 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import ROUNDING, max_norm, single, steps
+from conformance.cases.closed_forms import ROUNDING, honoured, max_norm, physics_time, single, steps
 from conformance.results import Measure, Settings, also, convention, spec
 
 
@@ -46,11 +46,14 @@ DAMPED = spec("37.4.10 RigidBody: The damping factor fields allow the user to in
 # the per-frame measures: each frame's velocity r x the last, r of a band that does not depend on the speed, so a
 # damping not proportional to the velocity (a constant or a quadratic drag) leaves the bands as the body slows,
 # and autoDamp TRUE applying the linear damping alone (or none) leaves a ratio of 1, off every band by 3.7e-4 m/s
-# (1e-3 rad/s) at least, against rounding; that autoDamp FALSE applies none (sentence 34) no case shows
+# (1e-3 rad/s) at least, against rounding; that autoDamp FALSE applies none (sentence 34): UNDAMPED
 DAMPED_WHEN_TRUE = also(DAMPED, "37.4.10 RigidBody: Damping is proportional to the current velocity and/or rotation "
                         "of the object.",
                         "37.4.10 RigidBody: When the value is TRUE, rotational and translational damping is "
                         "calculated and applied.")
+# Undamped (autoDamp FALSE, the same factors): its velocities kept, to rounding
+UNDAMPED = spec("37.4.10 RigidBody: The application of damping is controlled through the use of the autoDamp field. "
+                "When the value is FALSE, no damping is applied.")
 PER_STEP = convention("each velocity is multiplied by (1 - factor) at every physics step, v_n = v0 (1-d)^n after "
                       "n steps (ODE's body damping, x3drbp); alternatives: once a frame, v = v0 (1-d)^frames (the "
                       "spec's words where a frame holds several steps); a force -d v once a frame (Xj3D, H3D); "
@@ -73,6 +76,34 @@ def per_frame_error(t: np.ndarray, v: np.ndarray, d: float, dt: float, inertia: 
              ((1.0 - d) ** h, (1.0 - d) ** h))
     off = [np.linalg.norm(cur - np.clip(r, lo, hi)[:, None] * prev, axis=1) for lo, hi in bands]
     return max_norm(np.min(off, axis=0))
+
+
+def least_loss(d: float, inertia: float, t: float, dt: float) -> float:
+    """The least share of a velocity that damping at factor d takes off by physics time t under any
+    reading of the factor (the module's docstring), at 60 frames/s: the least of (1-d) once a frame,
+    a force -d v once a frame or at each step, and (1-d) per second."""
+    frames, n = round(t * 60), round(t / dt)
+    kept = max((1.0 - d) ** frames, (1.0 - d / 60 / inertia) ** frames, (1.0 - d * dt / inertia) ** n, (1.0 - d) ** t)
+    return 1.0 - kept
+
+
+def _undamped(tr: TraceView, s: Settings) -> list[Measure]:
+    """Undamped (autoDamp FALSE, Damped's factors, velocities and inertia): nothing changes its
+    velocities, so max |v - v0| and |w - w0| over the run are rounding (ROUNDING of the size, the
+    bound). The misreading, the factors applied whatever autoDamp says, takes off at least
+    least_loss of each by the last frame (1.0e-2 of |v0|, 2.0e-2 of |w0| at 1 s, the per-second and
+    force readings): the tolerance is half that (closed_forms.honoured)."""
+    t, v = tr.series("Undamped", "linearVelocity")
+    _, w = tr.series("Undamped", "angularVelocity")
+    end = float(physics_time(t, s.dt)[-1])
+    out = []
+    for field, got, start, d, inertia, unit in (("linearVelocity", v, DAMP_V0, DAMP_LINEAR, DAMP_MASS, "m/s"),
+                                                ("angularVelocity", w, DAMP_W0, DAMP_ANGULAR, DAMP_MOMENT, "rad/s")):
+        size = float(np.linalg.norm(start))
+        bound = ROUNDING * size
+        out.append(Measure(f"Undamped |{field} - its start| (autoDamp FALSE: no damping)", max_norm(got - start),
+                           honoured(bound, least_loss(d, inertia, end, s.dt) * size), unit, UNDAMPED, bound))
+    return out
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
@@ -100,14 +131,17 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
             Measure("Damped.linearVelocity = v0 (1-d)^steps", max_norm(v - DAMP_V0 * (1.0 - DAMP_LINEAR) ** n),
                     tol_v, "m/s", PER_STEP, bound_v),
             Measure("Damped.angularVelocity = w0 (1-d)^steps", max_norm(w - DAMP_W0 * (1.0 - DAMP_ANGULAR) ** n),
-                    tol_w, "rad/s", PER_STEP, bound_w)]
+                    tol_w, "rad/s", PER_STEP, bound_w)] + _undamped(tr, s)
 
 
 CASE = Case("damping", "damping.x3d",
             "RigidBody.autoDamp, linearDampingFactor 0.01, angularDampingFactor 0.02: each frame v = r v_last, "
-            "r = (1-d) once a step or a frame, 1 - d h/m, or (1-d)^h (x3drbp: v_n = v0 (1-d)^n)",
+            "r = (1-d) once a step or a frame, 1 - d h/m, or (1-d)^h (x3drbp: v_n = v0 (1-d)^n); the same factors with "
+            "autoDamp FALSE: velocities kept",
             (Settings(1.0, 1 / 240),), expect,
             exercises=("RigidBody.autoDamp", "RigidBody.linearDampingFactor", "RigidBody.angularDampingFactor"),
-            mutations=((" linearDampingFactor='0.01'", ""),
+            mutations=(("autoDamp='true' linearDampingFactor='0.01'", "autoDamp='true'"),
                        (" autoDamp='true'", ""),  # no damping: a ratio of 1, no reading's
-                       (" angularDampingFactor='0.02'", "")))  # the default 0.001
+                       ("linearDampingFactor='0.01' angularDampingFactor='0.02'",
+                        "linearDampingFactor='0.01'"),  # the default 0.001
+                       ("autoDamp='false'", "autoDamp='true'")))  # Undamped damped: it slows

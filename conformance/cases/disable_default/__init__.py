@@ -21,9 +21,19 @@ BODY_SWITCH = spec("37.4.10 RigidBody: By default, this automatic disabling is t
                    "setting the autoDisable field to TRUE.")
 COLLECTION_SWITCH = spec("37.4.11 RigidBodyCollection: By default, this automatic disabling is turned off. It may be "
                          "enabled by setting the autoDisable field to TRUE.")
-# body -> (the basis its measures are held to, whether it is disabled)
-DD_BODIES = {"Unset": (COLLECTION_SWITCH, False), "Unasked": (BODY_SWITCH, False), "Asked": (BODY_SWITCH, True),
-             "Gathered": (COLLECTION_SWITCH, True)}
+# Brisk, Lively: both speeds above the thresholds (so under either reading of "any one of these values"), autoDisable
+# TRUE (Brisk's own, Lively's collection's): never disabled, the thresholds being the conditions
+BODY_CONDITIONS = spec("37.4.10 RigidBody: The disable fields define conditions for when the body ceases to "
+                       "considered as part of the rigid body calculations and should be considered as at rest.")
+COLLECTION_CONDITIONS = spec("37.4.11 RigidBodyCollection: The disable fields define conditions for when the body "
+                             "ceases to considered as part of the rigid body calculations and should be considered "
+                             "as at rest.")
+DD_FAST_V0, DD_FAST_W0 = np.array([0.2, 0.0, 0.0]), np.array([0.0, 0.0, 0.2])
+# body -> (the basis its measures are held to, whether it is disabled, its v0 and w0)
+DD_BODIES = {"Unset": (COLLECTION_SWITCH, False, DD_V0, DD_W0), "Unasked": (BODY_SWITCH, False, DD_V0, DD_W0),
+             "Asked": (BODY_SWITCH, True, DD_V0, DD_W0), "Gathered": (COLLECTION_SWITCH, True, DD_V0, DD_W0),
+             "Brisk": (BODY_CONDITIONS, False, DD_FAST_V0, DD_FAST_W0),
+             "Lively": (COLLECTION_CONDITIONS, False, DD_FAST_V0, DD_FAST_W0)}
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
@@ -37,13 +47,17 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
       misreading, the default on, stops them at 0.25 s (|v0| and |w0| off), so the tolerance is
       half that (closed_forms.honoured);
     - Asked, Gathered (autoDisable TRUE, its own or its collection's): max |v| and |w| from 0.5 s;
-      the misreading, autoDisable ignored, leaves them drifting (|v0| and |w0|): half that."""
+      the misreading, autoDisable ignored, leaves them drifting (|v0| and |w0|): half that;
+    - Brisk, Lively (autoDisable TRUE, its own or its collection's, both speeds 0.2 above the thresholds
+      0.1): max |v - v0| and |w - w0| over the run, as Unset's; the misreading, every autoDisable
+      body stopped after disableTime whatever its speeds (the thresholds not the conditions), stops
+      them (|v0| and |w0| off): half that."""
     tr, s = traces[0], settings[0]
     out = []
-    for name, (basis, disabled) in DD_BODIES.items():
+    for name, (basis, disabled, v0, w0) in DD_BODIES.items():
         t, v = tr.series(name, "linearVelocity")
         _, w = tr.series(name, "angularVelocity")
-        for field, got, start, unit in (("linearVelocity", v, DD_V0, "m/s"), ("angularVelocity", w, DD_W0, "rad/s")):
+        for field, got, start, unit in (("linearVelocity", v, v0, "m/s"), ("angularVelocity", w, w0, "rad/s")):
             size = float(np.linalg.norm(start))
             if disabled:
                 late = physics_time(t, s.dt) >= DD_SETTLED
@@ -58,7 +72,7 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
 CASE = Case("disable_default", "disable_default.x3d",
             "autoDisable left FALSE (RigidBody and RigidBodyCollection) with the disable thresholds set: bodies "
             "under them drift on; with autoDisable TRUE (a body's own, or its collection's) they are at rest after "
-            "disableTime (0.1 m/s, 0.1 rad/s, 0.25 s)",
+            "disableTime (0.1 m/s, 0.1 rad/s, 0.25 s); bodies over both thresholds drift on with autoDisable TRUE",
             (Settings(1.0, 1 / 240),), expect,
             exercises=("RigidBody.autoDisable", "RigidBodyCollection.autoDisable", "RigidBody.disableLinearSpeed",
                        "RigidBodyCollection.disableLinearSpeed"),
@@ -70,4 +84,10 @@ CASE = Case("disable_default", "disable_default.x3d",
                 # a collection's automatic disabling on by default: Unset (and Unasked) stop
                 ("DEF='Quiet' gravity='0 0 0'", "DEF='Quiet' gravity='0 0 0' autoDisable='true'"),
                 ("DEF='Sleepy' gravity='0 0 0' autoDisable='true'", "DEF='Sleepy' gravity='0 0 0'"),  # Gathered drifts
+                # Brisk's thresholds above both its speeds: it stops
+                ("disableLinearSpeed='0.1' disableAngularSpeed='0.1'\n          disableTime='0.25' autoDisable='true'",
+                 "disableLinearSpeed='0.3' disableAngularSpeed='0.3'\n          disableTime='0.25' autoDisable='true'"),
+                # Sleepy's thresholds above both of Lively's speeds: it stops
+                ("autoDisable='true' disableLinearSpeed='0.1'\n        disableAngularSpeed='0.1'",
+                 "autoDisable='true' disableLinearSpeed='0.3'\n        disableAngularSpeed='0.3'"),
             ))

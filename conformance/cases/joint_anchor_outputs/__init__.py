@@ -27,7 +27,9 @@ JOINTS = {
               {"body1Axis": (0.0, 0.6, 0.8), "body2Axis": (0.0, 0.8, -0.6)}),
 }
 BALL = spec("37.4.1 BallJoint: body1AnchorPoint and body2AnchorPoint represent the output that describes where the "
-            "anchorPoint is relative to the two bodies local coordinate reference frame.")
+            "anchorPoint is relative to the two bodies local coordinate reference frame.",
+            also=("37.2.5.2 Breaking joints: Each joint node will have two output-only fields that indicate the "
+                  "calculated location of the relative positions within their own frame of reference.",))
 HINGE = spec("37.4.12 SingleAxisHingeJoint: The body anchor point output fields report the current location of the "
              "anchor point relative to the corresponding body.")
 HINGE2 = spec("37.4.8 DoubleAxisHingeJoint: The body anchor point and body axis output fields report the current "

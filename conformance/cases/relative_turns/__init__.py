@@ -13,7 +13,7 @@ from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ERROR_CORRECTION, ROUNDING, ROUNDING_ANGLE, honoured, max_norm
-from conformance.results import Measure, Settings, spec
+from conformance.results import Measure, Settings, also, spec
 
 # relative_turns.x3d: no gravity; each pair's two free, isotropic bodies sit on their joint's anchor, unturned
 UT_AXIS1, UT_AXIS2 = np.array([0.0, 0.6, 0.8]), np.array([0.0, 0.8, -0.6])  # axis1 x axis2 = (-1, 0, 0)
@@ -33,6 +33,10 @@ EQUAL_TURNS = spec("37.4.14 UniversalJoint: Given the axis specified by the axis
 HINGE_ANGLE = spec("37.4.12 SingleAxisHingeJoint: The angle output field reports the current relative angle between "
                    "the two bodies in radians and the angleRate field describes the rate at which that angle is "
                    "currently changing in radians per second.")
+# Swing's bodies both turn, so the angle and rate measures, held to the relative turn, fail with either side off the
+# hinge (body2 ignored: Door's turn against the world, 1 of the relative 2.5 rad/s)
+HINGE_SIDES = also(HINGE_ANGLE, "37.4.12 SingleAxisHingeJoint: The objects on each side of the hinge are specified by "
+                   "the body1 and body2 fields.")
 
 
 def _universal(tr: TraceView, s: Settings) -> list[Measure]:
@@ -77,10 +81,10 @@ def _hinge(tr: TraceView) -> list[Measure]:
     share = min(abs(HG_W2), abs(HG_W1)) / relative  # one body's own turn misses at least this share of it
     rounding = ROUNDING * (1 + relative)
     return [Measure("Swing |angle| - |Door's turn relative to Frame|", max_norm(np.abs(angle[:, 0]) - np.abs(turn)),
-                    honoured(ROUNDING_ANGLE, share * float(np.max(np.abs(turn)))), "rad", HINGE_ANGLE,
+                    honoured(ROUNDING_ANGLE, share * float(np.max(np.abs(turn)))), "rad", HINGE_SIDES,
                     ROUNDING_ANGLE),
             Measure("Swing |angleRate| - |axis . (w1 - w2)|", max_norm(np.abs(rate[:, 0]) - np.abs(r)),
-                    honoured(rounding, share * relative), "rad/s", HINGE_ANGLE, rounding)]
+                    honoured(rounding, share * relative), "rad/s", HINGE_SIDES, rounding)]
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
