@@ -5,7 +5,8 @@
 Every field of every RigidBodyPhysics node of the X3D Unified Object Model 4.0 is accounted for
 (KINDS, the first that applies). Found from the cases themselves, so the table cannot drift:
 - covered: a case's mutation (a scene edit tests/test_conformance.py checks the case fails on)
-  changes or removes what the case's scene sets for the field;
+  changes or removes what the case's scene sets for the field; or, for a field no scene edit can
+  show, a mutant engine misreading it (Mutant.fields) fails a case that sets it (mutant_covers);
 - judged: an output (outputOnly, or a field of the Contact nodes a CollisionSensor reports) that
   a case's scene reports and its expectation reads by name;
 - exercised: a case sets it (Case.exercises), but no mutation of that case edits it.
@@ -31,8 +32,9 @@ from lxml import etree
 from x3d_core import atomic, schema, uom
 from x3d_core.world import forced_outputs
 
-from conformance.cases import CASES, ROOT, closed_forms
+from conformance.cases import BY_NAME, CASES, ROOT, closed_forms
 from conformance.cases.case import Case, Mutation
+from conformance.mutants.table import MUTANTS, Mutant
 
 TABLE = os.path.join(ROOT, "docs", "field-coverage.md")
 Field = tuple[str, str]  # (node type, field name)
@@ -56,24 +58,16 @@ _ANY: dict[str, str] = {
 _NO_STOPS = "{} has no stop angles (no min/max field), so there is no stop for this to act at"
 _UNRUN = " (no mutation; argued from the case, not run)"
 REASONS: dict[str, str] = {
-    # finite_rotation exercises both (its scene sets them); no scene edit can show them ignored on the
-    # reference backend, which turns every body by the exponential map whatever the flag says
-    **dict.fromkeys(("RigidBody.useFiniteRotation", "RigidBody.finiteRotationAxis"),
-                    "finite_rotation sets it (TRUE, axis 0 0 1, a wheel at 60 rad/s) and fails an engine that turns a "
-                    "spinning body by the first-order update, as ODE does without the flag (0.31 rad behind in 1 s); "
-                    "no edit of the scene shows it ignored on MuJoCo, the reference, which turns every body by the "
-                    "exponential map whatever the flag says (its mutation slows the spin to what the first-order "
-                    "update gives instead)"),
+    "RigidBody.finiteRotationAxis": "finite_rotation sets it (0 0 1, the wheel's spin axis, useFiniteRotation "
+                                    "TRUE), but no edit of it shows: a body spinning about the axis turns by the "
+                                    "same exact rotation whether the finite update is made about the axis or whole "
+                                    "(ODE), and MuJoCo turns every body by the exponential map whatever it says",
     "RigidBodyCollection.iterations": "no verdict can turn on it: the clause asks only that more iterations be more "
                                       "stable, and where a closed form assumes a converged solve the spec "
                                       "tolerance is honoured() and the converged bound graded "
                                       "(docs/spec-loose-ends.md 20)",
     "RigidBodyCollection.preferAccuracy": "a performance hint (\"a performance hint to the underlying evaluation\"): "
                                           "no result is wrong under either value",
-    "CollisionSpace.useGeometry": "no edit of it turns a verdict here: TRUE asks for the geometry and FALSE allows the "
-                                  "bounds (37.4.6: 'or only make approximations using the bounds of the geometry'), "
-                                  "and every backend tests the geometry under either; collision_spaces holds TRUE's "
-                                  "reading by a spec measure, which a backend testing bounds there fails",
     "UniversalJoint.stop1Bounce": _NO_STOPS.format("UniversalJoint"),
     "UniversalJoint.stop1ErrorCorrection": _NO_STOPS.format("UniversalJoint"),
     "UniversalJoint.stop2Bounce": _NO_STOPS.format("UniversalJoint"),
@@ -94,7 +88,7 @@ class Row:
     node: str
     name: str
     access: str
-    covered: list[str] = field(default_factory=list)  # 'case: edit' of each mutation that changes it
+    covered: list[str] = field(default_factory=list)  # 'case: edit' of each mutation that changes it (or mutant)
     judged: list[str] = field(default_factory=list)  # cases that read it as an output
     exercised: list[str] = field(default_factory=list)  # cases exercising it whose mutations edit other fields
     pending: str = ""
@@ -169,7 +163,28 @@ def edit(mutation: Mutation) -> str:
     """A scene edit as the tables show it (this one, and docs/clause-coverage.md's): the text it
     replaces, and by what."""
     old, new = (" ".join(s.split()) for s in (mutation.old, mutation.new))
-    return f"`{old}` → " + (f"`{new}`" if new else "removed") + ("" if mutation.spec else " (conventions)")
+    return (f"`{old}` → " + (f"`{new}`" if new else "removed") + ("" if mutation.spec else " (conventions)")
+            + (f" (on {mutation.on})" if mutation.on else ""))
+
+
+# -- mutants: fields no scene edit shows --------------------------------------------------------
+
+def credited(mutant: Mutant) -> list[str]:
+    """The cases that cover the fields a mutant names (Mutant.fields): those of its kills that
+    set one (Case.exercises), each of which tests/test_mutants.py holds to a FAIL on it."""
+    return [c for c in mutant.kills
+            if set(mutant.fields) & {".".join(f.split(".")[:2]) for f in BY_NAME[c].exercises}]
+
+
+def mutant_covers() -> Iterator[tuple[Field, str, str]]:
+    """(field, case, what the tables show) for each field an own-set mutant names and each case
+    credited with it: where every engine here reads a field one way (useGeometry: the geometry, which
+    FALSE allows and TRUE asks), a bug misreading it is shown by the engine, not by a scene edit."""
+    for m in MUTANTS:
+        for c in credited(m):
+            for key in m.fields:
+                node, name = key.split(".")
+                yield (node, name), c, f"mutant `{m.name}` ({m.bug}) fails it"
 
 
 # -- outputs: which a case reads --------------------------------------------------------------
@@ -256,6 +271,8 @@ def rows() -> list[Row]:
         for f in sorted(judged(case)):
             if f in by_key:
                 by_key[f].judged.append(case.name)
+    for f, case_name, shown in mutant_covers():
+        by_key[f].covered.append(f"{case_name}: {shown}")
     exercising = _exercising()
     waiting = set(open_pending(table))
     for r in table:
@@ -296,7 +313,9 @@ def render(table: list[Row]) -> str:
              "**Covered**: a case's mutation, a scene edit on which the case must fail",
              "(`tests/test_conformance.py::test_case_fails_when_mutated`), changes or removes what its scene",
              "sets for the field; \"(conventions)\" marks an edit that turns the verdict only to \"conforms,",
-             "differs in conventions\". **Judged**: an output the case's scene reports and its expectation",
+             "differs in conventions\", \"(on BACKEND)\" one judged there, where the reference cannot show it;",
+             "or, for a field no scene edit shows, a mutant engine misreading it fails the case",
+             "(`tests/test_mutants.py`). **Judged**: an output the case's scene reports and its expectation",
              "reads. **Exercised**: a case sets the field at a non-default value (its `exercises`), but no",
              "mutation of that case edits it. **Pending**: a case is being written for it. **Uncovered**: a",
              "field a scene could observe, on which no mutation shows a verdict turn, and what would show it.",

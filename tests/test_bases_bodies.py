@@ -90,8 +90,10 @@ def _damped(per: str, d_lin: float = DAMP.DAMP_LINEAR, d_ang: float = DAMP.DAMP_
     def ratio(d: float, inertia: float) -> np.ndarray:
         return {"step": (1 - d) ** np.round(times / s.dt), "frame": (1 - d) ** frames,
                 "force": (1 - d * h / inertia) ** frames, "second": (1 - d) ** (h * frames)}[per][:, None]
-    return _rows("Damped", {"linearVelocity": DAMP.DAMP_V0 * ratio(d_lin, DAMP.DAMP_MASS),
-                            "angularVelocity": DAMP.DAMP_W0 * ratio(d_ang, DAMP.DAMP_MOMENT)}, times)
+    undamped = _rows("Undamped", {"linearVelocity": np.tile(DAMP.DAMP_V0, (len(times), 1)),
+                                  "angularVelocity": np.tile(DAMP.DAMP_W0, (len(times), 1))}, times)  # autoDamp FALSE
+    return undamped + _rows("Damped", {"linearVelocity": DAMP.DAMP_V0 * ratio(d_lin, DAMP.DAMP_MASS),
+                                       "angularVelocity": DAMP.DAMP_W0 * ratio(d_ang, DAMP.DAMP_MOMENT)}, times)
 
 
 @pytest.mark.parametrize("per", ["frame", "force", "second"])

@@ -314,6 +314,7 @@ def test_every_case_declares_mutations_that_apply_once(case):
         text = f.read()
     for m in case.mutations:
         assert m.old or m.runs, f"{m}: neither a scene edit nor other runs"
+        assert m.on is None or m.on in INFO, f"{m}: judged on {m.on}, which is no backend"
         if m.old:
             assert text.count(m.old) == 1, (case.name, m.old)
             assert m.apply(text) != text
@@ -370,10 +371,19 @@ def _caught(m, how: str, as_it_is: results.Result, r: results.Result) -> str | N
     return None if r.verdict == results.FAIL else f"{r.verdict} {r.reason}"
 
 
+def _places(m: Mutation, found: dict[str, results.Result]) -> list[tuple[str, str]]:
+    """Where mutation m is judged: the backend it names (Mutation.on), if that passes the case as
+    it is, else nowhere; without one, where the case's mutations are (_judged_on)."""
+    if m.on is None:
+        return _judged_on(found)
+    return [(m.on, "pass")] if m.on in found and found[m.on].verdict == results.PASS else []
+
+
 @pytest.fixture(scope="module")
 def mutated_runs(request, matrix, tmp_path_factory):
-    """For every case this session's mutation tests selected: per place it is judged (backend,
-    how, the case's result there as it is, each mutation's result), all run in parallel once."""
+    """For every case this session's mutation tests selected: for each of its mutations, per place
+    it is judged (backend, how, the case's result there as it is, the mutated result), all run in
+    parallel once."""
     wanted = [item.callspec.params["case"] for item in request.session.items
               if getattr(item, "originalname", None) == "test_case_fails_when_mutated" and hasattr(item, "callspec")]
     pairs = [(c, b) for c in wanted for b in INSTALLED]
@@ -382,28 +392,33 @@ def mutated_runs(request, matrix, tmp_path_factory):
             [lambda c=c, b=b: matrix.get((c.name, b)) or verdicts.run_pair(c, b) for c, b in pairs])):
         found.setdefault(c.name, {})[b] = r
     folder = tmp_path_factory.mktemp("mutated")
-    places = {c.name: _judged_on(found[c.name]) for c in wanted}
-    jobs = [((c.name, b), lambda m=_mutated(c, k, folder), b=b: verdicts.run_pair(m, b))
-            for c in wanted for b, _ in places[c.name] for k in range(len(c.mutations))]
-    ran: dict[tuple[str, str], list[results.Result]] = {}
-    for (key, _), r in zip(jobs, verdicts.run_many([j for _, j in jobs])):
-        ran.setdefault(key, []).append(r)
-    return {c.name: [(b, how, found[c.name][b], ran.get((c.name, b), [])) for b, how in places[c.name]]
-            for c in wanted}
+    places = {(c.name, k): _places(m, found[c.name]) for c in wanted for k, m in enumerate(c.mutations)}
+    jobs = [(c.name, k, b, how, lambda m=_mutated(c, k, folder), b=b: verdicts.run_pair(m, b))
+            for c in wanted for k in range(len(c.mutations)) for b, how in places[(c.name, k)]]
+    out = {c.name: [[] for _ in c.mutations] for c in wanted}
+    for (name, k, b, how, _), r in zip(jobs, verdicts.run_many([j[-1] for j in jobs])):
+        out[name][k].append((b, how, found[name][b], r))
+    return out
 
 
 @pytest.mark.parametrize("case", C.CASES, ids=lambda c: c.name)
 def test_case_fails_when_mutated(case, mutated_runs):
     if REFERENCE is None:
         pytest.skip("no backend is installed")
-    places = mutated_runs[case.name]
-    if not places:
-        pytest.skip(f"no installed backend to judge {case.name}'s mutations on")
-    for k, m in enumerate(case.mutations):
+    absent = []
+    for m, places in zip(case.mutations, mutated_runs[case.name]):
         what = f"{case.name}, {m.old.strip()!r} -> {m.new.strip()!r}" + (f" and runs {m.runs}" if m.runs else "")
+        if m.on is not None and m.on not in INSTALLED:
+            absent.append(f"{what}: judged on {m.on}, which is not installed")
+            continue
+        assert m.on is None or places, f"{what}: judged on {m.on}, which does not pass the case as it is"
+        if not places:
+            pytest.skip(f"no installed backend to judge {case.name}'s mutations on")
         missed = [f"on {b} ({how}): {why}" for b, how, as_it_is, mutated in places
-                  if (why := _caught(m, how, as_it_is, mutated[k])) is not None]
+                  if (why := _caught(m, how, as_it_is, mutated)) is not None]
         assert len(missed) < len(places), f"{what}: " + "; ".join(missed)
+    if absent:
+        pytest.skip("; ".join(absent))
 
 
 # -- discovery: a case is a folder --------------------------------------------------------

@@ -14,6 +14,7 @@ import pytest
 
 from backends import base
 from conformance import cases as C
+from conformance import coverage
 from conformance.results import BLEW_UP, CONVENTION, CONVENTIONS, FAIL, PASS, SPEC, UNSUPPORTED, Result
 from conformance.runner import verdicts
 
@@ -84,6 +85,7 @@ def test_every_mutant_is_killed_by_its_cases_or_names_its_gap():
         assert set(m.kills) <= set(C.BY_NAME), m.name
         assert m.world is not None or m.relay is not None, m.name
         assert m.bug and m.models and m.base in base.IN_TREE, m.name
+        assert not m.fields or coverage.credited(m), f"{m.name}: none of its kills sets {m.fields}"
 
 
 def test_the_site_declares_every_mutant_as_a_backend(installed):
@@ -121,3 +123,7 @@ def test_the_mutant_is_killed(verdict, mutant):
         assert not mutant.silent, f"{mutant.name}: killed by a spec measure, yet its row says the clause is silent"
     elif got == {CONVENTIONS}:
         assert mutant.silent, f"{mutant.name}: killed by conventions alone: its row must say why the clause is silent"
+    # the kills that cover its fields (docs/field-coverage.md) must each turn a spec measure
+    unturned = {c: verdict[(c, mutant.backend)] for c in coverage.credited(mutant)
+                if verdict[(c, mutant.backend)] != FAIL}
+    assert not unturned, f"{mutant.name} covers {mutant.fields} by these kills, which must FAIL: {unturned}"

@@ -27,12 +27,16 @@ class Mutation:
     frame-period step, friction directions that follow the motion): the edit must then make a
     measure fail, a convention at least, and the case may still conform. `grades` is True where
     the edit stands for a looser solve, which the clause allows (a loop of joints held softly):
-    it must then push an accuracy grade past its bound, and the verdict may stay."""
+    it must then push an accuracy grade past its bound, and the verdict may stay. `on` names the
+    backend the edit is judged on where the reference cannot show it (it honours the field whatever
+    the scene says: MuJoCo turns every body by the exponential map): the case must pass there as it
+    is, and the edit is judged there alone."""
     old: str
     new: str
     runs: tuple[Settings, ...] | None = None
     spec: bool = True
     grades: bool = False
+    on: str | None = None
 
     def apply(self, text: str) -> str:
         """The scene's text with the edit made (ValueError unless `old` is there exactly once)."""

@@ -47,6 +47,10 @@ class Mutant:
     # where its kills turn conventions alone: why no sentence of the clause judges the bug (an implementer
     # with it is told it differs in conventions, which is then all the clause allows anyone to say)
     silent: str = ""
+    # the fields (NODE.field) whose misreading it stands for, where no scene edit shows them (every engine
+    # here reads them one way): of its kills, those that set one cover it (conformance.coverage.mutant_covers),
+    # and tests/test_mutants.py holds each of those to a FAIL
+    fields: tuple[str, ...] = ()
 
     @property
     def backend(self) -> str:
@@ -306,7 +310,8 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("cylinder-cone-as-boxes", "Cylinder and Cone collide as their bounding boxes",
            "an engine without cylinders or cones (a reading the clause allows outside a CollisionSpace with "
            "useGeometry TRUE: cylinder_cone_shape's conventions)",
-           geometries(_as_box), kills=("cylinder_cone_shape", "collision_spaces")),
+           geometries(_as_box), kills=("cylinder_cone_shape", "collision_spaces"),
+           fields=("CollisionSpace.useGeometry",)),
     Mutant("shape-bbox-ignored", "a collidable Shape's explicit bboxSize ignored: its geometry collides instead",
            IGNORED, geometries(_bbox_ignored), kills=("cylinder_cone_shape",)),
     Mutant("collider-not-filtering", "the collider does not filter: every body's collidables collide",
