@@ -183,6 +183,18 @@ def _shapes(g: Geometry) -> list[tuple[dart.dynamics.Shape, np.ndarray]]:
     raise Unsupported(f"{g.name}: no DART shape for a {g.kind}")
 
 
+def _shape_node(node: dart.dynamics.BodyNode, shape, turn: np.ndarray, g: Geometry,
+                name: str) -> dart.dynamics.ShapeNode:
+    """A shape on its body's node, posed where the geometry sits in the body's frame (turn: the
+    shape's own axes onto X3D's)."""
+    frame = node.createShapeNode(shape, name)
+    pose = dart.math.Isometry3()
+    pose.set_rotation(R.matrix(g.orientation) @ turn)
+    pose.set_translation(np.asarray(g.position, dtype=np.float64))
+    frame.setRelativeTransform(pose)
+    return frame
+
+
 def _grid_triangles(nx: int, nz: int) -> np.ndarray:
     """An ElevationGrid's cells as two triangles each, facing +y, split along the diagonal
     from (i+1, j) to (i, j+1); point (i, j) is row j * nx + i."""
@@ -266,11 +278,7 @@ class _Watched:
         for k, g in enumerate(c.geometries):
             node = static if g.body == STATIC else sim.nodes[g.body]
             for m, (shape, turn) in enumerate(_shapes(g)):
-                frame = node.createShapeNode(shape, f"w{n}.{k}" if m == 0 else f"w{n}.{k}.{m}")
-                pose = dart.math.Isometry3()
-                pose.set_rotation(R.matrix(g.orientation) @ turn)
-                pose.set_translation(np.asarray(g.position, dtype=np.float64))
-                frame.setRelativeTransform(pose)
+                frame = _shape_node(node, shape, turn, g, f"w{n}.{k}" if m == 0 else f"w{n}.{k}.{m}")
                 self.frames.append(frame)
                 self.geometry_of[frame.getName()] = k
                 self.split |= m > 0
@@ -383,11 +391,7 @@ class DartSimulation:
         for k, g in enumerate(c.geometries):
             node = static if g.body == STATIC else self.nodes[g.body]
             for n, (shape, turn) in enumerate(_shapes(g)):
-                frame = node.createShapeNode(shape, f"g{k}" if n == 0 else f"g{k}.{n}")
-                pose = dart.math.Isometry3()
-                pose.set_rotation(R.matrix(g.orientation) @ turn)
-                pose.set_translation(np.asarray(g.position, dtype=np.float64))
-                frame.setRelativeTransform(pose)
+                frame = _shape_node(node, shape, turn, g, f"g{k}" if n == 0 else f"g{k}.{n}")
                 frame.createCollisionAspect()
                 surface = frame.createDynamicsAspect()
                 surface.setFrictionCoeff(mu)
