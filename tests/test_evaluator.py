@@ -168,18 +168,23 @@ class _FakeEngine:
         return Sim()
 
 
-def test_collision_sensor_rows_name_bodies_collidables_and_parameters(tmp_path):
-    from x3d_core.evaluator import run
-    s = scene(tmp_path, """
+# a ball on a floor, both in collection C, which Sensor watches: {collection} is C's own attributes
+_SENSED_BALL = """
 <Group><CollidableShape DEF='BallShape'><Shape containerField='shape'><Sphere radius='0.5'/></Shape></CollidableShape>
   <CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape containerField='shape'><Box size='4 1 4'/></Shape>
   </CollidableShape></Group>
 <RigidBodyCollection><RigidBody DEF='Ball' position='0 1 0'><CollidableShape USE='BallShape' containerField='geometry'/>
   </RigidBody>
-  <CollisionCollection DEF='C' bounce='0.4' appliedParameters='"BOUNCE" "FRICTION_COEFFICIENT_2"'
-      frictionCoefficients='0.3 0.6'><CollidableShape USE='BallShape'/><CollidableShape USE='Floor'/>
+  <CollisionCollection DEF='C' {collection}><CollidableShape USE='BallShape'/><CollidableShape USE='Floor'/>
   </CollisionCollection></RigidBodyCollection>
-<CollisionSensor DEF='Sensor'><CollisionCollection USE='C' containerField='collider'/></CollisionSensor>""")
+<CollisionSensor DEF='Sensor'><CollisionCollection USE='C' containerField='collider'/></CollisionSensor>"""
+
+
+def test_collision_sensor_rows_name_bodies_collidables_and_parameters(tmp_path):
+    from x3d_core.evaluator import run
+    s = scene(tmp_path, _SENSED_BALL.format(
+        collection="""bounce='0.4' appliedParameters='"BOUNCE" "FRICTION_COEFFICIENT_2"'"""
+                   " frictionCoefficients='0.3 0.6'"))
     (w,) = worlds(s)
     assert [(g.name, g.body, g.kind) for g in w.collisions.geometries] == [("BallShape", 0, "sphere"),
                                                                           ("Floor", STATIC, "box")]
@@ -199,16 +204,8 @@ def test_sensor_contacts_carry_the_collections_values_that_it_does_not_apply(tmp
     """37.4.4: a Contact carries the collection's parameters, applied or not, and its
     appliedParameters; frictionCoefficients 0 0 both ways is no friction: frictionDirection 0 0 0."""
     from x3d_core.evaluator import run
-    s = scene(tmp_path, """
-<Group><CollidableShape DEF='BallShape'><Shape containerField='shape'><Sphere radius='0.5'/></Shape></CollidableShape>
-  <CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape containerField='shape'><Box size='4 1 4'/></Shape>
-  </CollidableShape></Group>
-<RigidBodyCollection><RigidBody DEF='Ball' position='0 1 0'><CollidableShape USE='BallShape' containerField='geometry'/>
-  </RigidBody>
-  <CollisionCollection DEF='C' bounce='0.5' surfaceSpeed='0.3 -0.7' slipFactors='0.01 0.02'
-      appliedParameters='"FRICTION_COEFFICIENT_2"'><CollidableShape USE='BallShape'/><CollidableShape USE='Floor'/>
-  </CollisionCollection></RigidBodyCollection>
-<CollisionSensor DEF='Sensor'><CollisionCollection USE='C' containerField='collider'/></CollisionSensor>""")
+    s = scene(tmp_path, _SENSED_BALL.format(collection="""bounce='0.5' surfaceSpeed='0.3 -0.7' slipFactors='0.01 0.02'
+      appliedParameters='"FRICTION_COEFFICIENT_2"'"""))
     (w,) = worlds(s)
     p = w.collisions.parameters  # what the physics applies: none of them
     assert p.bounce == 0.0 and not p.surface_speed.any() and not p.slip.any() and p.frictionless

@@ -143,8 +143,9 @@ PHYSICS_CLOCK = convention(
     "browsers that step once per frame, or start a frame late, differ here and nowhere else")
 
 
-CLOCK = spec("37.2.2.1 Event model evaluation: An implementation of this specification shall be responsible for keeping "
-             "the physics fixed time interval evaluations synchronized with the varying visual frame time intervals.")
+CLOCK = spec("37.2.2.1 Event model evaluation: An implementation of this specification shall be responsible for "
+             "keeping the physics fixed time interval evaluations synchronized with the varying visual frame time "
+             "intervals.")
 
 
 UNTIMED = accuracy("an acceleration fitted whatever the clock is exact for a fixed step only; a physics step that "
@@ -297,10 +298,11 @@ def hinge_limit(tr: TraceView, s: Settings, joint: str, lo: float, hi: float, od
     (the arm swings to the vertical at least: pi/2 - |limit| past it), taken at whichever limit
     gives the larger, so that the other sign's reading (the fall reaching the other limit) is
     held as this one is. The angle beyond the limits is the spec's too ("the maximum angles
-    through which the hinge is allowed to travel"), with the same tolerance: a stop that yields less (ODE's quick-step at the scene's
-    10 iterations: 0.23 rad past, then thrown back) is graded against the bound, not accused;
-    one that lets the arm go past by more than half what ignoring the limits would fails. Where
-    the arm is at the end is graded only (the clause fixes the limits of travel, not a rest).
+    through which the hinge is allowed to travel"), with the same tolerance: a stop that yields
+    less (ODE's quick-step at the scene's 10 iterations: 0.23 rad past, then thrown back) is
+    graded against the bound, not accused; one that lets the arm go past by more than half what
+    ignoring the limits would fails. Where the arm is at the end is graded only (the clause fixes
+    the limits of travel, not a rest).
 
     Convention (ODE's sign): the fall reaches ode_limit, not the other (hi - lo apart)."""
     _, ang = tr.series(joint, "angle")
@@ -429,6 +431,20 @@ def friction_fit(tr: TraceView, s: Settings, name: str, mu: float, v0: float, ta
     along = target + np.sign(gap) * np.maximum(abs(gap) - mu * G * tp, 0.0)
     return (max_norm(v - np.outer(along, direction)),
             2 * mu * G * s.dt + ROUNDING * (1 + abs(v0) + abs(target)))
+
+
+# the sentences of 37.4.5 and 37.4.7 that every case reading a CollisionSensor's rows enforces
+SENSOR_ACTIVE = spec("37.4.5 CollisionSensor: The CollisionSensor is active (isActive is TRUE) when contacts were "
+                     "located as a result of the movement of the watched objects from last frame.")
+SENSOR_INTERSECTIONS = spec("37.4.5 CollisionSensor: The intersections field is used to report the colliding "
+                            "geometry that was detected in this last frame.")
+SENSOR_CONTACTS = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were generated as "
+                       "a result of the scene graph changes last frame. This field generates instances of the Contact "
+                       "node.")
+CONTACT_NORMAL = spec("37.4.7 Contact: The contactNormal field is a unit vector describing the normal between the two "
+                      "colliding bodies.")
+CONTACT_DEPTH = spec("37.4.7 Contact: The depth field indicates how deep the current intersection is along the "
+                     "normal vector.")
 
 
 def sensor_contacts(tr: TraceView, sensor: str, values: Sequence[str] = (),

@@ -9,8 +9,8 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import (CFM_DEFAULT, ERP_DEFAULT, G, applied_names, honoured, rests,
-                                            sensor_contacts, steps)
+from conformance.cases.closed_forms import (CFM_DEFAULT, ERP_DEFAULT, SENSOR_CONTACTS, G, applied_names, honoured,
+                                            rests, sensor_contacts, steps)
 from conformance.results import Measure, Settings, convention, spec
 
 # contact_defaults.x3d: the collection's parameters, as every reported Contact must carry them
@@ -28,8 +28,6 @@ SOFT = convention("ODE's contact softness with ERROR_REDUCTION and CONSTANT_FORC
                   "softnessErrorCorrection as ERP and softnessConstantForceMix as CFM, a spring that rests a body "
                   "m g h CFM / ERP deep; the clause says only that the force mix makes the surfaces 'appear to be "
                   "somewhat soft'")
-SENSED = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were generated as a result "
-              "of the scene graph changes last frame. This field generates instances of the Contact node.")
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
@@ -64,10 +62,10 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     soft = CD_M * G * h * CD_VALUES["softnessConstantForceMix"] / CD_VALUES["softnessErrorCorrection"]
     stiff = CD_M * G * h * CFM_DEFAULT / ERP_DEFAULT
     depth = CD_R - float(p[-1, 1])
-    return (rests(tr, s, "Ball", CD_START, SENSED)
+    return (rests(tr, s, "Ball", CD_START, SENSOR_CONTACTS)
             + [Measure(f"Ball depth at the end - m g h CFM / ERP ({soft:.3g} m)", abs(depth - soft),
                        honoured(1e-3 * soft, soft - stiff), "m", SOFT, 1e-3 * soft)]
-            + [Measure("frames after the first step with no contact reported", missing, 0, basis=SENSED),
+            + [Measure("frames after the first step with no contact reported", missing, 0, basis=SENSOR_CONTACTS),
                Measure("contacts whose parameters are not the collection's", wrong, 0, basis=DEFAULTS),
                Measure("contacts whose frictionDirection is not a unit vector across the normal", skewed, 0,
                        basis=DIRECTION)])

@@ -20,7 +20,7 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
-from conformance.cases.closed_forms import applied_names, rests, sensor_contacts, steps
+from conformance.cases.closed_forms import SENSOR_CONTACTS, applied_names, rests, sensor_contacts, steps
 from conformance.results import Measure, Settings, spec
 
 # contact_unapplied.x3d: the collection's parameters, as every reported Contact must carry them
@@ -38,8 +38,6 @@ APPLIED = spec("37.4.4 CollisionCollection: The appliedParameters indicates glob
 NO_FRICTION = spec("37.4.7 Contact: The frictionDirection field is used to control the vector that describes which "
                    "way friction is to be applied to the contact location. If there is no friction, the direction "
                    "should be set to 0, 0, 0.")
-SENSED = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were generated as a result "
-              "of the scene graph changes last frame. This field generates instances of the Contact node.")
 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
@@ -61,8 +59,8 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
                     for value, want in zip(values, CU_VALUES.values())) for values in carried)
     unnamed = sum(applied_names(c["appliedParameters"]) != CU_APPLIED for c in found)
     directed = sum(c["frictionDirection"] is None or bool(np.any(c["frictionDirection"])) for c in found)
-    return (rests(tr, s, "Ball", CU_START, SENSED)
-            + [Measure("frames after the first step with no contact reported", missing, 0, basis=SENSED),
+    return (rests(tr, s, "Ball", CU_START, SENSOR_CONTACTS)
+            + [Measure("frames after the first step with no contact reported", missing, 0, basis=SENSOR_CONTACTS),
                Measure("contacts whose parameters are not the collection's", wrong, 0, basis=DEFAULTS),
                Measure("contacts whose appliedParameters are not the collection's", unnamed, 0, basis=APPLIED),
                Measure("contacts without friction whose frictionDirection is not 0 0 0", directed, 0,

@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
-from conformance.cases.closed_forms import falls, held, rests, sensor_contacts, steps
+from conformance.cases.closed_forms import SENSOR_ACTIVE, falls, held, rests, sensor_contacts, steps
 from conformance.results import Measure, Settings, description, spec
 
 # disabled_collections.x3d: the bodies' file states and starts
@@ -19,8 +19,6 @@ COLLIDE = spec("37.4.4 CollisionCollection: The enabled field is used to control
                "system for this collection should be run at the end of this frame. A value of TRUE enables it while a "
                "value of FALSE disables it. A CollisionSensor node watching this collection does not report any "
                "outputs for this collection for this frame if it is not enabled.")
-ACTIVE = spec("37.4.5 CollisionSensor: The CollisionSensor is active (isActive is TRUE) when contacts were located as "
-              "a result of the movement of the watched objects from last frame.")
 SENSOR_ENABLED = description("CollisionSensor enabled: \"Enables/disables node operation.\"")
 
 
@@ -52,10 +50,10 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
     idle = sum(1 for time, n in zip(t.tolist(), steps(t, s.dt).tolist()) if n >= 1 and not active.get(time, False))
     return (held(tr, "Held", HELD_POSITION, HELD_ORIENTATION, RUN)
             + falls(traces, settings, "Sinker", SINKER, COLLIDE)
-            + rests(tr, s, "Watched", WATCHED, ACTIVE)
+            + rests(tr, s, "Watched", WATCHED, SENSOR_ACTIVE)
             + [Measure("frames on which Late (watching a disabled collection) reports", _reporting(tr, "Late"), 0,
                        basis=COLLIDE),
-               Measure("frames after the first step with Watching inactive", idle, 0, basis=ACTIVE),
+               Measure("frames after the first step with Watching inactive", idle, 0, basis=SENSOR_ACTIVE),
                Measure("frames on which Blind (disabled) reports", _reporting(tr, "Blind"), 0, basis=SENSOR_ENABLED)])
 
 

@@ -10,7 +10,9 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case
-from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, G, CFM_DEFAULT, ERP_DEFAULT, steps, sensor_contacts
+from conformance.cases.closed_forms import (CFM_DEFAULT, CONTACT_DEPTH, CONTACT_NORMAL, ERP_DEFAULT, ROUNDING,
+                                            ROUNDING_ANGLE, SENSOR_ACTIVE, SENSOR_CONTACTS, SENSOR_INTERSECTIONS, G,
+                                            sensor_contacts, steps)
 from conformance.results import Measure, Settings, accuracy, spec
 
 
@@ -20,26 +22,15 @@ SG_LOWER = {frozenset(("Floor", "BlockShape")): "Floor", frozenset(("BlockShape"
 SG_BODY = {"Floor": "NULL", "BlockShape": "Block", "BallShape": "Ball"}
 
 # clause 37's text: 37.4.5 CollisionSensor, 37.4.7 Contact
-ACTIVE = spec("37.4.5 CollisionSensor: The CollisionSensor is active (isActive is TRUE) when contacts were located "
-              "as a result of the movement of the watched objects from last frame.")
-INTERSECTIONS = spec("37.4.5 CollisionSensor: The intersections field is used to report the colliding geometry "
-                     "that was detected in this last frame.")
-CONTACTS = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were "
-                "generated as a result of the scene graph changes last frame. This field generates "
-                "instances of the Contact node.")
 NAMES = spec("37.4.7 Contact: The body1 and body2 fields specify two top-level nodes that should be evaluated in the "
              "physics model as a single set of interactions with respect to each other. The geometry1 and geometry2 "
              "fields specify information about body1 and body2.")
-NORMAL = spec("37.4.7 Contact: The contactNormal field is a unit vector describing the normal between the two "
-              "colliding bodies.")
 NORMAL_DIRECTION = spec("37.2.5.3 Collision contact description: When a collision is found between two objects, it is "
                         "described with the following details: 1. a unit vector describing the surface normal from "
                         "body 1 to body 2 at the point of contact, 2. a primary direction of motion for body 1 "
                         "relative to body 2, and 3. a second direction that is perpendicular to both the normal and "
                         "the primary direction is implied for the purposes of providing various sets of "
                         "coefficients.")
-DEPTH = spec("37.4.7 Contact: The depth field indicates how deep the current intersection is along the normal "
-             "vector.")
 POSITION = spec("37.4.7 Contact: The position field indicates the exact location of the contact that was made "
                 "between the two objects.")
 
@@ -114,17 +105,17 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
                 y = c["position"][1]
                 vertical_err = max(vertical_err, max(y - max(top, bottom), min(top, bottom) - y, 0.0))
         no_ball_contact += ball_contacts == 0
-    return [Measure("frames after the first step with isActive FALSE", inactive, 0, basis=ACTIVE),
+    return [Measure("frames after the first step with isActive FALSE", inactive, 0, basis=SENSOR_ACTIVE),
             Measure("frames whose intersections do not name Floor, BlockShape and BallShape", missing_hits, 0,
-                    basis=INTERSECTIONS),
+                    basis=SENSOR_INTERSECTIONS),
             Measure("contacts whose geometry1/geometry2/body1/body2 are not a touching pair and its bodies",
                     wrong_names, 0, basis=NAMES),
-            Measure("frames with no BallShape-BlockShape contact", no_ball_contact, 0, basis=CONTACTS),
+            Measure("frames with no BallShape-BlockShape contact", no_ball_contact, 0, basis=SENSOR_CONTACTS),
             Measure("contactNormal - (0, 1, 0) or (0, -1, 0), the nearer (worst contact)", normal_err,
-                    tilt + ROUNDING_ANGLE, basis=NORMAL),
+                    tilt + ROUNDING_ANGLE, basis=CONTACT_NORMAL),
             Measure("contacts whose contactNormal does not point from geometry1 towards geometry2", reversed_normals, 0,
                     basis=NORMAL_DIRECTION),
-            Measure("ball-block |depth| - their overlap (worst contact)", overlap_err, moved, "m", DEPTH),
+            Measure("ball-block |depth| - their overlap (worst contact)", overlap_err, moved, "m", CONTACT_DEPTH),
             Measure("|depth| (worst contact)", depth_err, depth_tol, "m", SINK),
             Measure("ball contact position - ball centre, horizontally", horizontal_err, SG_R * tilt + ROUNDING, "m",
                     POSITION),

@@ -10,7 +10,8 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
-from conformance.cases.closed_forms import G, ROUNDING, ROUNDING_ANGLE, physics_time, sensor_contacts
+from conformance.cases.closed_forms import (CONTACT_DEPTH, CONTACT_NORMAL, ROUNDING, ROUNDING_ANGLE, SENSOR_ACTIVE,
+                                            SENSOR_CONTACTS, SENSOR_INTERSECTIONS, G, physics_time, sensor_contacts)
 from conformance.results import Measure, Settings, spec
 
 # sensor_only.x3d: Ball (r 0.1, released at rest at y0 = 2) falls through the static GateShape (y 0.5 to 1.0)
@@ -26,17 +27,6 @@ FOR_USER = spec("37.4.5 CollisionSensor: The CollisionSensor node is used to sen
                 "instance of this class to be in the scene in order for it to run or affect the physics model. This "
                 "class is used to report to the user contact information should the user require this information "
                 "for other purposes.")
-ACTIVE = spec("37.4.5 CollisionSensor: The CollisionSensor is active (isActive is TRUE) when contacts were located "
-              "as a result of the movement of the watched objects from last frame.")
-INTERSECTIONS = spec("37.4.5 CollisionSensor: The intersections field is used to report the colliding geometry "
-                     "that was detected in this last frame.")
-CONTACTS = spec("37.4.5 CollisionSensor: The contacts field is used to report contacts that were "
-                "generated as a result of the scene graph changes last frame. This field generates "
-                "instances of the Contact node.")
-NORMAL = spec("37.4.7 Contact: The contactNormal field is a unit vector describing the normal between the two "
-              "colliding bodies.")
-DEPTH = spec("37.4.7 Contact: The depth field indicates how deep the current intersection is along the normal "
-             "vector.")
 
 
 def _intersections(tr: TraceView, sensor: str) -> dict[float, set[str]]:
@@ -108,14 +98,14 @@ def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Me
         Measure("Ball.linearVelocity - (0, -sqrt(2 g (y0 - y)), 0): the speed of its fall from y0 (worst frame)",
                 float(np.linalg.norm(v - free, axis=1).max()), G * h + ROUNDING, "m/s", FOR_USER, G * h),
         Measure("judged frames whose isActive is not TRUE exactly while the ball overlaps the gate", wrong_active, 0,
-                basis=ACTIVE),
+                basis=SENSOR_ACTIVE),
         Measure("judged frames whose intersections are not BallShape and GateShape while they overlap, none else",
-                wrong_hits, 0, basis=INTERSECTIONS),
+                wrong_hits, 0, basis=SENSOR_INTERSECTIONS),
         Measure("judged frames without a BallShape-GateShape contact (bodies Ball, NULL) while they overlap, or "
-                "with any other contact", wrong_contacts, 0, basis=CONTACTS),
+                "with any other contact", wrong_contacts, 0, basis=SENSOR_CONTACTS),
         Measure("contactNormal - (0, 1, 0) or (0, -1, 0), the nearer (worst contact)", normal_err, ROUNDING_ANGLE,
-                basis=NORMAL),
-        Measure("|depth - the overlap along the normal| (worst contact)", depth_err, moved, "m", DEPTH)]
+                basis=CONTACT_NORMAL),
+        Measure("|depth - the overlap along the normal| (worst contact)", depth_err, moved, "m", CONTACT_DEPTH)]
 
 
 CASE = Case("sensor_only", "sensor_only.x3d",
