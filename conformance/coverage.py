@@ -56,7 +56,6 @@ _ANY: dict[str, str] = {
     "description": "X3D 4.0's author prose about the node, never physics",
 }
 _NO_STOPS = "{} has no stop angles (no min/max field), so there is no stop for this to act at"
-_UNRUN = " (no mutation; argued from the case, not run)"
 REASONS: dict[str, str] = {
     "RigidBody.finiteRotationAxis": "finite_rotation sets it (0 0 1, the wheel's spin axis, useFiniteRotation "
                                     "TRUE), but no edit of it shows: a body spinning about the axis turns by the "

@@ -16,7 +16,7 @@ from conformance.results import Measure, Settings, spec
 # disable_default.x3d: every body drifts at V0 and turns at W0, under every threshold (0.1 m/s, 0.1 rad/s, 0.25 s)
 DD_V0, DD_W0 = np.array([0.05, 0.0, 0.0]), np.array([0.0, 0.0, 0.05])
 DD_TIME = 0.25
-DD_SETTLED = 0.5  # s: a disabled body is at rest from here on, a quarter second after disableTime
+DD_SETTLED = DD_TIME + 0.25  # s: a disabled body is at rest from here on, a quarter second after disableTime
 BODY_SWITCH = spec("37.4.10 RigidBody: By default, this automatic disabling is turned off. It may be enabled by "
                    "setting the autoDisable field to TRUE.")
 COLLECTION_SWITCH = spec("37.4.11 RigidBodyCollection: By default, this automatic disabling is turned off. It may be "
