@@ -9,9 +9,11 @@ import pytest
 
 from x3d_core.analysis import features
 from x3d_core.applied import applied
+from x3d_core.evaluator import RunSettings, run
 from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.model_diff import differences
+from x3d_core.world import worlds
 
 XML_HEAD = "<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='{v}'>\n"
 
@@ -163,6 +165,123 @@ def test_xml_proto_expands(tmp_path):
     assert not s.errors, [str(e) for e in s.errors]
     l1, l2 = s.roots[0]["bodies"]
     assert (l1.def_name, l1["mass"], l2["mass"]) == ("L1", 7, 3)
+
+
+# A PROTO whose body's first root is a Transform and whose second is the RigidBodyCollection
+# (X_ITE's BallJoint example is built so): the body's position IS the instance's start, its
+# CollidableShape USEs the first root's Shape, a ROUTE joins the two roots. Drop A stands at
+# the top of the scene, Drop B in a Group, and Again's body is one more Drop instance.
+MANY_ROOTS_VRML = """
+PROTO Drop [ initializeOnly SFVec3f start 0 0 0 ] {
+  DEF Ball Transform { children DEF Look Shape { geometry Sphere { radius 0.1 } } }
+  RigidBodyCollection { gravity 0 -9.81 0
+    bodies DEF Body RigidBody { position IS start geometry CollidableShape { shape USE Look } } }
+  ROUTE Body.position_changed TO Ball.set_translation
+}
+PROTO Again [ ] { Drop { start 6 30 0 } }
+DEF A Drop { start 0 10 0 }
+Group { children [ DEF B Drop { start 3 20 0 } ] }
+Again { }
+"""
+MANY_ROOTS_XML = """
+<ProtoDeclare name='Drop'>
+  <ProtoInterface><field name='start' type='SFVec3f' accessType='initializeOnly' value='0 0 0'/></ProtoInterface>
+  <ProtoBody>
+    <Transform DEF='Ball'><Shape DEF='Look'><Sphere radius='0.1'/></Shape></Transform>
+    <RigidBodyCollection gravity='0 -9.81 0'>
+      <RigidBody DEF='Body' containerField='bodies'>
+        <IS><connect nodeField='position' protoField='start'/></IS>
+        <CollidableShape containerField='geometry'><Shape USE='Look' containerField='shape'/></CollidableShape>
+      </RigidBody>
+    </RigidBodyCollection>
+    <ROUTE fromNode='Body' fromField='position_changed' toNode='Ball' toField='set_translation'/>
+  </ProtoBody>
+</ProtoDeclare>
+<ProtoDeclare name='Again'><ProtoBody>
+  <ProtoInstance name='Drop'><fieldValue name='start' value='6 30 0'/></ProtoInstance>
+</ProtoBody></ProtoDeclare>
+<ProtoInstance name='Drop' DEF='A'><fieldValue name='start' value='0 10 0'/></ProtoInstance>
+<Group><ProtoInstance name='Drop' DEF='B'><fieldValue name='start' value='3 20 0'/></ProtoInstance></Group>
+<ProtoInstance name='Again'/>
+"""
+MANY_ROOTS_JSON = """{ "X3D": { "@profile": "Full", "@version": "4.0", "Scene": { "-children": [
+  { "ProtoDeclare": { "@name": "Drop",
+      "ProtoInterface": { "field": [
+        { "@name": "start", "@type": "SFVec3f", "@accessType": "initializeOnly", "@value": [0, 0, 0] } ] },
+      "ProtoBody": { "-children": [
+        { "Transform": { "@DEF": "Ball", "-children": [
+            { "Shape": { "@DEF": "Look", "-geometry": { "Sphere": { "@radius": 0.1 } } } } ] } },
+        { "RigidBodyCollection": { "@gravity": [0, -9.81, 0], "-bodies": [
+            { "RigidBody": { "@DEF": "Body",
+                "IS": { "connect": [ { "@nodeField": "position", "@protoField": "start" } ] },
+                "-geometry": [ { "CollidableShape": { "-shape": { "Shape": { "@USE": "Look" } } } } ] } } ] } },
+        { "ROUTE": { "@fromNode": "Body", "@fromField": "position_changed",
+                     "@toNode": "Ball", "@toField": "set_translation" } } ] } } },
+  { "ProtoDeclare": { "@name": "Again", "ProtoBody": { "-children": [
+      { "ProtoInstance": { "@name": "Drop", "fieldValue": [ { "@name": "start", "@value": [6, 30, 0] } ] } } ] } } },
+  { "ProtoInstance": { "@name": "Drop", "@DEF": "A", "fieldValue": [ { "@name": "start", "@value": [0, 10, 0] } ] } },
+  { "Group": { "-children": [
+      { "ProtoInstance": { "@name": "Drop", "@DEF": "B",
+          "fieldValue": [ { "@name": "start", "@value": [3, 20, 0] } ] } } ] } },
+  { "ProtoInstance": { "@name": "Again" } } ] } } }
+"""
+STARTS = [[0, 10, 0], [3, 20, 0], [6, 30, 0]]
+
+
+def many_roots(tmp_path, encoding: str):
+    """MANY_ROOTS in one encoding, loaded without errors."""
+    if encoding == "xml":
+        s = xml(tmp_path, MANY_ROOTS_XML)
+    elif encoding == "vrml":
+        s = vrml(tmp_path, MANY_ROOTS_VRML)
+    else:
+        p = tmp_path / "s.x3dj"
+        p.write_text(MANY_ROOTS_JSON)
+        s = load(str(p))
+    assert not s.errors, [str(e) for e in s.errors]
+    assert not any("left out" in str(w) for w in s.warnings)
+    return s
+
+
+@pytest.mark.parametrize("encoding", ["xml", "vrml", "json"])
+def test_every_root_of_a_proto_body_is_in_the_scene(tmp_path, encoding):
+    s = many_roots(tmp_path, encoding)
+    roots = [n.type_name for n in s.roots]
+    assert roots == ["Transform", "RigidBodyCollection", "Group", "Transform", "RigidBodyCollection"]
+    assert [n.type_name for n in s.roots[2]["children"]] == ["Transform", "RigidBodyCollection"]
+    assert s.roots[0].def_name == "A" and s.roots[2]["children"][0].def_name == "B"
+    ws = worlds(s)
+    assert [w.bodies.position[0].tolist() for w in ws] == STARTS  # IS works in the second root
+    balls = [s.roots[0], s.roots[2]["children"][0], s.roots[3]]
+    for w, ball in zip(ws, balls):  # USE and ROUTE from the second root reach this instance's first root
+        assert w.bodies.nodes[0]["geometry"][0]["shape"] is ball["children"][0]
+        assert [(r.from_node, r.to_node) for r in s.routes if r.to_node is ball] == [(w.bodies.nodes[0], ball)]
+    assert len({id(ball["children"][0]) for ball in balls}) == 3  # no instance shares a node with another
+
+
+@pytest.mark.parametrize("encoding", ["xml", "vrml", "json"])
+def test_a_collection_in_a_later_proto_root_falls_freely_on_ode(tmp_path, encoding):
+    ode = pytest.importorskip("backends.ode")
+    ws = worlds(many_roots(tmp_path, encoding))
+    dt, t = 1 / 240, 0.5
+    trace = run(ws, ode.BACKEND, RunSettings(t, dt, 60))
+    end = {r.node: float(r.value.split()[1]) for r in trace.rows if r.field == "position" and r.time == t}
+    assert len(end) == len(STARTS)
+    for w, start in zip(ws, STARTS):
+        # a first-order step drops by g t^2 / 2 plus at most g dt t / 2 (semi-implicit Euler's exact lag)
+        assert abs(start[1] - end[w.bodies.names[0]] - 9.81 * t * t / 2) <= 9.81 * dt * t / 2 + 1e-9
+
+
+def test_other_roots_with_no_place_are_named_not_dropped(tmp_path):
+    s = xml(tmp_path, """
+<ProtoDeclare name='Ball'><ProtoBody>
+  <RigidBody/><RigidBodyCollection><RigidBody containerField='bodies'/></RigidBodyCollection>
+</ProtoBody></ProtoDeclare>
+<RigidBodyCollection><ProtoInstance name='Ball' containerField='bodies'/></RigidBodyCollection>""")
+    assert not s.errors, [str(e) for e in s.errors]
+    assert [len(c["bodies"]) for c in s.of_type("RigidBodyCollection")] == [1]
+    assert any("ProtoInstance Ball: the other roots of its PROTO body (RigidBodyCollection) are left "
+               "out" in str(w) for w in s.warnings)
 
 
 def test_script_and_externproto_are_kept_with_warnings(tmp_path):

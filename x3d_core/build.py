@@ -115,6 +115,10 @@ class Builder:
         self.externs: set[str] = set()
         self.prestandard = False  # the file declares an xj3d_ component
         self.budget = _Budget()  # what PROTO expansion may still copy
+        # a PROTO instance's first root -> (it, held so that its id stays its own; the body's other
+        # roots; the PROTO's name; the instance's place), until others() places them after it;
+        # finish() names those never placed
+        self.unplaced: dict[int, tuple[Node, list[Node], str, Location]] = {}
 
     # -- diagnostics --------------------------------------------------------
     def error(self, loc: Location, subject: str, message: str) -> None:
@@ -318,7 +322,7 @@ class Builder:
             # metadata carries no meaning for a browser; editors (Titania) store any node there
             self.warning(loc, subject, message + " (kept: metadata has no effect)")
         if fd.type.multi:
-            parent.values.setdefault(fd.name, []).append(child)
+            parent.values.setdefault(fd.name, []).extend([child, *self.others(child, fd)])
             parent.field_locs.setdefault(fd.name, loc)
         elif fd.name in parent.values and parent.values[fd.name] is not None:
             self.error(loc, subject, f"{fd.type.name} field already holds {parent.values[fd.name].label}")
@@ -492,13 +496,41 @@ class Builder:
                 target.values.pop(fname, None)
                 target.field_locs.pop(fname, None)
                 self.store(target, target.spec.fields[fname], value, loc)
+        # an instance inside a PROTO body: its routes are the body's, copied with each instance of it
+        routes = self.proto_stack[-1].routes if self.proto_stack else self.scene.routes
         for r in p.routes:
-            self.scene.routes.append(Route(memo[id(r.from_node)], r.from_field, memo[id(r.to_node)], r.to_field, loc))
+            routes.append(Route(memo[id(r.from_node)], r.from_field, memo[id(r.to_node)], r.to_field, loc))
         first = body[0]
         first.def_name = def_name
         if def_name:
             self.defs[def_name] = first
+        if len(body) > 1:
+            self.unplaced[id(first)] = (first, body[1:], name, loc)
         return first
+
+    def others(self, node: Node, fd: schema.FieldDef | None = None) -> list[Node]:
+        """The other roots of the PROTO instance just expanded to `node`, taken (once) to stand
+        after it: X3D instantiates every root of a PROTO body, the first giving the instance's
+        type. With fd, only if that MFNode field accepts them all; else finish() names them."""
+        entry = self.unplaced.get(id(node))
+        if entry is None or (fd is not None and not all(schema.accepts(fd, o.type_name) for o in entry[1])):
+            return []
+        del self.unplaced[id(node)]
+        return entry[1]
+
+    def beside(self, nodes: list[Node]) -> list[Node]:
+        """Top-level nodes of a scene or PROTO body, each PROTO instance followed by its other roots."""
+        return [m for n in nodes for m in (n, *self.others(n))]
+
+    def finish(self) -> None:
+        """Say which PROTO instances' other roots found no place (the instance is a field's value,
+        or in a field that cannot hold them): they are left out of the scene, so never simulated."""
+        for _, others, name, loc in self.unplaced.values():
+            self.warning(loc, f"ProtoInstance {name}",
+                         f"the other roots of its PROTO body ({', '.join(o.label for o in others)}) are left out "
+                         f"of the scene: x3drbp places them after an instance at the top of the scene or of a "
+                         f"PROTO body, or in an MFNode field of a known node type that accepts them")
+        self.unplaced.clear()
 
 
     def proto_nodes(self, target: Node, fname: str, pname: str, value: Any, loc: Location) -> Any:

@@ -163,11 +163,12 @@ def load_json(path: str, source: bytes, scene: Scene) -> None:
             reader.head(x3d["head"], reader.key(x3d, "head"))
         scene_obj = x3d.get("Scene")
         if isinstance(scene_obj, _Obj):
-            scene.roots = reader.statements(scene_obj, "-children", "Scene")
+            scene.roots = b.beside(reader.statements(scene_obj, "-children", "Scene"))
         elif scene_obj is not None:
             b.error(reader.key(x3d, "Scene"), "Scene", "Scene must be a JSON object")
     except RecursionError:
         raise reader.too_deep(positions) from None
+    b.finish()
 
 
 class _Reader:
@@ -386,7 +387,7 @@ class _Reader:
         p = self.b.begin_proto(name, interface)
         proto_body = body.get("ProtoBody")
         if isinstance(proto_body, _Obj):
-            p.body.extend(self.statements(proto_body, "-children", f"PROTO {name}"))
+            p.body.extend(self.b.beside(self.statements(proto_body, "-children", f"PROTO {name}")))
         elif proto_body is not None:
             self.b.error(self.key(body, "ProtoBody"), f"PROTO {name}", "ProtoBody must be a JSON object")
         self.b.end_proto(p, loc)

@@ -50,6 +50,7 @@ def load_vrml(path: str, source: bytes, scene: Scene) -> None:
         line = source[:e.start].count(b"\n") + 1
         raise b.fatal(Location(path, line, 1), "not UTF-8 text") from None
     _Parser(b, path, text, m.end()).scene()
+    b.finish()
 
 
 def _image_size(token: str) -> int | None:
@@ -145,7 +146,7 @@ class _Parser:
         while self.peek() != _END:
             node = self.statement()
             if node is not None:
-                self.roots.append(node)
+                self.roots.extend(self.b.beside([node]))
         scene.roots = self.roots
 
     def string(self) -> str:
@@ -391,7 +392,7 @@ class _Parser:
                 raise self.b.fatal(self.loc(), f"unexpected end of file in PROTO {name} (missing '}}')")
             n = self.statement()
             if n is not None:
-                p.body.append(n)
+                p.body.extend(self.b.beside([n]))
         self.next()
         self.b.end_proto(p, at)
 

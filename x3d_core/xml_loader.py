@@ -184,6 +184,7 @@ def load_xml(path: str, source: bytes, scene: Scene) -> None:
             for el in child:
                 reader.statement(el, None)
     scene.roots = reader.roots
+    b.finish()
 
 
 class _Reader:
@@ -241,7 +242,7 @@ class _Reader:
             if node is None:
                 return
             if parent is None:
-                self.roots.append(node)
+                self.roots.extend(self.b.beside([node]))
             else:
                 self.b.add_child(parent, el.get("containerField"), node, self.loc(el))
 
@@ -316,7 +317,7 @@ class _Reader:
                     continue
                 n = self.node(c) if isinstance(c.tag, str) else None
                 if n is not None:
-                    p.body.append(n)
+                    p.body.extend(self.b.beside([n]))
         self.b.end_proto(p, self.loc(el))
 
     def proto_instance(self, el: etree._Element) -> Node | None:
