@@ -1,8 +1,9 @@
 """What only the PhysX backend (SAPIEN 3) does: single-precision state read back at the body
 origin, joints as point-constraint D6s (a hinge pendulum's period, its stops either way round,
-a universal joint's axes), motors as impulse-bounded velocity drives, contacts with their
-normal turned to x3drbp's direction, joined bodies kept apart, and its refusals. The shared
-physics is in the conformance cases (conformance/expectations/physx.toml pins them)."""
+a universal joint's axes, a slider holding a body 10 m away), motors as impulse-bounded
+velocity drives, contacts with their normal turned to x3drbp's direction, joined bodies kept
+apart, and its refusals. The shared physics is in the conformance cases
+(conformance/expectations/physx.toml pins them)."""
 
 from __future__ import annotations
 
@@ -141,6 +142,35 @@ def test_slider_keeps_its_axis_and_stops(tmp_path):
     assert values(s, "S", "separation")[-1, 0] == pytest.approx(0.3, abs=1e-3)
     turn = R.from_axis_angle(values(s, "Block", "orientation"))
     assert np.abs(turn[:, 1:]).max() < 1e-4  # a slider turns nothing
+
+
+STEP_GAIN = G * DT * DT  # 1.7e-4 m: one step's travel from rest under g, what a constraint met each step leaves
+
+
+@pytest.mark.parametrize("gravity", ["-9.81 0 0", "0 -9.81 0"], ids=["pull_along", "pull_across"])
+@pytest.mark.parametrize("offset", ["10 0 0", "0 10 0"], ids=["10m_along", "10m_across"])
+@pytest.mark.parametrize("base", ["fixed='true'",
+                                  "mass='1e6' inertia='1e4 0 0 0 1e4 0 0 0 1e4' useGlobalGravity='false'"],
+                         ids=["fixed", "heavy"])
+def test_slider_holds_a_body_started_far_from_the_origin(tmp_path, base, offset, gravity):
+    # a slider has no anchor (x3d_core's is the world origin): a 1 kg Car (body2) 10 m from the Base
+    # (body1, fixed, or free and heavy: its turn under the Car's pull, m g r t / I = 0.02 rad/s after
+    # 2 s, adds omega^2 r < 0.01 m/s^2 to g) slides along x between stops [0, 1] of separation (body1
+    # relative to body2, from the start): pulled along -x it rises to the max stop, pulled across it
+    # stays at 0; in the Base's frame the Car never leaves its line. The old anchor at the origin
+    # swung it 10 m round it (pulled across) or 1.1 m off, to a separation of 4.6 (pulled along).
+    s = simulate(tmp_path, f"<RigidBodyCollection gravity='{gravity}'><RigidBody DEF='Base' {base}/>"
+                           f"<RigidBody DEF='Car' position='{offset}' inertia='0.01 0 0 0 0.01 0 0 0 0.01'/>"
+                           "<SliderJoint DEF='S' axis='1 0 0' minSeparation='0' maxSeparation='1' "
+                           "forceOutput='\"separation\"'><RigidBody USE='Base' containerField='body1'/>"
+                           "<RigidBody USE='Car' containerField='body2'/></SliderJoint></RigidBodyCollection>",
+                 duration=2.0)
+    q = R.from_axis_angle(values(s, "Base", "orientation"))
+    rel = R.rotate(R.conjugate(q), values(s, "Car", "position") - values(s, "Base", "position"))
+    assert np.abs(rel[:, 1:] - rel[0, 1:]).max() < STEP_GAIN
+    separation = values(s, "S", "separation")[:, 0]
+    assert separation.min() > -STEP_GAIN and separation.max() < 1 + STEP_GAIN
+    assert separation[-1] == pytest.approx(1.0 if gravity.startswith("-") else 0.0, abs=STEP_GAIN)
 
 
 def test_hinge2_motor_is_torque_bounded_and_body1_relative(tmp_path):
