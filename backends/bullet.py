@@ -24,7 +24,11 @@ a multibody's links hold at most 122 degrees of freedom that read back right (_M
 Collisions (where the world has a collider): a moving body's first geometry is its link's
 collision shape, each further one rides on a massless link fixed to it, so contact points
 name their geometry exactly; a static geometry (or a fixed body's) is a massless multibody
-of its own. Links of one multibody collide (self collision on; pybullet never tests a link
+of its own. pybullet makes a fixed link static when the joints between it and link 0 are fixed,
+never testing link 0's own, so a root body hanging from the static environment with further
+shapes sits behind a massless link 0 fixed to the base: its further shapes would pass through
+every static shape and each other (x_ite_media/SingleAxisHingeJoint.x3d's pendulums gained
+13-fold). Links of one multibody collide (self collision on; pybullet never tests a link
 against its parent, which is a joint anyway); the plan's other excluded pairs are filtered
 pair by pair. Contact parameters are per body and pybullet combines them: friction and
 restitution multiply (every shape gets the square root), contact springs go in series and
@@ -176,6 +180,13 @@ class _Part:
     geometry: int = -1  # the index in world.collisions.geometries that shape is
 
 
+def _pad() -> _Part:
+    """A massless link without a shape, fixed to a fixed base at the world origin (see _place)."""
+    return _Part(row=-1, parent=-1, joint_type=p.JOINT_FIXED, axis=np.array([0.0, 0.0, 1.0]), position=np.zeros(3),
+                 orientation=R.IDENTITY.copy(), offset=np.zeros(3), inertial=np.zeros(3), principal=R.IDENTITY.copy(),
+                 mass=0.0, moments=np.zeros(3))
+
+
 @dataclass
 class _Tree:
     """One multibody: a free body as its base (parts[0]), or a fixed base at the world origin."""
@@ -246,6 +257,10 @@ class BulletSimulation:
         self.client = p.connect(p.DIRECT)
         c = self.client
         p.setGravity(*world.gravity, physicsClientId=c)
+        # erp corrects joint limits by a velocity that stays once the depth is gone: a limit reached a
+        # step late sends the body back at erp x depth / h, with stopBounce 0 too (slider_stops fails
+        # here: docs/spec-loose-ends.md, 13); split impulse, which would take it off, leaves a multibody
+        # limit's depth uncorrected (measured: a slider 5 mm past its stop stays there)
         p.setPhysicsEngineParameter(
             fixedTimeStep=dt, numSubSteps=_SUBSTEPS_ACCURATE if world.prefer_accuracy else 0,
             numSolverIterations=max(1, world.iterations), erp=world.error_correction, useSplitImpulse=0,
@@ -317,8 +332,14 @@ class BulletSimulation:
             return
         j = w.joints[w.parent_joint[i]]
         if parent == STATIC:
-            self.trees.append(_Tree(free=False))
-            t, parent_part = len(self.trees) - 1, -1
+            col = w.collisions
+            shapes = 0 if col is None else sum(g.body == i for g in col.geometries)
+            # pybullet flags a fixed-joint link static when every joint between it and link 0 is fixed,
+            # never testing link 0's own (URDF2Bullet's `while (testLinkIndex > 0)`): a further shape
+            # of a root body on link 0 would be static, and two static objects never touch. A massless,
+            # shapeless link 0 fixed at the origin keeps the root's joint inside that test.
+            self.trees.append(_Tree(free=False, parts=[_pad()] if shapes > 1 else []))
+            t, parent_part = len(self.trees) - 1, len(self.trees[-1].parts) - 1
             ppos, pq = np.zeros(3), R.IDENTITY
         else:
             t, parent_part = self.where[parent]
