@@ -19,6 +19,13 @@ quick-step solver runs dWorldSetQuickStepNumIterations sweeps, dWorldStep is the
 direct (Dantzig) solver; both integrate semi-implicit Euler, with the rotation as
 ODE's finite rotation mode says.
 
+A SliderJoint's stops are ODE's at StopERP 0 (the row stops the motion, or bounces it at
+stopBounce times the impact rate), and their error correction is the backend's (_hold): ODE's
+StopERP corrects a stop's depth by a velocity that stays once the depth is gone, so a body
+crossing the stop in a step was sent back at up to its impact speed with stopBounce 0, which
+the clause's "no bounce at all" forbids (docs/spec-loose-ends.md, 13). Hinge stops are still
+ODE's StopERP.
+
 Collisions (where world.collisions is not None): one ODE geom per geometry, in no space.
 The broad phase is numpy's: moving geoms as bounding spheres (every allowed pair listed at
 build and tested at once where there are few, _ALL_PAIRS; else binned in a grid, see
@@ -262,6 +269,15 @@ def _near(centres: np.ndarray, radius: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return i[near], j[near]
 
 
+class _Slide(NamedTuple):
+    """A SliderJoint's stops as _hold corrects them: ODE's stop row stops and bounces, the move corrects."""
+    joint: int
+    lo: float
+    hi: float
+    erp: float  # stopErrorCorrection: the fraction of the depth one step corrects
+    moves: tuple[tuple[int, float], ...]  # (ODE body, its share of the correction: + on ODE's body1 side, - body2's)
+
+
 class _Candidates(NamedTuple):
     """The pairs a small scene's contacts are tested on, with what their tests compare that no
     step changes (worked out once at build: computed every step, they cost a car's step more
@@ -461,6 +477,8 @@ class OdeSimulation:
         self.slot[self.rows] = np.arange(len(self.rows))
         self.handles: dict[int, int | None] = {STATIC: None}
         self.kinematic: int | None = None
+        self.slides: list[_Slide] = []
+        self.axis = (ctypes.c_double * 4)()  # dJointGetSliderAxis's dVector3
         try:
             for i in range(len(b)):
                 self.handles[i] = self._body(i) if not b.fixed[i] else None
@@ -522,11 +540,11 @@ class OdeSimulation:
             raise Unsupported(f"{j.type} {j.name}: axis1 and axis2 are parallel (ODE needs them apart)")
         if j.type == "DoubleAxisHingeJoint":  # ODE aborts on a hinge2 with one body: a kinematic one stands in
             b1, b2 = (self._anchor() if b is None else b for b in (b1, b2))
-        axes = j.axes.copy()
+        axes, first = j.axes.copy(), j.body1  # first: the body row ODE attaches as its body1
         if b1 is None and j.type in ("SingleAxisHingeJoint", "SliderJoint"):
             # ODE's reversed attach measures the moving body against the static one: attach it as
             # body1 about the opposite axis, whose angle and separation are X3D's body1-relative ones
-            b1, b2, axes = b2, None, -axes
+            b1, b2, axes, first = b2, None, -axes, j.body2
         joint = create(w, None)
         lib.dJointAttach(joint, b1, b2)
         a = j.anchor
@@ -540,14 +558,71 @@ class OdeSimulation:
         elif j.type == "SliderJoint":
             lib.dJointSetSliderAxis(joint, *axes[0])
             if j.stops is not None:  # else ODE's own: no stops
-                self._stops(lib.dJointSetSliderParam, joint, 0, *j.stops, p["stopBounce"], p["stopErrorCorrection"],
-                            angular=False)
+                # the stop's row at StopERP 0: ODE's ERP would correct the depth by a velocity that stays on
+                # once the depth is gone, a rebound at stopBounce 0; _hold moves the bodies back instead
+                self._stops(lib.dJointSetSliderParam, joint, 0, *j.stops, p["stopBounce"], 0.0, angular=False)
+                if p["stopErrorCorrection"] > 0:
+                    self.slides.append(self._slide(joint, j, first))
         elif j.type == "UniversalJoint":
             lib.dJointSetUniversalAnchor(joint, *a)
             lib.dJointSetUniversalAxis1(joint, *axes[0])
             lib.dJointSetUniversalAxis2(joint, *axes[1])
         else:
             self._hinge2(joint, j, axes)
+
+    def _slide(self, joint: int, j: Joint, first: int) -> _Slide:
+        """Slider j's stops for _hold, `first` the body row ODE attached as its body1. Each end moves
+        with the bodies joined to it other than through j (rigidly: their other joints stay as
+        they are), the two sides by the other's share of their mass (their centre of mass stays), a
+        side that reaches the static environment not at all; where the sides meet in a loop, or
+        both reach it, each end moves alone."""
+        ends = (first, j.body2 if first == j.body1 else j.body1)
+        sides = [self._side(j, end) for end in ends]
+        if set(sides[0][0]) & set(sides[1][0]) or math.isinf(sides[0][1]) and math.isinf(sides[1][1]):
+            b = self.world.bodies
+            sides = [([e], math.inf if e == STATIC or b.fixed[e] else float(b.mass[e])) for e in ends]
+        (rows1, m1), (rows2, m2) = sides
+        share = 1.0 if math.isinf(m2) else 0.0 if math.isinf(m1) else m2 / (m1 + m2)
+        moves = [(self.handles[r], share) for r in rows1] + [(self.handles[r], share - 1.0) for r in rows2]
+        return _Slide(joint, *j.stops, j.params["stopErrorCorrection"],
+                      tuple((h, k) for h, k in moves if k and h is not None))
+
+    def _side(self, j: Joint, end: int) -> tuple[list[int], float]:
+        """The moving bodies joined to `end` other than through joint j, and their mass (inf where they
+        reach the static environment, or `end` is static)."""
+        b = self.world.bodies
+        if end == STATIC or b.fixed[end]:
+            return [], math.inf
+        seen, todo, anchored = {end}, [end], False
+        while todo:
+            r = todo.pop()
+            for k in self.world.joints:
+                if k is j or k.type == "MotorJoint" or k.body1 == k.body2 or r not in (k.body1, k.body2):
+                    continue
+                other = k.body2 if r == k.body1 else k.body1
+                if other == STATIC or b.fixed[other]:
+                    anchored = True
+                elif other not in seen:
+                    seen.add(other)
+                    todo.append(other)
+        return sorted(seen), math.inf if anchored else float(sum(b.mass[r] for r in seen))
+
+    def _hold(self, s: _Slide) -> None:
+        """stopErrorCorrection of a stop's depth, corrected by moving the bodies back along the axis
+        and leaving their velocities as ODE's stop row made them (stopped, or bounced by stopBounce):
+        so the clause's two sentences both hold, "all error ... corrected in a single step" at 1 and
+        "no bounce at all" at 0. Called after a step through which ODE's row held the stop (it had
+        been reached at the step's start): a step that only crosses it has not stopped the motion
+        yet, and a body moved back onto the stop then would go on through it."""
+        x = lib.dJointGetSliderPosition(s.joint)
+        depth = x - s.hi if x > s.hi else x - s.lo if x < s.lo else 0.0
+        if depth == 0.0:
+            return
+        lib.dJointGetSliderAxis(s.joint, self.axis)
+        move = -s.erp * depth * np.array(self.axis[:3])
+        for body, share in s.moves:
+            p = lib.dBodyGetPosition(body)
+            lib.dBodySetPosition(body, *(np.array(p[:3]) + share * move))
 
     def _anchor(self) -> int:
         """A kinematic ODE body at the origin, at rest: the static environment for joints that need a body."""
@@ -608,8 +683,12 @@ class OdeSimulation:
                 memory[self.at["torque"]] = self.torques
             if c is not None:
                 c.collide(*self._poses())
+            # the stops ODE's rows hold through this step: reached at its start (ODE's own test, inclusive)
+            held = [s for s in self.slides if not s.lo < lib.dJointGetSliderPosition(s.joint) < s.hi]
             if not stepper(w, dt):
                 raise BlewUp("ODE's step failed (out of memory for its solver)")
+            for s in held:
+                self._hold(s)
 
     def _poses(self) -> tuple[np.ndarray, np.ndarray]:
         """Every moving body's centre of mass and orientation, as ODE holds them."""

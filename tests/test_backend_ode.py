@@ -161,6 +161,49 @@ def test_slider_stops_either_way_round(tmp_path, ends, stop):
     assert np.abs(values(s, "Car", "position")[:, [0, 2]]).max() < 1e-12  # only along the axis
 
 
+_PUSHED = """<RigidBodyCollection gravity='0 0 0' {rigid}>
+  <RigidBody DEF='Rail' fixed='true'/><RigidBody DEF='Car' linearVelocity='0 {v0} 0'/>{extra}
+  <SliderJoint DEF='S' axis='0 1 0' minSeparation='-0.5' maxSeparation='{hi!r}' {fields}
+      forceOutput='"separation" "separationRate"'>
+    <RigidBody USE='Car' containerField='body1'/><RigidBody USE='{other}' containerField='body2'/>
+  </SliderJoint></RigidBodyCollection>"""
+
+
+def test_a_slider_stop_at_bounce_0_corrects_its_depth_and_sends_nothing_back(tmp_path):
+    # stopBounce 0, "no bounce at all", and the default stopErrorCorrection 1, "all error should be
+    # corrected in a single step" (37.4.13): the car, pushed at v0 into the max stop, ends the step
+    # that crosses it 0.6 v0 h past (ODE's stops act once past them); the next step stops it and puts
+    # it back on the stop. ODE's StopERP 1 made that correction a velocity that stayed: 0.6 v0 back
+    v0, hi = 2.0, 0.3 + 0.4 * 2.0 * DT
+    s = simulate(tmp_path, _PUSHED.format(rigid=RIGID, v0=v0, hi=hi, extra="", fields="", other="Rail"),
+                 duration=0.5, frame_rate=240)
+    sep, rate = values(s, "S", "separation")[:, 0], values(s, "S", "separationRate")[:, 0]
+    k = int(np.argmax(sep > hi))  # the step that crosses the stop
+    assert sep[k] == pytest.approx(hi + 0.6 * v0 * DT, abs=1e-12) and rate[k] == pytest.approx(v0, abs=1e-12)
+    assert np.abs(sep[k + 1:] - hi).max() < 1e-12 and np.abs(rate[k + 1:]).max() < 1e-12
+
+
+def test_a_slider_stops_correction_moves_each_side_whole_and_keeps_the_centre_of_mass(tmp_path):
+    # the Car (1 kg, a 2 kg Tag ball-jointed to it 1 m behind, on the axis) slides away from a free
+    # Sled (3 kg) into the max stop: the correction moves Car and Tag together, the sides by the
+    # other's share of the mass, so the Tag keeps its place behind the Car and the centre of mass of
+    # all three its straight line (every force acts along the one line: nothing turns)
+    v0, hi = 2.0, 0.3 + 0.4 * 2.0 * DT
+    extra = ("<RigidBody DEF='Tag' mass='2' position='0 -1 0' linearVelocity='0 2 0'/><RigidBody DEF='Sled' mass='3'/>"
+             "<BallJoint anchorPoint='0 -0.5 0'><RigidBody USE='Car' containerField='body1'/>"
+             "<RigidBody USE='Tag' containerField='body2'/></BallJoint>")
+    s = simulate(tmp_path, _PUSHED.format(rigid=RIGID, v0=v0, hi=hi, extra=extra, fields="", other="Sled"),
+                 duration=0.5, frame_rate=240)
+    car, tag, sled = (values(s, n, "position") for n in ("Car", "Tag", "Sled"))
+    sep, rate = values(s, "S", "separation")[:, 0], values(s, "S", "separationRate")[:, 0]
+    k = int(np.argmax(sep > hi))
+    assert np.abs(sep[k + 1:] - hi).max() < 1e-12 and np.abs(rate[k + 1:]).max() < 1e-12
+    assert np.abs(tag - car - [0, -1, 0]).max() < 1e-12
+    t = times(s, "Car", "position")
+    centre = (1 * car + 2 * tag + 3 * sled) / 6  # momentum 3 v0 along y, all on the Car's side at the start
+    assert np.abs(centre - np.outer(t, [0, 0.5 * v0, 0]) - centre[0]).max() < 1e-12
+
+
 def test_hinge2_suspension_is_odes_spring(tmp_path):
     # body1 is the static environment: a kinematic ODE body stands in (ODE refuses a one-body
     # hinge2), and holds the wheel up on the spring

@@ -85,6 +85,10 @@ HINGE2_OUTPUTS = spec("37.4.8 DoubleAxisHingeJoint: The hingeXAngle output field
                       "that angle is currently changing in radians per second.")
 SLIDER_STOPS = spec("37.4.13 SliderJoint: If minSeparation is greater than maxSeparation, the stops become ineffective "
                     "as if the object has no stops at all.")
+SLIDER_BOUNCE = spec("37.4.13 SliderJoint: The stopBounce field describes how much the joint should bounce the body "
+                     "back if the joint limit has been reached or exceeded. A value of zero indicates no bounce at "
+                     "all, and a value of one indicates that it should bounce with velocity equal and opposite to "
+                     "the collision velocity of the contact.")
 # constraint drift, shared by the ball chain and the universal joint
 ERROR_CORRECTION = 0.8  # RigidBodyCollection.errorCorrection default: the scenes leave it
 
@@ -153,6 +157,14 @@ UNTIMED = accuracy("an acceleration fitted whatever the clock is exact for a fix
                    "which cannot be told from the field's own effect: graded, and the clock's measure judges the run")
 
 
+CORRECTION = spec("37.4.11 RigidBodyCollection: The errorCorrection field describes how quickly the system should "
+                  "resolve intersection errors due to floating point inaccuracies.",
+                  also=("37.4.11 RigidBodyCollection: A value of 0 means no correction at all while a value of 1 "
+                        "indicates that all errors should be corrected in a single step.",))
+INITIAL = spec("37.4.10 RigidBody: The position and orientation fields are used to set the initial conditions of this "
+               "body's location in world space.")
+
+
 def clock_lag(t: np.ndarray, p: np.ndarray, v: np.ndarray, a: np.ndarray) -> float | None:
     """How far the physics clock strays from the frame clock over the run: the largest
     |(t_k - t_1) - (tau_k - tau_1)|, tau the physics time the state itself shows. Under a
@@ -191,6 +203,12 @@ def clock_free_acceleration(p: np.ndarray, v: np.ndarray) -> np.ndarray:
 def ballistic(body: str, p0: Sequence[float], v0: Sequence[float], a: Sequence[float],
               basis: Basis | None = None, misread: Sequence[Sequence[float]] | None = None) -> Expectation:
     """A body under a constant acceleration a: p = p0 + v0 t + a t^2/2, v = v0 + a t.
+
+    Spec, the start (INITIAL, 37.4.10): the first frame after the start lies within the motion
+    of a frame and a step (past the first frame's time) of the file's position: a browser that
+    moves the body elsewhere at its first step breaks the initial conditions; the half of the
+    file position's distance from the origin (the field ignored) is its tolerance. The clock and
+    the acceleration are read from that frame on, so that such a jump is this measure's alone.
 
     Spec, the clock (CLOCK, 37.2.2.1): the physics time the state shows (clock_lag) keeps pace
     with the frame times the trace gives, to one physics step (the state of the last step before
@@ -231,10 +249,19 @@ def ballistic(body: str, p0: Sequence[float], v0: Sequence[float], a: Sequence[f
         scale = 1.0 + np.linalg.norm(p0) + np.linalg.norm(v0) * T + np.linalg.norm(a) * T * T
         v_round = ROUNDING * (1.0 + np.linalg.norm(v0) + np.linalg.norm(a) * T)
         out = []
-        fitted_a = clock_free_acceleration(p, v)
-        window = max(float(t[-1] - t[0]), s.dt)
+        # from the first frame after the start on: a body that leaves its file position at the first step (a
+        # browser that ignores the field) is the INITIAL measure's, never the clock's or the acceleration's
+        k = 1 if len(t) > 3 else 0
+        if k:
+            w = float(t[1]) + 1.0 / s.rate + s.dt  # the physics time of the first frame, a frame and a step late
+            start = float(np.linalg.norm(v0)) * w + 0.5 * float(np.linalg.norm(a)) * w * w + ROUNDING * scale
+            out.append(Measure(f"{body} first frame after the start - its file position (the motion starts there)",
+                               float(np.linalg.norm(p[1] - p0)), honoured(start, float(np.linalg.norm(p0)))
+                               if np.any(p0) else start, "m", INITIAL, start))
+        fitted_a = clock_free_acceleration(p[k:], v[k:])
+        window = max(float(t[-1] - t[k]), s.dt)
         a_bound = 4 * v_round / window
-        lag = clock_lag(t, p, v, fitted_a)
+        lag = clock_lag(t[k:], p[k:], v[k:], fitted_a)
         in_step = True
         if lag is not None:
             rate_round = v_round / float(np.linalg.norm(fitted_a)) if np.any(fitted_a) else ROUNDING * (1.0 + T)

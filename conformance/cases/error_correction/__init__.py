@@ -9,18 +9,14 @@ import numpy as np
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
-from conformance.cases.closed_forms import CFM_DEFAULT, ROUNDING, honoured, max_norm
-from conformance.results import Measure, Settings, convention, spec
+from conformance.cases.closed_forms import CFM_DEFAULT, CORRECTION, ROUNDING, honoured, max_norm
+from conformance.results import Measure, Settings, convention
 
 # error_correction.x3d: ball -> (errorCorrection, start); each ball (1 kg, radius 0.1 m) starts EC_DEPTH into its floor
 EC_BALLS = {"ZeroBall": (0.0, np.array([-2.0, 0.095, 0.0])), "HalfBall": (0.5, np.array([0.0, 0.095, 0.0])),
             "OneBall": (1.0, np.array([2.0, 0.095, 0.0]))}
 EC_DEPTH, EC_RADIUS, EC_M = 0.005, 0.1, 1.0
 X3D_DEFAULT, ENGINE_DEFAULT = 0.8, 0.2  # errorCorrection's default; ODE's own world ERP
-CORRECTION = spec("37.4.11 RigidBodyCollection: The errorCorrection field describes how quickly the system should "
-                  "resolve intersection errors due to floating point inaccuracies.",
-                  also=("37.4.11 RigidBodyCollection: A value of 0 means no correction at all while a value of 1 "
-                        "indicates that all errors should be corrected in a single step.",))
 PER_STEP = convention("the first step that corrects an intersection removes the fraction errorCorrection of its depth "
                       "(ODE's ERP on a contact row, pybullet's erp, pymunk's collision bias): the correction linear "
                       "in the field between the clause's 0 (none) and 1 (all in a single step); alternatives: a "

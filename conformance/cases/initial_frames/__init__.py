@@ -12,8 +12,8 @@ from x3d_core import rotation as R
 from x3d_core.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
-from conformance.cases.closed_forms import (ROUNDING, ROUNDING_ANGLE, G, clock_free_acceleration, honoured, max_norm,
-                                            stop_overshoot)
+from conformance.cases.closed_forms import (INITIAL, ROUNDING, ROUNDING_ANGLE, G, clock_free_acceleration, honoured,
+                                            max_norm, stop_overshoot)
 from conformance.results import Measure, Settings, spec
 
 # initial_frames.x3d (its comment states the same numbers): a slider whose Block starts 0.5 m from
@@ -35,8 +35,6 @@ RELATIVE = spec("37.2.5.1 Initial coordinate system: Output values from those jo
                 "initial position.")
 WORLD = spec("37.2.5.1 Initial coordinate system: The anchor position and axis values of joints are always specified "
              "in world coordinate positions, regardless of whether the two joining bodies have been offset or not.")
-INITIAL = spec("37.4.10 RigidBody: The position and orientation fields are used to set the initial conditions of this "
-               "body's location in world space.")
 CURRENT = spec("37.4.10 RigidBody: After the initial conditions have been set, these fields are used to report the "
                "current information based on the most recent physics model evaluation.")
 
