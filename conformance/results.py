@@ -376,6 +376,11 @@ class Expected:
 # -- comparisons of runs -----------------------------------------------------------------
 
 POSITION, ORIENTATION = "position", "orientation"
+# the body outputs compared besides the pose: every RigidBody output a backend's run records
+# (x3d_core.evaluator), so every one a trace can share with it
+LINEAR_VELOCITY, ANGULAR_VELOCITY = "linearVelocity", "angularVelocity"
+VELOCITIES = (LINEAR_VELOCITY, ANGULAR_VELOCITY)
+UNITS = {POSITION: "m", ORIENTATION: "rad", LINEAR_VELOCITY: "m/s", ANGULAR_VELOCITY: "rad/s"}  # of each kind
 RAN = "ran"  # a backend's verdict when it wrote its trace (else one of VERDICTS)
 _SI = {"length": "m", "speed": "m/s", "angle": "rad", "angular_rate": "rad/s", None: "1"}
 
@@ -413,9 +418,9 @@ class Crossing:
 
 @dataclass
 class Divergence:
-    """One quantity (position or orientation) between two runs. The series are per frame
-    (the pair's times) and per body (the pair's bodies); the scalars are None when the
-    runs share no body or no frame."""
+    """One quantity of the bodies (a kind of UNITS: position, orientation, a velocity) between
+    two runs. The series are per frame (the pair's times) and per body (the pair's bodies);
+    the scalars are None when the runs share no body or no frame."""
     quantity: str
     unit: str
     threshold: float
@@ -482,6 +487,19 @@ class PairComparison:
     joints: list[JointDifference]  # every joint output both traces hold
     joints_only_in_a: list[str]  # NODE.field
     joints_only_in_b: list[str]
+    # the VELOCITIES every shared body has in both traces, in that order (at the pair's times)
+    velocities: list[Divergence] = field(default_factory=list)
+
+    @property
+    def divergences(self) -> list[Divergence]:
+        """Every body quantity compared: position, orientation, then the velocities."""
+        return [self.position, self.orientation, *self.velocities]
+
+    def diverged(self) -> list[str]:
+        """What passed its threshold (or is no number), the body kinds, then the joint outputs
+        (NODE.field); a kind no frame measured is not among them."""
+        return ([d.quantity for d in self.divergences if d.max is not None and not d.max <= d.threshold]
+                + [f"{j.node}.{j.field}" for j in self.joints if not j.ratio <= 1.0])
 
     def worst_joint(self) -> JointDifference | None:
         """The joint output furthest past (or nearest to) the threshold of its unit."""
@@ -492,13 +510,35 @@ class PairComparison:
                 "only_in_a": self.only_in_a, "only_in_b": self.only_in_b,
                 "position": self.position.to_json(), "orientation": self.orientation.to_json(),
                 "joints": [j.to_json() for j in self.joints],
-                "joints_only_in_a": self.joints_only_in_a, "joints_only_in_b": self.joints_only_in_b}
+                "joints_only_in_a": self.joints_only_in_a, "joints_only_in_b": self.joints_only_in_b,
+                "velocities": [v.to_json() for v in self.velocities]}
 
     @classmethod
     def from_json(cls, d: dict) -> PairComparison:
         return cls(d["a"], d["b"], np.asarray(d["times"], dtype=np.float64), d["bodies"], d["only_in_a"],
                    d["only_in_b"], Divergence.from_json(d["position"]), Divergence.from_json(d["orientation"]),
-                   [JointDifference.from_json(j) for j in d["joints"]], d["joints_only_in_a"], d["joints_only_in_b"])
+                   [JointDifference.from_json(j) for j in d["joints"]], d["joints_only_in_a"], d["joints_only_in_b"],
+                   # absent from comparisons written before velocities were compared
+                   [Divergence.from_json(v) for v in d.get("velocities", [])])
+
+
+@dataclass(frozen=True)
+class EnergyGrowth:
+    """A run whose mechanical energy (kinetic plus potential, J) rose past its bound with
+    nothing doing work on its scene (conformance/analyses/energy.py): the engine made it."""
+    start: float  # the first frame's
+    peak: float  # the largest
+    peak_at: float  # s, when it was the largest
+    rose_at: float  # s, the first frame past start + bound
+    bound: float  # J, the rise allowed
+
+    def to_json(self) -> dict:
+        return {"start": self.start, "peak": self.peak, "peak_at": self.peak_at, "rose_at": self.rose_at,
+                "bound": self.bound}
+
+    @classmethod
+    def from_json(cls, d: dict | None) -> EnergyGrowth | None:
+        return None if d is None else cls(d["start"], d["peak"], d["peak_at"], d["rose_at"], d["bound"])
 
 
 @dataclass
@@ -512,6 +552,7 @@ class BackendRun:
     simulation_wall_s: float | None = None  # the simulation alone, as the child timed it
     child_wall_s: float | None = None  # the whole child process: start, imports, load, run, trace writing
     integration: str | None = None  # the backend's integration order (backends.base.Backend.integration)
+    energy: EnergyGrowth | None = None  # its energy grew with nothing doing work on the scene
 
     @property
     def realtime_basis(self) -> str | None:
@@ -532,13 +573,15 @@ class BackendRun:
         return {"backend": self.backend, "verdict": self.verdict, "reason": self.reason, "version": self.version,
                 "simulated_s": self.simulated_s, "simulation_wall_s": self.simulation_wall_s,
                 "child_wall_s": self.child_wall_s, "realtime_factor": self.realtime_factor,
-                "realtime_basis": self.realtime_basis, "integration": self.integration}
+                "realtime_basis": self.realtime_basis, "integration": self.integration,
+                "energy_growth": self.energy.to_json() if self.energy else None}
 
     @classmethod
     def from_json(cls, d: dict) -> BackendRun:
-        # integration: absent from comparisons written before backends declared it
+        # integration, energy_growth: absent from comparisons written before they were measured
         return cls(d["backend"], d["verdict"], d["reason"], d["version"], d["simulated_s"],
-                   d["simulation_wall_s"], d["child_wall_s"], d.get("integration"))
+                   d["simulation_wall_s"], d["child_wall_s"], d.get("integration"),
+                   EnergyGrowth.from_json(d.get("energy_growth")))
 
 
 @dataclass
@@ -570,10 +613,10 @@ THEIRS = "theirs"  # their trace's name in comparisons
 
 
 def agrees(pair: PairComparison) -> bool:
-    """Every divergence of their trace from the backend's within its threshold."""
-    d = (pair.position, pair.orientation)
-    return bool(pair.times.size and pair.bodies and all(x.max is not None and x.max <= x.threshold for x in d)
-                and all(j.ratio <= 1.0 for j in pair.joints))
+    """Every divergence of their trace from the backend's within its threshold: each body
+    quantity compared (pose and velocities) and each shared joint output."""
+    return bool(pair.times.size and pair.bodies and all(x.max is not None for x in pair.divergences)
+                and not pair.diverged())
 
 
 @dataclass
@@ -600,12 +643,25 @@ class TraceComparison:
 
 
 @dataclass
+class FrameStep:
+    """Their frames' period, the step an implementation that steps once per frame takes, offered
+    where a trace judged at another step does not conform; and the trace judged at it."""
+    dt: float
+    conforms: bool | None  # None: not judged at it (a finer step than the one judged: more runs)
+    agreeing: list[str] = field(default_factory=list)  # the backends that agree at it
+
+    def to_json(self) -> dict:
+        return {"dt": self.dt, "conforms": self.conforms, "agreeing": self.agreeing}
+
+
+@dataclass
 class Validation:
     scene: str
     traces: list[str]
     thresholds: dict[str, float]
     case: Result | None  # the case's expectation on their traces, where the scene is a case
     comparisons: list[TraceComparison] = field(default_factory=list)
+    frame_step: FrameStep | None = None
 
     @property
     def backends(self) -> list[str]:
@@ -635,4 +691,5 @@ class Validation:
     def to_json(self) -> dict:
         return {"scene": self.scene, "traces": self.traces, "thresholds": self.thresholds, "rule": self.rule,
                 "judged": self.judged, "conforms": self.conforms, "case": None if self.case is None else self.case.to_json(),
-                "agreeing": self.agreeing(), "comparisons": [c.to_json() for c in self.comparisons]}
+                "agreeing": self.agreeing(), "comparisons": [c.to_json() for c in self.comparisons],
+                "frame_step": None if self.frame_step is None else self.frame_step.to_json()}

@@ -7,11 +7,13 @@ note of what that order alone parts them by.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from conformance.results import RAN, BackendRun, Comparison, Crossing, Divergence, PairComparison
 
 from x3d_core.integration import lead
 
-from .text import escape, num
+from .text import energy_grew, escape, num
 
 _SHOWN_BODIES = 3  # bodies named at a first crossing; the rest counted
 _G = 9.8  # m/s^2, X3D's default gravity: the scale of the integration order's note
@@ -24,9 +26,10 @@ def _rtf(r: BackendRun) -> str:
     return f"{f:.3g}x" + (" (child)" if r.realtime_basis == "child" else "")
 
 
-def rms_max(d: Divergence) -> str:
-    """A divergence's cell: RMS / max (the body and time of the max)."""
-    return "-" if d.max is None else f"{num(d.rms)} / {num(d.max)} ({escape(d.max_body)}, {num(d.max_time)} s)"
+def rms_max(d: Divergence, text: Callable[[str], str] = escape) -> str:
+    """A divergence's cell: RMS / max (the body and time of the max); the body's name through
+    `text` (escape() for markdown that becomes HTML, printable() for a terminal)."""
+    return "-" if d.max is None else f"{num(d.rms)} / {num(d.max)} ({text(d.max_body)}, {num(d.max_time)} s)"
 
 
 def _crossing(c: Crossing | None) -> str:
@@ -37,12 +40,12 @@ def _crossing(c: Crossing | None) -> str:
     return f"{num(c.time)} s: {named}" + (f" +{more} more" if more > 0 else "")
 
 
-def worst_joint(p: PairComparison) -> str:
-    """The cell of the pair's joint output furthest past its threshold."""
+def worst_joint(p: PairComparison, text: Callable[[str], str] = escape) -> str:
+    """The cell of the pair's joint output furthest past its threshold (its name through `text`)."""
     j = p.worst_joint()
     if j is None:
         return "-"
-    return f"{escape(j.node)}.{j.field} {num(j.max)} {j.unit} ({num(j.max_time)} s)"
+    return f"{text(j.node)}.{j.field} {num(j.max)} {j.unit} ({num(j.max_time)} s)"
 
 
 def _integration(p: PairComparison, schemes: dict[str, str | None], dt: float) -> str | None:
@@ -91,6 +94,9 @@ def render(c: Comparison) -> str:
     stopped = [r for r in c.runs if r.verdict != RAN]
     if stopped:
         lines += [""] + [f"- {r.backend}: **{r.verdict}**: {escape(r.reason)}" for r in stopped]
+    grew = [r for r in c.runs if r.energy is not None]
+    if grew:
+        lines += [""] + [f"- {energy_grew(r.backend, r.energy)}" for r in grew]
     lines.append("")
     if not c.pairs:
         lines.append("No pair compared: fewer than two backends ran.")
@@ -106,7 +112,8 @@ def render(c: Comparison) -> str:
     notes = [n for p in c.pairs for n in _notes(p, schemes, c.dt)]
     lines += ["", "RMS and max: over every frame and body (the max's body and time); first: the first frame a "
               "body passes the threshold, the bodies over it then, worst first; worst joint output: the largest "
-              "difference against its unit's threshold (m, m/s: position; rad, rad/s, axes: orientation)."]
+              "difference against its unit's threshold (m: position; rad, axes: orientation; m/s: linearVelocity; "
+              "rad/s: angularVelocity)."]
     if notes:
         lines += [""] + notes
     return "\n".join(lines) + "\n"

@@ -1,10 +1,13 @@
 """The stability suite's results (stability.json, as conformance.cli.stability writes it)
-as markdown: a verdict per (case, dt, backend), then each case's drift figures, then why each
-run that did not hold gave way, linking its kept trace (a path relative to stability.md)."""
+as markdown: a verdict per (case, dt, backend), then each case's drift figures, then a line for
+each run whose energy grew with nothing doing work on its scene, then why each run that did not
+hold gave way, linking its kept trace (a path relative to stability.md)."""
 
 from __future__ import annotations
 
-from .text import escape, link, num
+from conformance.results import EnergyGrowth
+
+from .text import energy_grew, escape, link, num
 
 HELD = ("survived", "stopped")
 PLAIN = (*HELD, "unsupported", "error")  # not a breakdown: no bold
@@ -29,6 +32,10 @@ def _figure(f: dict | None) -> str:
     v = f["value"]
     text = num(v) if isinstance(v, float) else str(v)
     return text + (f" ({f['where']})" if f.get("where") else "")
+
+
+def _run(r: dict, label: dict[float, str]) -> str:
+    return f"{r['case']} on {r['backend']} at dt {label[r['dt']]}"
 
 
 def markdown(data: dict) -> str:
@@ -73,11 +80,14 @@ def markdown(data: dict) -> str:
             cells = [_figure(by.get(q)) for q in heads]
             lines.append("| " + " | ".join([r["backend"], label[r["dt"]], _cell(r), *cells, f"{r['wall_s']:.1f}"])
                          + " |")
+    grew = [r for r in data["results"] if r.get("energy_growth")]  # absent from results written before it
+    if grew:
+        lines += ["", "## Energy made", ""]
+        lines += [f"- {energy_grew(_run(r, label), EnergyGrowth.from_json(r['energy_growth']))}" for r in grew]
     others = [r for r in data["results"] if r["verdict"] not in HELD]
     if others:
         lines += ["", "## Why", ""]
         for r in others:
             trace = f" (trace: {link(r['trace'])})" if r.get("trace") else ""
-            lines.append(f"- {r['case']} on {r['backend']} at dt {label[r['dt']]}: {_label(r['verdict'])}: "
-                         f"{escape(r['reason'])}{trace}")
+            lines.append(f"- {_run(r, label)}: {_label(r['verdict'])}: {escape(r['reason'])}{trace}")
     return "\n".join(lines) + "\n"

@@ -11,8 +11,9 @@ import html
 import math
 import re
 import urllib.parse
+from collections.abc import Callable
 
-from conformance.results import Measure, grade
+from conformance.results import EnergyGrowth, Measure, grade
 from x3d_core.paths import printable
 
 _MARKDOWN = re.compile(r"([\\`*_\[\]#|])")  # code spans, emphasis, links and images, headings, table cells
@@ -48,6 +49,14 @@ def plotted(text: str) -> str:
     return printable(text).replace("$", r"\$")
 
 
+def energy_grew(run: str, g: EnergyGrowth) -> str:
+    """One line for a run (its words, markdown already) whose mechanical energy grew with nothing
+    doing work on its scene (conformance/analyses/energy.py)."""
+    return (f"{run}: mechanical energy grew with nothing doing work on the scene: {num(g.start)} J at the start, "
+            f"{num(g.peak)} J at most (t = {num(g.peak_at)} s); past the start by more than its bound, "
+            f"{num(g.bound)} J, from t = {num(g.rose_at)} s")
+
+
 def link(path: str, text: str | None = None) -> str:
     """A markdown link to a relative path (its words the path's own unless given): the target
     percent-encoded, so a name such as `javascript:x` or `a) b` stays a file's name (a byte
@@ -55,13 +64,14 @@ def link(path: str, text: str | None = None) -> str:
     return f"[{escape(path if text is None else text)}]({urllib.parse.quote(path, errors='surrogateescape')})"
 
 
-def basis_cell(m: Measure) -> str:
+def basis_cell(m: Measure, text: Callable[[str], str] = escape) -> str:
     """A measure's basis in a table: the clause's words it enforces with their edition, the
-    convention or description it checks, or the accuracy it grades."""
+    convention or description it checks, or the accuracy it grades; its words through `text`
+    (escape() for markdown that becomes HTML, printable() for a terminal)."""
     if m.basis is None:
         return "spec (not quoted)"
-    further = "".join(f" Also {escape(q)}" for q in m.basis.also)
-    return f"{m.basis.label()}: {escape(m.basis.text)}{further}"
+    further = "".join(f" Also {text(q)}" for q in m.basis.also)
+    return f"{m.basis.label()}: {text(m.basis.text)}{further}"
 
 
 def grade_cell(m: Measure) -> str:

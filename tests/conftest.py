@@ -12,6 +12,23 @@ SCENES = os.path.join(ROOT, "scenes")
 CASES = os.path.join(ROOT, "conformance", "cases")  # a folder per conformance case
 
 
+def scene_file(folder, body: str, name: str = "s") -> str:
+    """An X3D 4.0 XML file NAME.x3d in folder whose Scene holds body."""
+    path = os.path.join(str(folder), f"{name}.x3d")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(f"<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n{body}\n"
+                "</Scene></X3D>\n")
+    return path
+
+
+def loaded_scene(folder, body: str):
+    """scene_file's scene, loaded, without errors."""
+    from x3d_core.load import load
+    scene = load(scene_file(folder, body))
+    assert not scene.errors, [str(e) for e in scene.errors]
+    return scene
+
+
 def case_scene(name: str) -> str:
     """The scene of conformance case NAME: conformance/cases/NAME/NAME.x3d."""
     return os.path.join(CASES, name, f"{name}.x3d")

@@ -15,7 +15,7 @@ from conformance.runner import children, probe
 from x3d_core.trace import TraceView
 from conformance.cli import main as cli_main
 from conformance.analyses.compare import compare_pair
-from conformance.results import Comparison
+from conformance.results import Comparison, PairComparison
 from conftest import SCENES
 from reports.compare_text import render
 from x3d_core.trace import Row
@@ -96,6 +96,27 @@ def test_bodies_and_joint_outputs_in_one_trace_only_are_listed_and_the_rest_comp
     assert by["angle"].unit == "rad" and by["angle"].max == pytest.approx(2 * math.pi - 6.2, abs=1e-12)
     assert by["body1AnchorPoint"].unit == "m" and by["body1AnchorPoint"].rms == pytest.approx(0.005)
     assert p.worst_joint() is by["angle"]  # 0.083 rad / 1 mrad beats 0.005 m / 1 mm
+
+
+def test_velocities_are_compared_as_positions_are_and_joint_rates_held_to_them():
+    n = len(TIMES)
+    w = np.tile([0.0, 0.0, 2.0], (n, 1))
+    outputs = {("Bob", "linearVelocity"): np.zeros((n, 3)), ("Bob", "angularVelocity"): w,
+               ("Pivot", "angleRate"): w[:, 2]}
+    a = _view({"Bob": _still()}, outputs)
+    # v 5 mm/s off (3, 4, 0) from 0.2 s on, w as it is, angleRate 4 mrad/s off
+    v = np.where(TIMES[:, None] >= 0.2, [0.003, 0.004, 0.0], 0.0)
+    b = _view({"Bob": _still()}, {**outputs, ("Bob", "linearVelocity"): v, ("Pivot", "angleRate"): w[:, 2] + 0.004})
+    p = compare_pair("a", a, "b", b)
+    lin, ang = p.velocities
+    assert (lin.quantity, lin.unit, ang.quantity, ang.unit) == ("linearVelocity", "m/s", "angularVelocity", "rad/s")
+    assert lin.max == pytest.approx(0.005) and lin.first_over.time == pytest.approx(0.2) and ang.max == 0
+    assert p.position.max == 0 and p.diverged() == ["linearVelocity", "Pivot.angleRate"]
+    data = json.loads(json.dumps(p.to_json()))
+    assert PairComparison.from_json(data).to_json() == data
+    loose = compare_pair("a", a, "b", b, {"linearVelocity": 0.01, "angularVelocity": 0.005})
+    assert loose.diverged() == [] and {j.field: j.threshold for j in loose.joints} == {"angleRate": 0.005}
+    assert compare_pair("a", _view({"Bob": _still()}), "b", _view({"Bob": _still()})).velocities == []  # none held
 
 
 def test_a_trace_against_itself_diverges_nowhere_and_the_json_round_trips():

@@ -98,13 +98,18 @@ def test_compare_tables_keep_scene_and_def_names_as_text(name):
     assert f"{BODY} 0.002" in said and f"{DEF}.body1AnchorPoint" in said and f"{BODY} only" in said
 
 
-def test_validate_tables_keep_the_trace_s_name_as_text():
+def test_validate_s_terminal_text_shows_names_as_they_are_and_control_characters_as_escapes():
+    """`x3drbp validate` writes to a terminal, never to a page: `<` read `&lt;` there and `_` read
+    `\\_`; a name's escape sequence or newline still prints as its escape (printable())."""
     from conformance.results import Settings, TraceComparison, Validation
     c = _comparison(f"{IMG}.x3d")
-    trace = TraceComparison(f"{JS}.csv", Settings(1.0, 1 / 240), c.runs, {"mujoco": c.pairs[0]})
-    page = rendered(validate_text.render(Validation(f"{IMG}.x3d", [f"{JS}.csv"], c.thresholds, None, [trace])))
-    assert live_markup(page) == []
-    assert IMG in text_of(page) and f"{JS}.csv against the backends" in text_of(page)
+    trace = TraceComparison(f"{JS}\x1b[2J\n.csv", Settings(1.0, 1 / 240), c.runs, {"mujoco": c.pairs[0]})
+    text = validate_text.render(Validation(f"{IMG}.x3d", [f"{MARKS}.csv"], c.thresholds, None, [trace]))
+    assert f"# x3drbp validate {IMG}.x3d\n" in text and f"Traces: {MARKS}.csv;" in text
+    assert f"## {JS}\\x1b[2J\\n.csv against the backends" in text and "\x1b" not in text
+    assert f"({BODY}, 0.5 s)" in text and f"{DEF}.body1AnchorPoint" in text
+    assert f"UniversalJoint {DEF}: axis1 and axis2 are parallel" in text
+    assert "&lt;" not in text and "&gt;" not in text and "\\" not in text.replace("\\x1b", "").replace("\\n", "")
 
 
 def _results(out, scene: str) -> list[tuple[str, Comparison]]:

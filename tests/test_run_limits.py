@@ -35,8 +35,8 @@ def last_line(stderr: str) -> str:
 
 
 @pytest.mark.parametrize("settings, said", [
-    (["--dt", "0"], "--dt must be a positive number, not 0"),
-    (["--dt", "nan"], "--dt must be a positive number, not nan"),
+    (["--dt", "0"], "--dt must be a positive step in seconds, as 1/240 or 0.004, not '0'"),
+    (["--dt", "nan"], "--dt must be a positive step in seconds, as 1/240 or 0.004, not 'nan'"),
     (["--duration", "-1"], "--duration must be a positive number, not -1"),
     (["--frame-rate", "inf"], "--frame-rate must be a positive number, not inf"),
     (["--timeout", "0"], "--timeout must be a positive number, not 0"),

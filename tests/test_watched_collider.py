@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from backends import base
+from conftest import loaded_scene
 from engine_run import run_x3d, scene_worlds, shape
 from x3d_core.analysis import WATCHED_ONLY, features, run_features
-from x3d_core.load import load
 from x3d_core.world import STATIC, State, worlds
 
 BALL = shape("<Sphere radius='0.1'/>", "BallShape")
@@ -29,12 +29,7 @@ def scene(watched: str = "", sensor: str = "", collection: str = "", body: str =
 
 
 def loaded(tmp_path, body: str):
-    p = tmp_path / "s.x3d"
-    p.write_text(f"<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><Scene>\n{body}\n"
-                 "</Scene></X3D>\n")
-    s = load(str(p))
-    assert not s.errors, [str(e) for e in s.errors]
-    return s
+    return loaded_scene(tmp_path, body)
 
 
 # -- the plan ---------------------------------------------------------------------------

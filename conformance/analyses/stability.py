@@ -38,7 +38,6 @@ engines were given: a stability figure measures what an engine made of its own i
 from __future__ import annotations
 
 import contextlib
-import functools
 import math
 import os
 import re
@@ -52,16 +51,14 @@ from typing import ClassVar, Protocol
 import numpy as np
 
 from x3d_core import atomic
-from x3d_core import rotation as R
-from x3d_core.load import load
-from x3d_core.trace import read_view
-from x3d_core.world import worlds
+from x3d_core.trace import TraceView, read_view
 
 from conformance import results
 from conformance.runner import children, verdicts
 from conformance.cases import ROOT
 from conformance.results import Settings
-from x3d_core.trace import TraceView
+from conformance.analyses import energy
+from conformance.analyses.motion import Model, Motion, first_past, model
 
 SCENES = os.path.join(ROOT, "scenes", "stability")
 DEFAULT_DTS = (1 / 60, 1 / 240)
@@ -99,69 +96,6 @@ class Figure:
 
 def _json_float(x: float) -> float | str:
     return x if math.isfinite(x) else str(x)
-
-
-@dataclass
-class Model:
-    """The bodies as the engines got them (x3d_core's reading of the scene), by trace name."""
-    names: list[str]
-    mass: np.ndarray  # (n,)
-    inertia: np.ndarray  # (n, 3, 3) body axes, about the centre of mass
-    com: np.ndarray  # (n, 3) local
-    moving: np.ndarray  # (n,) bool: not fixed
-    gravity: np.ndarray  # (3,)
-
-    def rows(self, names: Sequence[str] = ()) -> list[int]:
-        """Rows of the named bodies (all moving bodies when none are named)."""
-        if not names:
-            return [int(i) for i in np.flatnonzero(self.moving)]
-        return [self.names.index(n) for n in names]
-
-
-@functools.lru_cache(maxsize=None)
-def model(path: str) -> Model:
-    w = worlds(load(path))[0]
-    b = w.bodies
-    return Model(list(b.names), b.mass, b.inertia, b.com, ~b.fixed, w.gravity)
-
-
-@dataclass
-class Motion:
-    """Bodies' states over the frames: (frames, bodies, ...) arrays; the centre of mass's
-    position and velocity, world inertia and angular velocity."""
-    t: np.ndarray
-    com: np.ndarray
-    v: np.ndarray
-    w: np.ndarray
-    i_world: np.ndarray
-    mass: np.ndarray
-
-    @classmethod
-    def read(cls, view: TraceView, m: Model, rows: Sequence[int]) -> Motion:
-        def stack(fld: str) -> np.ndarray:
-            return np.stack([view.series(m.names[r], fld)[1] for r in rows], axis=1)
-        t = view.series(m.names[rows[0]], "position")[0]
-        mats = R.matrix(R.from_axis_angle(stack("orientation")))
-        com = stack("position") + np.einsum("fbij,bj->fbi", mats, m.com[rows])
-        i_world = mats @ m.inertia[rows] @ np.swapaxes(mats, -1, -2)
-        return cls(t, com, stack("linearVelocity"), stack("angularVelocity"), i_world, m.mass[rows])
-
-    def energy(self, gravity: np.ndarray) -> np.ndarray:
-        """Kinetic plus potential energy per frame (J), potential zero at the origin."""
-        linear = 0.5 * np.einsum("b,fbi,fbi->f", self.mass, self.v, self.v)
-        angular = 0.5 * np.einsum("fbi,fbij,fbj->f", self.w, self.i_world, self.w)
-        return linear + angular - np.einsum("b,fbi,i->f", self.mass, self.com, gravity)
-
-    def angular_momentum(self) -> np.ndarray:
-        """World angular momentum about the origin per frame, (frames, 3)."""
-        spin = np.einsum("fbij,fbj->fi", self.i_world, self.w)
-        return spin + np.einsum("b,fbi->fi", self.mass, R.cross(self.com, self.v))
-
-
-def first_past(t: np.ndarray, x: np.ndarray, bound: float) -> float | None:
-    """The first time x exceeds bound (a non-finite x counts as past it)."""
-    past = np.flatnonzero(~(np.asarray(x) <= bound))
-    return float(t[past[0]]) if past.size else None
 
 
 def _worst(x: np.ndarray) -> float:
@@ -339,11 +273,12 @@ class StabilityResult:
     figures: list[Figure] = field(default_factory=list)
     wall_s: float = 0.0
     trace: str | None = None  # the run's trace, kept: its path relative to the output folder (run_one)
+    energy: results.EnergyGrowth | None = None  # its energy grew with nothing doing work (energy.growth)
 
     def to_json(self) -> dict:
         return {"case": self.case, "backend": self.backend, "dt": self.dt, "verdict": self.verdict, "at": self.at,
                 "reason": self.reason, "wall_s": round(self.wall_s, 3), "figures": [f.to_json() for f in self.figures],
-                "trace": self.trace}
+                "trace": self.trace, "energy_growth": self.energy.to_json() if self.energy else None}
 
 
 def judge(case: HardCase, view: TraceView, m: Model) -> tuple[str, float | None, str, list[Figure]]:
@@ -409,10 +344,14 @@ def _judged(case: HardCase, backend: str, dt: float, path: str, timeout: float) 
         return result(results.ERROR, f"unreadable trace: {e}")
     try:
         verdict, at, reason, figures = judge(case, view, model(case.path))
+        bodies = energy.model_at(case.path)
+        grew = energy.growth(view, bodies) if bodies is not None else None
     except (KeyError, ValueError, IndexError) as e:
         msg = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
         return result(results.ERROR, f"the monitors could not read the trace: {msg}")
-    return result(verdict, reason, at, figures)
+    out = result(verdict, reason, at, figures)
+    out.energy = grew
+    return out
 
 
 def run_one(case: HardCase, backend: str, dt: float, timeout: float = DEFAULT_TIMEOUT,

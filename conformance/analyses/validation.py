@@ -8,9 +8,9 @@ Two judgements, each reusing what judges x3drbp's own backends:
 - the backends: each runs the scene with the settings read off their trace (duration: the
   last time; frame rate: the median spacing of the times; dt: 1/240 unless given), and
   their trace is compared with each run as two backends are (conformance.analyses.compare): body
-  position and orientation divergence, joint outputs. A backend agrees when the pair has
-  a frame in common and every divergence stays within its threshold (joint outputs: the
-  threshold of their unit).
+  position, orientation, linearVelocity and angularVelocity divergence, joint outputs. A
+  backend agrees when the pair has a frame in common and every divergence stays within its
+  threshold (joint outputs: the threshold of their unit).
 
 The rule (docs/implementers.md): a scene that is a conformance case conforms when the
 case's expectation passes, the backends' verdicts shown for information (engines part
@@ -63,6 +63,13 @@ def trace_settings(rows: Sequence[Row] | TraceView, dt: float) -> Settings:
     gaps = np.diff(times)
     period = float(np.median(gaps)) if gaps.size else float(times[-1])
     return Settings(_tidy(float(times[-1])), dt, _tidy(1.0 / period))
+
+
+def frame_period(views: Sequence[TraceView]) -> float | None:
+    """Their frames' period where every trace has the same one (None: they differ): the step of
+    an implementation that steps once per frame."""
+    rates = {trace_settings(v, 1.0).frame_rate for v in views}
+    return 1.0 / rates.pop() if len(rates) == 1 else None
 
 
 def _aligned(rows: Sequence[Row] | TraceView, times: np.ndarray) -> TraceView:

@@ -9,9 +9,11 @@ crash, timeout, blow-up or refusal is that backend's verdict), then compares eve
 that ran: body position (m) and orientation (rad) divergence per frame and over the run,
 the first frame a body passes the threshold and the bodies over it, the joint outputs
 both runs hold (conformance/compare.py says how each is measured), and each run's
-real-time factor. Prints the tables; --json writes all of it, the per-frame series too;
---rerun a rerun recording of every run side by side with the divergence series
-(reports/rerun_recording.py), and the seconds it took on stderr.
+real-time factor; and a line for each run whose mechanical energy grew with nothing doing
+work on the scene (conformance/analyses/energy.py: its energy at the start, its largest and
+when, and when it first rose past its bound). Prints the tables; --json writes all of it, the
+per-frame series too; --rerun a rerun recording of every run side by side with the divergence
+series (reports/rerun_recording.py), and the seconds it took on stderr.
 
 The scene's warnings are printed once on stderr, before any run; what each backend
 approximates of it, once per backend after the runs (-v: every run's notes, one per
@@ -38,9 +40,10 @@ from conformance.cli import as_typed, options
 from conformance.cli.run import scene_to_run
 from conformance.runner import children, probe
 from conformance.results import Settings
-from conformance.analyses.compare import DEFAULT_THRESHOLDS, compare_all
+from conformance.analyses.compare import compare_all
 from conformance.results import Comparison
 from conformance.analyses.compare_runs import run_backends
+from conformance.analyses import energy
 
 EXIT_OK, EXIT_NOTHING_COMPARED, EXIT_USAGE = 0, 1, 2
 
@@ -76,6 +79,10 @@ def cmd_compare(args: argparse.Namespace) -> int:
         prefer = any(c.get("preferAccuracy") for c in scene.of_type("RigidBodyCollection"))
         runs = run_backends(args.scene, backends, settings, info, args.timeout, args.jobs, options.progress(args),
                             prefer)
+    bodies = energy.model(scene)  # None where something does work on them
+    for r, view in runs:
+        if bodies is not None and view is not None:
+            r.energy = energy.growth(view, bodies)
     result = Comparison(shown, args.duration, args.dt, args.frame_rate, thresholds,
                         [r for r, _ in runs], compare_all(runs, thresholds))
     sys.stdout.write(render(result))
@@ -100,10 +107,7 @@ def add_command(sub) -> None:
     p.add_argument("--backends", action="append", metavar="LIST",
                    help="backends to run, comma-separated (default: every installed one)")
     options.add_run_settings(p)
-    p.add_argument("--threshold", action="append", metavar="KIND=VALUE",
-                   help="divergence thresholds, comma-separated: position=M, orientation=RAD "
-                        f"(default position={DEFAULT_THRESHOLDS['position']:g},"
-                        f"orientation={DEFAULT_THRESHOLDS['orientation']:g})")
+    p.add_argument("--threshold", action="append", metavar="KIND=VALUE", help=options.thresholds_help())
     p.add_argument("--json", metavar="OUT.json", help="write the full result, per-frame series included")
     p.add_argument("--rerun", metavar="OUT.rrd",
                    help="write a rerun recording of the runs and their divergence (open it with `rerun OUT.rrd`)")

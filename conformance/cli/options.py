@@ -47,6 +47,14 @@ def escaped(name: str) -> str:
     return name.replace(",", "\\,")
 
 
+def thresholds_help() -> str:
+    """--threshold's help: every kind, its unit and its default."""
+    from conformance.analyses.compare import DEFAULT_THRESHOLDS, UNITS
+    return ("divergence thresholds, comma-separated KIND=VALUE, of " + ", ".join(
+        f"{k} ({UNITS[k]}, default {v:g})" for k, v in DEFAULT_THRESHOLDS.items()) + "; joint outputs are held to "
+        "the kind of their unit")
+
+
 def thresholds(values: list[str] | None) -> dict[str, float]:
     """KIND=VALUE items over the defaults; ValueError naming what is wrong."""
     from conformance.analyses.compare import DEFAULT_THRESHOLDS, UNITS
@@ -74,8 +82,11 @@ MAX_REPEATS = 100  # timed runs of one point: a median and its spread need a few
 
 def settings_error(args: argparse.Namespace) -> str | None:
     """Why --duration, --dt and --frame-rate (and --timeout where the command has one) cannot
-    run, in one line; None when they can."""
-    for name in ("duration", "dt", "frame_rate", "timeout"):
+    run, in one line; None when they can (and args.dt in seconds: read_step)."""
+    problem = read_step(args)
+    if problem:
+        return problem
+    for name in ("duration", "frame_rate", "timeout"):
         value = getattr(args, name, 1.0)
         if value is not None and not (math.isfinite(value) and value > 0):
             return f"--{name.replace('_', '-')} must be a positive number, not {value:g}"
@@ -103,20 +114,35 @@ def given(values: list[str] | None, option: str, what: str) -> list[str]:
     return names(values)
 
 
-def steps(values: list[str] | None) -> list[float]:
-    """--dts: physics steps in seconds, as fractions (1/240) or decimals, each once in the order
-    given ([] where none is); ValueError naming one that is not a positive finite number
-    (the commands said Fraction's own words, 'Fraction(1, 0)', or ran `--dts ,` as the default)."""
-    out = []
-    for v in given(values, "--dts", "step"):
+def step(text: str, option: str = "--dt", what: str = "a positive step") -> float:
+    """A physics step in seconds as typed, a fraction (1/240) or a decimal (0.004): the one
+    reading of every --dt and --dts; ValueError naming the option and a value that is not a
+    positive finite number (Fraction's own words were 'Fraction(1, 0)')."""
+    try:
+        dt = float(Fraction(text.strip()))
+    except (ValueError, ZeroDivisionError, OverflowError):
+        dt = math.nan
+    if not (math.isfinite(dt) and dt > 0):
+        raise ValueError(f"{option} must be {what} in seconds, as 1/240 or 0.004, not {text!r}")
+    return dt
+
+
+def read_step(args: argparse.Namespace) -> str | None:
+    """Turns args.dt, kept as typed (argparse does not read it, so that a bad one is refused
+    in the command's one line as every setting is, not in argparse's usage), into seconds;
+    the one-line reason where it is no step. A default (a number, or None) stays as it is."""
+    if isinstance(args.dt, str):
         try:
-            dt = float(Fraction(v))
-        except (ValueError, ZeroDivisionError, OverflowError):
-            dt = math.nan
-        if not (math.isfinite(dt) and dt > 0):
-            raise ValueError(f"--dts must be positive steps in seconds, as 1/240 or 0.004, not {v!r}")
-        out.append(dt)
-    return list(dict.fromkeys(out))
+            args.dt = step(args.dt)
+        except ValueError as e:
+            return str(e)
+    return None
+
+
+def steps(values: list[str] | None) -> list[float]:
+    """--dts: physics steps in seconds (step()), each once in the order given ([] where none
+    is); ValueError naming one that is not a step (`--dts ,` ran as the default)."""
+    return list(dict.fromkeys(step(v, "--dts", "positive steps") for v in given(values, "--dts", "step")))
 
 
 def positive(text: str) -> float:
@@ -152,7 +178,8 @@ def repeats(text: str) -> int:
 def add_run_settings(p: argparse.ArgumentParser) -> None:
     """--duration, --dt, --frame-rate: how a scene is run (`x3drbp run` and the commands that run it)."""
     p.add_argument("--duration", type=float, default=1.0, help="simulated seconds (default 1)")
-    p.add_argument("--dt", type=float, default=1.0 / 240.0, help="physics step in seconds (default 1/240)")
+    p.add_argument("--dt", default=1.0 / 240.0, metavar="S",
+                   help="physics step in seconds, as 1/240 or 0.004 (default 1/240)")
     p.add_argument("--frame-rate", type=float, default=60.0, help="frames per second (default 60)")
 
 

@@ -7,9 +7,11 @@ Writes DIR/stability.json and DIR/stability.md (DIR defaults to out/stability) a
 markdown. Each (case, backend, dt) runs in its own child process under the time limit; its
 verdict is survived (stopped, for the impact), what gave way first and when (energy grew past
 bound, momentum drifted past bound, joint drifted past bound, drifted past bound, tunnelled,
-blew up), or unsupported, crashed, timed out, error. Exit status 0 whatever the verdicts
-(they are results, not errors); 2 on bad usage; 130 or 143 when interrupted by SIGINT or
-SIGTERM (every run stopped, one line).
+blew up), or unsupported, crashed, timed out, error; and a line for each run whose mechanical
+energy grew with nothing doing work on its scene (conformance/analyses/energy.py: its energy at
+the start, its largest and when, and when it first rose past its bound). Exit status 0 whatever
+the verdicts (they are results, not errors); 2 on bad usage; 130 or 143 when interrupted by
+SIGINT or SIGTERM (every run stopped, one line).
 
 The trace of each run that did not hold and left one (it broke a bound, or blew up: the frames
 before) is kept as DIR/traces/CASE-BACKEND-DT.csv (DT as 1_240), which the table's reasons

@@ -3,11 +3,19 @@
     x3drbp validate SCENE --trace THEIRS.csv [--trace THEIRS2.csv ...] [--against LIST]
                     [--dt S] [--threshold KIND=VALUE] [--json OUT.json] [--timeout S]
 
-Reads their trace and checks its format (conformance/trace_check.py); applies the
+Reads their trace and checks its format (conformance/analyses/trace_check.py); applies the
 conformance case's expectation where SCENE is a case's scene (a case of several runs takes
 one --trace per run, in the case's order); runs each backend (--against, default every
 installed one) with the settings read off their trace and measures how far their trace is
-from each run (conformance/validate.py says how, and the rule).
+from each run (conformance/analyses/validation.py says how, and the rule).
+
+A trace that does not conform, whose frames are all one period apart that is not the step it
+was judged at, gets one line more: an implementation that steps once per frame took that
+period as its step, so `--dt` with it is what to try. The trace is judged at that step too
+where that is cheap: the case's expectation (no run), or the backends' runs at a step no finer
+than the one just judged (no more steps than those runs took). The exit status stays the
+judgement at the step stated (--dt, else the default): the period is a guess at the step,
+which only the implementation knows.
 
 Exit status: 0 when the trace conforms: the case's expectation passes, or, for a scene
 that is no case, the trace agrees with at least one backend within the thresholds; 1 when
@@ -24,7 +32,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from reports.validate_text import render
 from x3d_core import atomic
@@ -35,10 +43,9 @@ from conformance.runner import children, probe
 from conformance.cases.case import Case
 from x3d_core.paths import printable
 from x3d_core.trace import TraceView
-from conformance.analyses.compare import DEFAULT_THRESHOLDS
 from conformance.analyses.trace_check import Problem, check_trace
-from conformance.analyses.validation import check_case, compare_with_backends, find_case, trace_settings
-from conformance.results import Validation
+from conformance.analyses.validation import check_case, compare_with_backends, find_case, frame_period, trace_settings
+from conformance.results import FrameStep, TraceComparison, Validation
 
 EXIT_CONFORMS, EXIT_DOES_NOT, EXIT_UNREADABLE, EXIT_NOT_JUDGED = 0, 1, 2, 3
 MAX_SHOWN = 20  # problems printed; the rest counted
@@ -81,16 +88,33 @@ def _too_long(paths: Sequence[str], traces: Sequence[TraceView], dt: float) -> s
     return None
 
 
+def _frame_step(v: Validation, case: Case | None, views: Sequence[TraceView], judged: set[float],
+                compare: Callable[[float], list[TraceComparison]]) -> FrameStep | None:
+    """Their frames' period as the step, where it is none of the steps the trace was judged at;
+    judged at it where cheap (the module's docstring), `compare` running the backends at a step."""
+    period = frame_period(views)
+    if period is None or any(math.isclose(period, d, rel_tol=1e-9) for d in judged):
+        return None
+    if case is not None:
+        at = Validation(v.scene, v.traces, v.thresholds, check_case(case, views, period))
+    elif period >= max(judged):
+        at = Validation(v.scene, v.traces, v.thresholds, None, compare(period))
+    else:
+        return FrameStep(period, None)
+    return FrameStep(period, at.conforms if at.judged else None, at.agreeing())
+
+
 @children.interruptible
 def cmd_validate(args: argparse.Namespace) -> int:
     try:
         thresholds = options.thresholds(args.threshold)
     except ValueError as e:
         return _usage(str(e))
-    for name in ("dt", "timeout"):
-        value = getattr(args, name)
-        if value is not None and not (math.isfinite(value) and value > 0):
-            return _usage(f"--{name} must be a positive number, not {value:g}")
+    problem = options.read_step(args)
+    if problem:
+        return _usage(problem)
+    if not (math.isfinite(args.timeout) and args.timeout > 0):
+        return _usage(f"--timeout must be a positive number, not {args.timeout:g}")
     scene = options.load_scene(args.scene)
     if scene is None:
         return EXIT_UNREADABLE
@@ -121,9 +145,14 @@ def cmd_validate(args: argparse.Namespace) -> int:
         info, backends = probe.chosen(options.given(args.against, "--against", "backend"), args.timeout)
     except ValueError as e:
         return _usage(str(e))
-    validation = Validation(args.scene, list(args.trace), thresholds, result,
-                            [compare_with_backends(args.scene, path, rows, dt, backends, info, thresholds, args.timeout)
-                             for path, rows in zip(args.trace, traces)])
+
+    def compare(step: float) -> list[TraceComparison]:
+        return [compare_with_backends(args.scene, path, rows, step, backends, info, thresholds, args.timeout)
+                for path, rows in zip(args.trace, traces)]
+    validation = Validation(args.scene, list(args.trace), thresholds, result, compare(dt))
+    if validation.judged and not validation.conforms:
+        judged = {args.dt or s.dt for s in case.runs} if case is not None else {dt}
+        validation.frame_step = _frame_step(validation, case, [TraceView(r) for r in traces], judged, compare)
     sys.stdout.write(render(validation))
     if args.json:
         atomic.write_json(args.json, validation.to_json())
@@ -141,12 +170,10 @@ def add_command(sub) -> None:
                    help="their trace; once per run of a case with several (in the case's order)")
     p.add_argument("--against", action="append", metavar="LIST",
                    help="backends to compare with, comma-separated (default: every installed one)")
-    p.add_argument("--dt", type=float, default=None, metavar="S",
-                   help="the physics step their implementation took (default: the case's, else 1/240)")
-    p.add_argument("--threshold", action="append", metavar="KIND=VALUE",
-                   help="divergence thresholds, comma-separated: position=M, orientation=RAD "
-                        f"(default position={DEFAULT_THRESHOLDS['position']:g},"
-                        f"orientation={DEFAULT_THRESHOLDS['orientation']:g})")
+    p.add_argument("--dt", default=None, metavar="S",
+                   help="the physics step their implementation took, as 1/60 or 0.004 (default: the case's, "
+                        "else 1/240)")
+    p.add_argument("--threshold", action="append", metavar="KIND=VALUE", help=options.thresholds_help())
     p.add_argument("--json", metavar="OUT.json", help="write the full result, per-frame series included")
     p.add_argument("--timeout", type=float, default=children.DEFAULT_TIMEOUT, metavar="S",
                    help=f"time limit per backend run in seconds (default {children.DEFAULT_TIMEOUT:g})")
