@@ -144,12 +144,34 @@ def declared_findings(doc: dict) -> list[str]:
     return out
 
 
+def x_ite_line(data: dict) -> str:
+    """X_ITE's verdicts counted, its clock's reading, and the fields its probes found ignored."""
+    counts = {k: sum(c["verdict"] == k for c in data["cases"]) for k in ("right", "conventions", "ignores", "wrong",
+                                                                          "error")}
+    conforms = counts["right"] + counts["conventions"]
+    clock = data.get("clock", [])
+    lag = max((k["lag_s"] for k in clock if k["lag_s"] is not None), default=None)
+    ignored = sorted({f for c in data["cases"] for f in c["ignored"]})
+    return (f"X_ITE {data['versions']['x_ite']} conforms in {conforms} of {len(data['cases'])} cases "
+            f"({counts['conventions']} of them differing in conventions); it ignores a field in {counts['ignores']}, "
+            f"is wrong in {counts['wrong']}, and could not run {counts['error']}"
+            + ("" if lag is None else f"; its physics clock lags the frames by up to {num(lag)} s"
+               + (" (37.2.2.1)" if not all(k["ok"] for k in clock) else ""))
+            + (f"; fields without effect: {', '.join(ignored)}" if ignored else "") + ".")
+
+
 def answers(out: str, comparisons: list[Comparison]) -> str:
     """The page's first section, from the files in out."""
     parts = ["## Answers", ""]
     matrix = _load(os.path.join(out, "conformance", "matrix.json"))
     parts += ["**What conforms** (every case on every backend; [details](#conformance)):", ""]
     parts += conformance_lines(matrix) if matrix else ["Not run."]
+    x_ite = _load(os.path.join(out, "x_ite", "x_ite.json"))
+    if x_ite:
+        parts += ["", f"**How X_ITE conforms** ([details](#x_ite)): {escape(x_ite_line(x_ite))}"]
+    parts += ["", "**How to judge your own browser**: record its trace of a scene (the format: docs/implementers.md), "
+                  "then `x3drbp validate SCENE --trace THEIRS.csv --dt STEP` says whether it conforms, measure by "
+                  "measure, and how far it is from each engine's run."]
     advice = _load(os.path.join(out, "advice", "advice.json"))
     parts += ["", "**Which backend, at which step, for each kind of scene** (`x3drbp advise`; "
                   "[how it is chosen](#which-backend-for-which-scene)):", ""]

@@ -25,6 +25,9 @@ def _evidence(c: dict) -> str:
     parts = []
     if c["ignored"]:
         parts.append(f"no effect: {', '.join(c['ignored'])}")
+    if c.get("inert"):
+        parts.append(f"the scene without any {', '.join(c['inert'])} is recorded identical: the joint has no effect "
+                     "at all")
         made = sorted({x for f in c["ignored"] for x in c.get("variants", {}).get(f, [])})
         if made:
             parts.append(f"probed on the scene with {'; '.join(made)}")
@@ -34,9 +37,34 @@ def _evidence(c: dict) -> str:
                      f"blows up without any one of {', '.join(c['blew_up_probed'])} too")
     if c["detail"]:
         parts.append(c["detail"])
-    if c["verdict"] == "wrong" and c["probed"]:
-        parts.append(f"every probed field has an effect ({', '.join(c['probed'])})")
+    untold = c.get("untold", {})
+    parts += [f"the probe of {f} could not tell: {why}" for f, why in untold.items()]
+    told = [f for f in c["probed"] if f not in untold and f not in c["ignored"]]
+    if c["verdict"] == "wrong" and told:
+        parts.append(f"every field its probes could tell has an effect ({', '.join(told)})")
     return escape("; ".join(parts)) or "-"
+
+
+def _clock(readings: list[dict]) -> list[str]:
+    """The clock, read once for every case: what it is, and the sentence it is judged by."""
+    if not readings:
+        return []
+    parts = []
+    for k in readings:
+        at = (f"at {num(k['frame_rate'])} frames/s, {k.get('iterations', 10)} iterations"
+              + (", preferAccuracy" if k.get("prefer_accuracy") else ""))
+        if k["lag_s"] is None:
+            parts.append(f"{at} not read ({escape(k['error'] or '')})")
+        else:
+            parts.append(f"{at} it lags the frame clock by up to {num(k['lag_s'])} s "
+                         f"({'within' if k['ok'] else 'beyond'} the {num(k['tolerance_s'])} s of one frame and one "
+                         "step)")
+    failed = [k for k in readings if not k["ok"]]
+    verdict = (f"**violates the spec** (\"{escape(readings[0]['basis'])}\")" if failed else "keeps pace")
+    return [f"**The physics clock**, read once for every case from a body falling freely in a scene of its own "
+            f"(v = g tau gives the physics time X_ITE's state shows at each frame): {'; '.join(parts)}: it "
+            f"{verdict}. Each case is judged at the physics time X_ITE's own state shows, so that the clock fails "
+            "its sentence here once and never a field's.", ""]
 
 
 def render(data: dict, matrix: dict | None = None) -> str:
@@ -52,8 +80,11 @@ def render(data: dict, matrix: dict | None = None) -> str:
         "`iterations` substeps). **right**: the case passes (it conforms). **right, other conventions**: only "
         "measures of a convention fail, a reading of a point the spec leaves open that is not ODE's: it conforms "
         "(docs/spec-loose-ends.md). **ignores**: it fails, and recording it again "
-        "with a field it exercises at its default leaves X_ITE's trace byte-identical (listed). **wrong**: it "
-        "fails though every probed field has an effect. **error**: X_ITE did not run it.", "",
+        "with a field it exercises at its default leaves X_ITE's trace byte-identical (listed), in a run that "
+        "shows what the field acts through (a contact, a body that moves or turns); a probe whose run does not "
+        "could not tell, and says so. **wrong**: it fails, and no probe found a field without effect. **error**: "
+        "X_ITE did not run it.", "",
+        *_clock(data.get("clock", [])),
         f"{counts['right']} right, {counts['conventions']} right with other conventions, {counts['ignores']} ignores, {counts['wrong']} wrong, {counts['error']} error, "
         f"in {data['wall_s']:g} s.", "",
         "| case | " + "".join(f"{b} | " for b in backends) + "X_ITE | frames/s | dt (s) | evidence | agrees with | "

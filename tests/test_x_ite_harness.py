@@ -134,7 +134,7 @@ def test_the_column_says_right_ignores_wrong_and_error_with_evidence():
     assert rows["free_fall"].startswith("| free_fall | pass | - | right |")
     assert "**ignores**" in rows["hinge_limits"] and "no effect: SingleAxisHingeJoint.maxAngle" in rows["hinge_limits"]
     assert "(recordings/hinge_limits.rrd)" in rows["hinge_limits"]
-    assert "**wrong**" in rows["incline"] and "every probed field has an effect" in rows["incline"]
+    assert "**wrong**" in rows["incline"] and "every field its probes could tell has an effect" in rows["incline"]
     assert "**error**" in rows["bounce_apex"] and "timeout" in rows["bounce_apex"]
     assert "1 right, 0 right with other conventions, 1 ignores, 1 wrong, 1 error" in text and "- Ammo: warning" in text
 
@@ -143,11 +143,21 @@ def test_the_report_gains_the_x_ite_section_only_when_it_ran(tmp_path):
     meta = {"generated": "now", "cpus": 2, "timings_s": {"conformance": 1.0, "total": 1.0}, "failed": [],
             "backends": {"bullet": "3"}, "quick": True}
     (tmp_path / "report.json").write_text(json.dumps(meta))
-    assert "## X_ITE" not in report_markdown(str(tmp_path))
+    text = report_markdown(str(tmp_path))
+    assert "## X_ITE" not in text and "How X_ITE conforms" not in text
+    assert "**How to judge your own browser**" in text and "`x3drbp validate SCENE --trace THEIRS.csv" in text
     (tmp_path / "x_ite").mkdir()
-    (tmp_path / "x_ite" / "x_ite.json").write_text(json.dumps(_results()))
+    data = {**_results(), "clock": [{"frame_rate": 60.0, "iterations": 10, "prefer_accuracy": False, "lag_s": 0.23, "tolerance_s": 0.0183, "ok": False,
+                                     "error": None, "physics_times": [], "basis": "37.2.2.1 ..."}]}
+    (tmp_path / "x_ite" / "x_ite.json").write_text(json.dumps(data))
     text = report_markdown(str(tmp_path))
     assert "## X_ITE" in text and "(x_ite/recordings/hinge_limits.rrd)" in text
+    assert "**How X_ITE conforms** ([details](#x_ite)): X\\_ITE 15.0.1" in text
+    assert ("conforms in 1 of 4 cases (0 of them "
+            "differing in conventions); it ignores a field in 1, is wrong in 1, and could not run 1; its physics "
+            "clock lags the frames by up to 0.23 s (37.2.2.1); fields without effect: "
+            "SingleAxisHingeJoint.maxAngle.") in text
+    assert "**The physics clock**, read once for every case" in text and "**violates the spec**" in text
 
 
 @pytest.mark.parametrize("argv, says", [
@@ -182,8 +192,9 @@ def test_ready_gives_a_body_its_inertia_and_a_static_floor_a_fixed_body(tmp_path
     scene = tmp_path / "s.x3d"
     scene.write_text(textwrap.dedent("""\
         <X3D profile='Full' version='4.0'><Scene>
+          <RigidBodyCollection DEF='Other'/>
           <CollisionCollection DEF='Coll'>
-            <CollidableShape DEF='Floor' containerField='collidables'><Shape containerField='shape'><Box size='4 0.1 4'/></Shape></CollidableShape>
+            <CollidableShape DEF='Floor' containerField='collidables' translation='0 -0.5 0' rotation='1 0 0 0.1'><Shape containerField='shape'><Box size='4 0.1 4'/></Shape></CollidableShape>
           </CollisionCollection>
           <RigidBodyCollection DEF='World'>
             <RigidBody DEF='Spun' mass='2' inertia='0.5 0 0 0 0.8 0 0 0 0.5'/>
@@ -197,11 +208,20 @@ def test_ready_gives_a_body_its_inertia_and_a_static_floor_a_fixed_body(tmp_path
     sphere = spun.get("geometry")[0].get("shape").get("geometry")
     assert sphere.get("radius") == pytest.approx((2.5 * 0.6 / 2) ** 0.5, rel=1e-12)  # 2/5 m r^2 = mean I
     changes = ready(str(scene), out, (CONTACT,))
-    assert changes == ["Floor (a collidable on no body) held by the fixed RigidBody XITE_STATIC_1"]
+    assert changes == ["Floor (a collidable on no body) held where it lies by the fixed RigidBody XITE_STATIC_1",
+                       "Coll watched by the CollisionSensor XITE_SENSOR_1, so that the run shows its contacts"]
     ready_scene = load(out)
     assert not ready_scene.errors, [str(d) for d in ready_scene.errors]
     held = next(b for b in ready_scene.of_type("RigidBody") if b.def_name == "XITE_STATIC_1")
     assert held.get("fixed") and held.get("geometry")[0].def_name == "Floor"
+    # where the floor lies: the body at its translation and rotation, the collidable with none of its own, so
+    # both readings of a body's collidable (docs/spec-loose-ends.md section 22) put it there
+    assert held.get("position") == pytest.approx((0, -0.5, 0)) and held.get("orientation") == pytest.approx((1, 0, 0, 0.1))
+    assert held.get("geometry")[0].get("translation") == pytest.approx((0, 0, 0))
+    sensor = next(s for s in ready_scene.of_type("CollisionSensor"))
+    assert sensor.def_name == "XITE_SENSOR_1" and sensor.get("collider").def_name == "Coll"
+    # the floor goes in the collection whose collider holds it, not the first
+    assert held in next(c for c in ready_scene.of_type("RigidBodyCollection") if c.def_name == "World").get("bodies")
     assert ready(str(scene), str(tmp_path / "none.x3d"), ()) == [] and not (tmp_path / "none.x3d").exists()
 
 

@@ -12,7 +12,9 @@ any scene, for `x3drbp validate` (it prints the --dt to pass: the step X_ITE tak
 
 Needs node, Debian's chromium and the npm packages in conformance/browsers/x_ite: `make
 x-ite-install` installs them. Exit status 0 whatever the verdicts (they are results); 1
-when X_ITE cannot run here at all, or `record` could not record; 2 on bad usage.
+when X_ITE cannot run here at all, or `record` could not record, or the scene blew up in
+X_ITE (its trace then holds the frames before the first value that is not finite); 2 on
+bad usage.
 """
 
 from __future__ import annotations
@@ -70,14 +72,15 @@ def cmd_cases(args: argparse.Namespace) -> int:
         _say(f"--out {args.out}: {e.strerror}")
         return EXIT_USAGE
     started = time.perf_counter()
-    verdicts = run_cases(chosen, traces, backends, info, thresholds, args.timeout,
-                         os.path.join(args.out, "recordings"), _say)
+    verdicts, clocks = run_cases(chosen, traces, backends, info, thresholds, args.timeout,
+                                 os.path.join(args.out, "recordings"), _say)
     for v in verdicts:  # paths in the results are relative to the folder they are in
         if v.recording:
             v.recording = os.path.relpath(v.recording, args.out)
     data = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "versions": versions(), "backends": backends, "thresholds": thresholds,
-            "wall_s": round(time.perf_counter() - started, 1), "cases": [v.to_json() for v in verdicts]}
+            "wall_s": round(time.perf_counter() - started, 1), "clock": [k.to_json() for k in clocks],
+            "cases": [v.to_json() for v in verdicts]}
     atomic.write_json(os.path.join(args.out, "x_ite.json"), data)
     text = render(data)
     atomic.write_text(os.path.join(args.out, "x_ite.md"), text)
@@ -114,6 +117,10 @@ def cmd_record(args: argparse.Namespace) -> int:
         return EXIT_FAILED
     for m in run.messages:
         _say(f"X_ITE said: {m}")
+    if run.blew_up:  # the trace holds the frames before it: readable, and cut short
+        _say(f"{shown(args.scene)}: X_ITE blew up: {run.blew_up}; {shown(args.trace)} holds the {run.frames} "
+             f"frames before it")
+        return EXIT_FAILED
     _say(f"wrote {args.trace}: {run.frames} frames in {run.wall_s:.2f} s; "
          f"X_ITE's step here is {step(scene, args.frame_rate)!r} s (validate with --dt {step(scene, args.frame_rate)!r})")
     return EXIT_OK

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 from x3d_core import atomic
 from x3d_core.model import Scene
-from x3d_core.world import worlds
+from x3d_core.world import node_names, worlds
 
 from conformance.runner import children
 
@@ -52,17 +52,20 @@ class NotRecordable(ValueError):
 
 
 def outputs(scene: Scene) -> dict:
-    """What the page reads each frame: every body of an enabled collection, the joint outputs
-    forceOutput selects, every enabled CollisionSensor; and the enabled collections, which
-    it holds for one frame before the run (record.mjs says why). All by DEF name, which is
-    how a page finds a node (Scene.getNamedNode), so a node without one is refused by name."""
+    """What the page reads each frame: every RigidBody of every collection, disabled ones and
+    those of a disabled collection included (that they do not move is what their fields say),
+    the joint outputs forceOutput selects, every CollisionSensor; and the enabled collections,
+    which it holds for one frame before the run (record.mjs says why). All by DEF name, which
+    is how a page finds a node (Scene.getNamedNode), so a node without one is refused by name."""
     found: dict = {"collections": [], "bodies": [], "joints": {}, "sensors": []}
+    names = node_names(scene)
     for w in worlds(scene):
         found["collections"].append(w.name)
-        found["bodies"] += [w.bodies.names[i] for i in range(len(w.bodies)) if w.bodies.enabled[i]]
         found["joints"].update({j.name: list(j.outputs) for j in w.joints if j.outputs})
-        if w.collisions is not None:
-            found["sensors"] += [name for name, _ in w.collisions.sensors]
+    for c in scene.of_type("RigidBodyCollection"):
+        found["bodies"] += [names[id(b)] for b in c.get("bodies") or () if b is not None
+                            and b.type_name == "RigidBody" and names[id(b)] not in found["bodies"]]
+    found["sensors"] = [names[id(s)] for s in scene.of_type("CollisionSensor")]
     defined = {n.def_name for n in scene.nodes() if n.def_name}
     unnamed = [n for n in (*found["collections"], *found["bodies"], *found["joints"], *found["sensors"])
                if n not in defined]
