@@ -15,14 +15,16 @@ gets wrong, each measured by the suite's ordinary checks (`x3drbp validate`'s, u
   CollisionSensor for contacts), the field is removed from that same scene, and the
   verdict names what was changed. A probe tells only where its own run shows the thing
   probed (`_untold`): a contact (the sensor active in some frame) for a contact's field, a
-  body that turns for its inertia or centre of mass, a body the joint joins that moves for a
-  joint's field, a body that moves for any other; else
+  body that turns for its inertia or centre of mass, a body the joint joins that moves (from
+  the first step on) for a joint's field, a body that moves for any other, nothing for a field
+  whose effect is the motion itself (a force, a torque, a motor's target, gravity); else
   the verdict says the probe could not tell, and why. A field the scene gives its default
   value is not probed (removing it changes nothing). A field whose removal leaves X_ITE's
   trace identical, byte for byte, in a probe that tells, has no effect in X_ITE: it
   IGNORES it. (Runs are bit-identical, so any effect at all shows.) For a joint's field the
-  scene is also recorded without every joint of that type: where that too is identical, the
-  joint has no effect at all, and the verdict names that as the cause. A failed case with no
+  scene is also recorded without every joint of that type: where the bodies' rows are then the
+  same though a body it joins moves, the joint has no effect at all, and the verdict names that
+  as the cause. A failed case with no
   ignored field is WRONG.
 - A case whose state stops being finite blew up: WRONG, its fields not probed (a trace cut
   short says nothing of what a field would have changed later); it is recorded again
@@ -315,18 +317,26 @@ def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
         c.verdict.untold = {name: why for name, _, base in told if (why := _untold(name, base))}
         ignored = [name for name, r, base in told
                    if name not in c.verdict.untold and filecmp.cmp(r.out, base.out, shallow=False)]
-        c.verdict.inert = [t for t, (r, base) in c.controls.items() if r.ok and base.ok and _bodies_alike(r, base)]
+        c.verdict.inert = [t for t, (r, base) in c.controls.items() if r.ok and base.ok and _bodies_alike(r, base)
+                           and _untold(f"{t}.body1", base) is None]  # where a body it joins moves: else it tells nothing
         if ignored:
             c.verdict.verdict, c.verdict.ignored = IGNORES, ignored
 
 
 # the fields a body shows only by turning
-_TURNING = ("RigidBody.inertia", "RigidBody.centerOfMass", "RigidBody.torques", "RigidBody.angularVelocity")
+_TURNING = ("RigidBody.inertia", "RigidBody.centerOfMass")
+# the fields whose effect is the motion itself: with none, the probe has shown them without effect
+_DRIVING = ("RigidBody.forces", "RigidBody.torques", "RigidBody.linearVelocity", "RigidBody.angularVelocity",
+            "RigidBodyCollection.gravity", "SliderJoint.sliderForce", "DoubleAxisHingeJoint.desiredAngularVelocity1",
+            "DoubleAxisHingeJoint.desiredAngularVelocity2", "MotorJoint.axis1Torque", "MotorJoint.axis2Torque",
+            "MotorJoint.axis3Torque")
 
 
 def _untold(probed: str, base: Recording) -> str | None:
     """Why the probe of `probed` (TYPE.field) cannot tell whether X_ITE uses it: its run,
     with the field, does not show the thing the field acts through; None where it does."""
+    if probed in _DRIVING:
+        return None
     rows = read_trace(base.out)
     node_type, fld = probed.split(".", 1)
     if CONTACT in needs(node_type, fld):
@@ -345,8 +355,9 @@ def _untold(probed: str, base: Recording) -> str | None:
     else:
         bodies, where = set(base.what["bodies"]), "no body"
     for body in (b for b in base.what["bodies"] if b in bodies and not b.startswith(ADDED)):
-        _, o = view.series(body, "orientation")
-        _, p = view.series(body, "position")
+        # from the first step on: X_ITE moves a body without geometry to the origin at its first step, which
+        # shows nothing of what a field does
+        o, p = view.series(body, "orientation")[1][1:], view.series(body, "position")[1][1:]
         if _rotates(o) or not turning and np.any(p != p[:1]):
             return None
     return f"{where} turns in its run" if turning else f"{where} moves in its run"
