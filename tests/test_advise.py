@@ -10,7 +10,7 @@ import shutil
 
 import numpy as np
 import pytest
-from conftest import ROOT, SCENES, case_scene
+from conftest import ROOT, SCENES, case_scene, needs_ode
 
 from conformance.analyses import advice as A
 from conformance.analyses import sweep as S
@@ -181,6 +181,7 @@ def test_the_labels_hold_on_the_scenes_users_brought(tmp_path, capsys):
     assert by_name["car.x3d"]["judged"]["pymunk"]["refused"]  # planar only: the car is refused, said
 
 
+@needs_ode
 def test_advise_a_folder_each_scene_gets_its_answer(tmp_path, capsys):
     folder = tmp_path / "mine"
     folder.mkdir()

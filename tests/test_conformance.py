@@ -416,6 +416,9 @@ def test_case_fails_when_mutated(case, mutated_runs):
             pytest.skip(f"no installed backend to judge {case.name}'s mutations on")
         missed = [f"on {b} ({how}): {why}" for b, how, as_it_is, mutated in places
                   if (why := _caught(m, how, as_it_is, mutated)) is not None]
+        if len(missed) == len(places) and "ode" not in INSTALLED:  # ODE, the base every mutant wraps, judges it
+            absent.append(f"{what}: no installed backend but ODE, which is unavailable here, shows it ({'; '.join(missed)})")
+            continue
         assert len(missed) < len(places), f"{what}: " + "; ".join(missed)
     if absent:
         pytest.skip("; ".join(absent))

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from backends import base
-from conftest import ROOT, SHARED
+from conftest import ROOT, SHARED, needs_ode
 from x3d_core import clause37, clause37_nodes, editions
 from x3d_core import fields as F
 from x3d_core.analysis import Use, run_uses
@@ -171,6 +171,7 @@ def test_a_3x_file_written_to_the_clause_loads_and_its_values_reach_the_joint(tm
     assert (params[0]["stop1Bounce"], params[0]["stop1ErrorCorrection"], params[1]["stop1Bounce"]) == (0.5, 0.3, 0.25)
 
 
+@needs_ode
 def test_a_3_3_file_using_stopBounce1_runs_on_ode(tmp_path):
     pytest.importorskip("backends.ode", reason="ODE is not installed")
     path = xml(tmp_path, "3.3", hinge2(V3_HINGE2))

@@ -11,7 +11,7 @@ import os
 import pytest
 
 from conformance.cli import main as cli_main
-from conftest import SCENES
+from conftest import SCENES, needs_ode
 from x3d_core.load import load
 from x3d_core.world import worlds
 
@@ -76,6 +76,7 @@ def test_all_beside_none_reads_as_all_and_check_says_the_clause_gives_both(tmp_p
     assert f"{path}:25:11: warning: SingleAxisHingeJoint Pivot.forceOutput: {BOTH}" in capsys.readouterr().out.splitlines()
 
 
+@needs_ode
 def test_validate_holds_neither_reading_of_all_beside_none_against_a_trace(tmp_path, capsys):
     """ODE's trace has the hinge's outputs (x3drbp's reading, ALL); the same trace without them is
     a browser that reads NONE. Each agrees with ODE's run: neither reading is a fault."""

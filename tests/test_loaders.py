@@ -14,6 +14,7 @@ from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.model_diff import differences
 from x3d_core.world import worlds
+from conftest import needs_ode
 
 XML_HEAD = "<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='{v}'>\n"
 
@@ -260,8 +261,9 @@ def test_every_root_of_a_proto_body_is_in_the_scene(tmp_path, encoding):
 
 
 @pytest.mark.parametrize("encoding", ["xml", "vrml", "json"])
+@needs_ode
 def test_a_collection_in_a_later_proto_root_falls_freely_on_ode(tmp_path, encoding):
-    ode = pytest.importorskip("backends.ode")
+    from backends import ode
     ws = worlds(many_roots(tmp_path, encoding))
     dt, t = 1 / 240, 0.5
     trace = run(ws, ode.BACKEND, RunSettings(t, dt, 60))

@@ -21,7 +21,7 @@ from conformance import cases as C
 from conformance.results import PASS, UNSUPPORTED
 from conformance.runner import probe, verdicts
 
-from conftest import ROOT
+from conftest import ROOT, needs_ode
 
 pytest_plugins = ["pytester"]
 
@@ -84,6 +84,7 @@ def test_the_in_tree_backends_come_first_from_their_entry_points():
     assert declared == {n: f"backends.{n}:BACKEND" for n in base.IN_TREE}
 
 
+@needs_ode
 def test_loading_one_backend_imports_no_other_engine():
     code = ("import sys; from backends import base; base.engines(); base.load('ode'); "
             "print(sorted(m for m in ('pybullet', 'mujoco', 'dartpy', 'pymunk') if m in sys.modules))")

@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from conftest import ROOT
+from conftest import ROOT, needs_ode
 from x3d_core.load import load
 from x3d_core.model import LoadError
 from x3d_core.trace import read_trace
@@ -142,6 +142,7 @@ PAIR_PROTO = """    <ProtoDeclare name='Pair'>
     </RigidBodyCollection>"""
 
 
+@needs_ode
 def test_every_body_gets_its_own_name_in_the_trace_and_the_derived_ones_are_said(tmp_path):
     path = _write(tmp_path, "names.x3d", XML.format(body=PAIR_PROTO))
     scene = load(path)

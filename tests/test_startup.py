@@ -7,7 +7,7 @@ import json
 import subprocess
 import sys
 
-from conftest import ROOT
+from conftest import ROOT, needs_ode
 
 from conformance.cli import COMMANDS
 
@@ -41,6 +41,7 @@ def test_help_still_lists_every_command():
     assert done.returncode == 2 and "invalid choice: 'nope'" in done.stderr and "Traceback" not in done.stderr
 
 
+@needs_ode
 def test_a_run_reads_no_entry_points_and_its_help_still_names_every_backend(tmp_path):
     """Reading the registry (every package's entry points and metadata) is for --help and plug-ins:
     a run on x3drbp's own backend does without it."""

@@ -9,7 +9,7 @@ import os
 import pytest
 
 from conformance.cli import main as cli_main
-from conftest import SCENES, case_scene
+from conftest import SCENES, case_scene, needs_ode
 
 FREE_FALL = case_scene("free_fall")
 FRAME_RATE = case_scene("frame_rate")
@@ -70,6 +70,7 @@ def test_halved_gravity_fails_naming_the_measure(bullet_fall, tmp_path, capsys):
     assert "| mujoco | differs: position |" in out and "**Does not conform**" in out  # the one kind off
 
 
+@needs_ode
 def test_a_scene_without_case_conforms_by_agreeing_with_one_backend(tmp_path, capsys):
     path = str(tmp_path / "ode.csv")
     assert cli_main(["run", PENDULUM, "--backend", "ode", "--duration", "0.25", "--trace", path]) == 0
@@ -78,6 +79,7 @@ def test_a_scene_without_case_conforms_by_agreeing_with_one_backend(tmp_path, ca
     assert "| ode | agrees |" in out and "| pymunk | differs: position, " in out and "agreement with one backend" in out
 
 
+@needs_ode
 def test_a_trace_no_backend_ran_against_is_not_judged_rather_than_accused(tmp_path, capsys):
     """The car is no case, and pymunk (planar) refuses it: nothing measured their trace, and
     'does not conform' (exit 1) said so of a trace nothing held to anything."""
