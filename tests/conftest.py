@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import os
 
 import pytest
@@ -14,15 +15,26 @@ SCENES = os.path.join(ROOT, "scenes")
 CASES = os.path.join(ROOT, "conformance", "cases")  # a folder per conformance case
 
 
+@functools.cache
 def _ode_missing() -> str | None:
+    """Why the ode backend cannot run here, or None; asked on the first test that needs it (never
+    when this module is imported: a test's child process imports it too, and must not load engines)."""
     from backends import base
-    found = base.available().get("ode", "not installed")
-    return f"ODE is unavailable here ({found})" if isinstance(found, str) else None
+    try:
+        base.load("ode")
+    except ImportError as e:
+        return f"ODE is unavailable here ({e})"
+    return None
 
 
 # a test that runs ODE itself (an `x3drbp run --backend ode`, a pin of ODE's): skipped, saying why, where the
 # ode backend is unavailable (no libode8, or X3DRBP_NO_ODE set, as .ci/run's second run of the tests does)
-needs_ode = pytest.mark.skipif(_ode_missing() is not None, reason=str(_ode_missing()))
+needs_ode = pytest.mark.needs_ode
+
+
+def pytest_runtest_setup(item) -> None:
+    if item.get_closest_marker("needs_ode") is not None and _ode_missing() is not None:
+        pytest.skip(_ode_missing())
 
 
 def scene_file(folder, body: str, name: str = "s") -> str:
