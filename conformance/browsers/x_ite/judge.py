@@ -300,7 +300,7 @@ def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
                 c.probes.append((f"{t}.{f}", r, base))
                 c.verdict.variants[f"{t}.{f}"] = changes
                 probes.append(r)
-                joint = schema.node_type(t) is not None and schema.node_type(t).is_a("X3DRigidJointNode")
+                joint = _is_joint(t)
                 control = os.path.join(c.folder, f"{c.case.name}.without-{t}.x3d")
                 if joint and t not in c.controls and without_nodes(base.scene, t, control):
                     r = Recording(control, control[:-4] + ".csv", first.frame_rate, first.duration,
@@ -317,8 +317,9 @@ def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
         c.verdict.untold = {name: why for name, _, base in told if (why := _untold(name, base))}
         ignored = [name for name, r, base in told
                    if name not in c.verdict.untold and filecmp.cmp(r.out, base.out, shallow=False)]
-        c.verdict.inert = [t for t, (r, base) in c.controls.items() if r.ok and base.ok and _bodies_alike(r, base)
-                           and _untold(f"{t}.body1", base) is None]  # where a body it joins moves: else it tells nothing
+        # where a body it joins moves: else the control tells nothing
+        c.verdict.inert = [t for t, (r, base) in c.controls.items()
+                           if r.ok and base.ok and _bodies_alike(r, base) and _moves(base, _joined(base.scene, t))]
         if ignored:
             c.verdict.verdict, c.verdict.ignored = IGNORES, ignored
 
@@ -337,30 +338,43 @@ def _untold(probed: str, base: Recording) -> str | None:
     with the field, does not show the thing the field acts through; None where it does."""
     if probed in _DRIVING:
         return None
-    rows = read_trace(base.out)
     node_type, fld = probed.split(".", 1)
     if CONTACT in needs(node_type, fld):
-        if any(r.node.startswith(SENSOR) and r.field == "isActive" and r.value == "true" for r in rows):
+        if any(r.node.startswith(SENSOR) and r.field == "isActive" and r.value == "true" for r in read_trace(base.out)):
             return None
         return "no contact happened in its run (the CollisionSensor watching every collision collection never active)"
-    view = TraceView(rows)
     turning = probed in _TURNING
-    spec = schema.node_type(node_type)
-    if spec is not None and spec.is_a("X3DRigidJointNode"):  # a joint's field acts through its own bodies
-        scene = load(base.scene)
-        names = node_names(scene)
-        bodies = {names[id(b)] for j in scene.of_type(node_type) for b in (j.get("body1"), j.get("body2"))
-                  if b is not None}
-        where = f"no body a {node_type} joins"
+    if _is_joint(node_type):  # a joint's field acts through its own bodies
+        bodies, where = _joined(base.scene, node_type), f"no body a {node_type} joins"
     else:
         bodies, where = set(base.what["bodies"]), "no body"
-    for body in (b for b in base.what["bodies"] if b in bodies and not b.startswith(ADDED)):
-        # from the first step on: X_ITE moves a body without geometry to the origin at its first step, which
-        # shows nothing of what a field does
+    if _moves(base, bodies, turning):
+        return None
+    return f"{where} turns in its run" if turning else f"{where} moves in its run"
+
+
+def _is_joint(node_type: str) -> bool:
+    spec = schema.node_type(node_type)
+    return spec is not None and spec.is_a("X3DRigidJointNode")
+
+
+def _joined(scene_path: str, node_type: str) -> set[str]:
+    """The trace names of the bodies the scene's joints of this type join."""
+    scene = load(scene_path)
+    names = node_names(scene)
+    return {names[id(b)] for j in scene.of_type(node_type) for b in (j.get("body1"), j.get("body2")) if b is not None}
+
+
+def _moves(run: Recording, bodies: set[str], turning: bool = False) -> bool:
+    """Whether one of these bodies (the scene's own) turns, or where not `turning` moves, in the
+    run from the first step on: X_ITE moves a body without geometry to the origin at its first
+    step, which shows nothing of what a field does."""
+    view = TraceView(read_trace(run.out))
+    for body in (b for b in run.what["bodies"] if b in bodies and not b.startswith(ADDED)):
         o, p = view.series(body, "orientation")[1][1:], view.series(body, "position")[1][1:]
         if _rotates(o) or not turning and np.any(p != p[:1]):
-            return None
-    return f"{where} turns in its run" if turning else f"{where} moves in its run"
+            return True
+    return False
 
 
 def _bodies_alike(a: Recording, b: Recording) -> bool:
@@ -384,8 +398,7 @@ def _rotates(o: np.ndarray) -> bool:
 def _blow_up_probes(c: _Case) -> list[Recording]:
     """The case's scene without each of its joint types, to be recorded."""
     first, out = c.runs[0], []
-    for t in sorted({n.type_name for n in load(c.case.path).nodes() if schema.node_type(n.type_name) is not None
-                     and schema.node_type(n.type_name).is_a("X3DRigidJointNode")}):
+    for t in sorted({n.type_name for n in load(c.case.path).nodes() if _is_joint(n.type_name)}):
         variant = os.path.join(c.folder, f"{c.case.name}.without-{t}.x3d")
         if without_nodes(c.case.path, t, variant):
             r = Recording(variant, variant[:-4] + ".csv", first.frame_rate, first.duration, outputs(load(variant)))
