@@ -76,7 +76,8 @@ def test_numbers_keep_every_digit():
     ("SFInt32", "1.5", "not an integer"),
     ("SFInt32", "4294967296", "32-bit"),
     ("SFBool", "yes", "not a boolean"),
-    ("SFFloat", "nan", "non-finite"),
+    ("SFFloat", "nan", "'nan' is not a number"),  # no word of X3D's grammar
+    ("SFFloat", "1e999", "non-finite"),  # X3D's grammar, past the float range
     ("MFString", '"open', "quoted string"),
 ])
 def test_bad_text_is_a_field_error(tname, text, fragment):

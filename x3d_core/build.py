@@ -18,6 +18,7 @@ import numpy as np
 from . import fields as F
 from . import editions, schema
 from .model import Diagnostic, FieldDecl, LoadError, Location, Node, Route, Scene
+from .paths import quoted
 from .units import BASE_CATEGORIES, factor
 
 Parser = Callable[[F.FieldType, Any], Any]
@@ -356,11 +357,12 @@ class Builder:
             self.error(loc, "UNIT", f"unknown unit category {category!r}; allowed: {', '.join(BASE_CATEGORIES)}")
             return
         try:
-            k = float(factor_text)
-        except ValueError:
+            k = F.number(factor_text)
+        except F.FieldError:
             k = -1.0
         if not 0 < k < float("inf"):
-            self.error(loc, f"UNIT {category}", f"conversion factor {factor_text!r} must be a positive number")
+            self.error(loc, f"UNIT {category}", f"conversion factor {quoted(factor_text)} must be a positive number "
+                                                f"({F.GRAMMAR})")
             return
         self.scene.units[category] = (name, k)
 

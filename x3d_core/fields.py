@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 
+from .paths import clipped, quoted
+
 
 class FieldError(ValueError):
     """A value that does not read as its field's type; the message says what is allowed."""
@@ -79,33 +81,90 @@ def _types() -> dict[str, FieldType]:
 
 FIELD_TYPES: dict[str, FieldType] = _types()
 
-_SPLIT = re.compile(r"[\s,]+")
+# X3D's numbers (ISO/IEC 19776-2 Annex A; 19776-1's attribute values are the same): a sign,
+# ASCII digits with an optional point, an optional exponent, each value apart from the next by
+# space, tab, CR, LF or a comma. Python's float() reads more (1_000, Arabic-Indic and full-width
+# digits, inf, nan) and str.split() separates at a no-break space: neither is X3D. Over X3D's
+# characters (ASCII digits . e E + -) float() and numpy read exactly this grammar
+# (tests/test_number_grammar.py), so a value that matches is then parsed by them, in bulk.
+# Possessive throughout: a token of 10^7 digits that fails costs one pass.
+NUMBER = r"[+-]?+(?:[0-9]++(?:\.[0-9]*+)?+|\.[0-9]++)(?:[eE][+-]?+[0-9]++)?+"
+_BLANKS = " \t\r\n,"
+_NUMBERS = re.compile(rf"[{_BLANKS}]*+(?:{NUMBER}(?:[{_BLANKS}]++{NUMBER})*+[{_BLANKS}]*+)?+\Z")
+GRAMMAR = "X3D's grammar: [+-]digits[.digits][(e|E)[+-]digits], digits 0-9"
+_SPLIT = re.compile(rf"[{_BLANKS}]+")
 _INT_TEXT = re.compile(r"[+-]?(?:0[xX][0-9a-fA-F]{1,4000}|[0-9]{1,4000})\Z")  # int() reads at most 4300 digits
 _INT32 = (-(2**31), 2**31 - 1)
 
 
+def not_a_number(text: str) -> str:
+    """The words for a text that X3D's grammar does not read as a number."""
+    return f"{quoted(text)} is not a number ({GRAMMAR})"
+
+
+def number(text: str) -> float:
+    """One number in X3D's grammar (blanks around it allowed), as a trace's time is; FieldError
+    saying so otherwise."""
+    if _NUMBERS.match(text) is not None:
+        try:
+            return float(text)
+        except ValueError:  # no number, or several
+            pass
+    raise FieldError(not_a_number(text))
+
+
+def numbers_problem(text: str) -> str | None:
+    """None where text is numbers in X3D's grammar apart by blanks or commas (or none at all);
+    else the words for the first that is not."""
+    if _NUMBERS.match(text) is not None:
+        return None
+    return not_a_number(next(t for t in _tokens(text) if _NUMBERS.match(t) is None))
+
+
+def reads_as_float(text: str) -> bool:
+    """Whether Python's float() reads text: every number of X3D's grammar, and what a loader is
+    to refuse as one (1_000, inf), not to take for a name."""
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def _tokens(text: str) -> list[str]:
+    inner = text.strip(_BLANKS)
+    return _SPLIT.split(inner) if inner else []
+
+
+def _not_numbers(tokens: list[str], ftype: FieldType) -> str:
+    """Why tokens that do not all match X3D's grammar are no value of a float type: the first
+    that does not."""
+    bad = next(t for t in tokens if _NUMBERS.match(t) is None)
+    if bad[:1] == '"':
+        return f"{clipped(bad)} is a string; expected {ftype.describe()}"
+    return f"{not_a_number(bad)}; expected {ftype.describe()}"
+
+
 def _numbers(ftype: FieldType, text: str) -> Any:
-    if ftype.kind == "float" and not ftype.multi:
-        fast = _sf_floats(ftype, text.replace(",", " ").split())
+    if ftype.kind != "float":
+        return _from_tokens(ftype, _tokens(text))
+    if _NUMBERS.match(text) is None:
+        raise FieldError(_not_numbers(_tokens(text), ftype))
+    tokens = text.replace(",", " ").split()  # str.split, faster than _tokens' regex: only X3D's blanks are left
+    if not ftype.multi:
+        fast = _sf_floats(ftype, tokens)
         if fast is not None:
             return fast
-    tokens = _SPLIT.split(text.strip())
-    if tokens and tokens[0] == "":
-        tokens = tokens[1:]
-    if tokens and tokens[-1] == "":
-        tokens = tokens[:-1]
     return _from_tokens(ftype, tokens)
 
 
 def _sf_floats(ftype: FieldType, tokens: list[str]) -> Any:
-    """The common case, a well-formed SF number or vector, without numpy's string parsing;
-    None sends anything unusual to the general path and its messages."""
+    """The common case, an SF number or vector of tokens in X3D's grammar, without numpy's string
+    parsing; None sends a wrong count, or a number beyond the float range, to the general path
+    and its messages."""
     if len(tokens) != ftype.width:
         return None
-    try:
-        vals = [float(t) for t in tokens]
-    except ValueError:
-        return None
+    vals = [float(t) for t in tokens]
     if not all(map(math.isfinite, vals)):
         return None
     return vals[0] if ftype.width == 1 else np.array(vals)
@@ -119,12 +178,9 @@ def _from_tokens(ftype: FieldType, tokens: list) -> Any:
             raise FieldError(f"{n} numbers is not a whole number of {w}-tuples for {ftype.name}")
     elif n != w:
         raise FieldError(f"expected {ftype.describe()}, got {n} values")
-    if ftype.kind == "float":
+    if ftype.kind == "float":  # tokens in X3D's grammar, or JSON's numbers
         try:
             arr = np.array(tokens, dtype=np.float64)
-        except (ValueError, TypeError):
-            bad = next(t for t in tokens if not _is_float(t))
-            raise FieldError(f"{bad!r} is not a number; expected {ftype.describe()}") from None
         except OverflowError:  # a JSON integer beyond the float range
             raise FieldError(f"number beyond the float range; expected {ftype.describe()}") from None
         if not np.isfinite(arr).all():
@@ -162,14 +218,6 @@ def _check_images(arr: np.ndarray, ftype: FieldType) -> None:
         at += 3 + pixels
 
 
-def _is_float(t: Any) -> bool:
-    try:
-        float(t)
-        return True
-    except (ValueError, TypeError):
-        return False
-
-
 def _any_int(t: Any, ftype: FieldType) -> int:
     if isinstance(t, bool):
         raise FieldError(f"{t!r} is not an integer; expected {ftype.describe()}")
@@ -181,7 +229,7 @@ def _any_int(t: Any, ftype: FieldType) -> int:
         raise FieldError(f"{t!r} is not an integer; expected {ftype.describe()}")
     s = str(t)
     if not _INT_TEXT.match(s):  # int() alone would take 1_000 and blanks around the digits
-        raise FieldError(f"{s!r} is not an integer; expected {ftype.describe()}")
+        raise FieldError(f"{quoted(s)} is not an integer; expected {ftype.describe()}")
     return int(s, 16) if s.lower().startswith(("0x", "-0x", "+0x")) else int(s)
 
 
@@ -199,7 +247,7 @@ def _bool(t: str, ftype: FieldType) -> bool:
     try:
         return _BOOLS[t]
     except KeyError:
-        raise FieldError(f"{t!r} is not a boolean; expected true or false ({ftype.name})") from None
+        raise FieldError(f"{quoted(t)} is not a boolean; expected true or false ({ftype.name})") from None
 
 
 _STRING = re.compile(r'"([^"\\]*+(?:\\.[^"\\]*+)*+)"', re.S)  # unrolled and possessive: a per-character alternation cost ~140 bytes of backtracking stack a character
@@ -236,7 +284,7 @@ def split_quoted(text: str, ftype: FieldType) -> list[str]:
             raise FieldError(f"expected a quoted string at {text[pos:pos + 20]!r} ({ftype.name})")
         out.append(_unescape(m.group(1)))
         pos = m.end()
-        while pos < len(text) and (text[pos].isspace() or text[pos] == ","):
+        while pos < len(text) and text[pos] in _BLANKS:
             pos += 1
     return out
 
@@ -252,11 +300,11 @@ def parse_xml(ftype: FieldType, text: str) -> Any:
             return [stripped]  # an unquoted single string, as browsers accept
         return split_quoted(text, ftype)
     if k == "bool":
-        toks = [t for t in _SPLIT.split(text.strip()) if t]
+        toks = _tokens(text)
         if ftype.multi:
             return np.array([_bool(t, ftype) for t in toks], dtype=bool)
         if len(toks) != 1:
-            raise FieldError(f"expected one boolean (true or false), got {text!r}")
+            raise FieldError(f"expected one boolean (true or false), got {quoted(text)}")
         return _bool(toks[0], ftype)
     if k == "node":
         raise FieldError(f"{ftype.name} fields hold nodes, not text")
@@ -270,7 +318,7 @@ def parse_vrml(ftype: FieldType, tokens: list[str]) -> Any:
         vals = []
         for t in tokens:
             if not t.startswith('"'):
-                raise FieldError(f"{t!r} is not a quoted string; expected {ftype.describe()}")
+                raise FieldError(f"{quoted(t)} is not a quoted string; expected {ftype.describe()}")
             vals.append(_unescape(t[1:-1]))
         if ftype.multi:
             return vals
@@ -284,13 +332,17 @@ def parse_vrml(ftype: FieldType, tokens: list[str]) -> Any:
         if len(vals) != 1:
             raise FieldError(f"expected one boolean (TRUE or FALSE), got {len(vals)} values")
         return vals[0]
-    if ftype.kind == "float" and not ftype.multi:
-        fast = _sf_floats(ftype, tokens)
-        if fast is not None:
-            return fast
-    for t in tokens:
-        if t[0] == '"':
-            raise FieldError(f"{t} is a string; expected {ftype.describe()}")
+    if ftype.kind == "float":
+        if _NUMBERS.match(" ".join(tokens)) is None:  # one match, not one per token
+            raise FieldError(_not_numbers(tokens, ftype))
+        if not ftype.multi:
+            fast = _sf_floats(ftype, tokens)
+            if fast is not None:
+                return fast
+    else:
+        for t in tokens:
+            if t[0] == '"':
+                raise FieldError(f"{clipped(t)} is a string; expected {ftype.describe()}")
     return _from_tokens(ftype, tokens)
 
 
@@ -299,7 +351,7 @@ def _bool_vrml(t: str, ftype: FieldType) -> bool:
         return True
     if t == "FALSE":
         return False
-    raise FieldError(f"{t!r} is not a boolean; expected TRUE or FALSE ({ftype.name})")
+    raise FieldError(f"{quoted(t)} is not a boolean; expected TRUE or FALSE ({ftype.name})")
 
 
 def parse_json(ftype: FieldType, value: Any) -> Any:
@@ -329,7 +381,7 @@ def parse_json(ftype: FieldType, value: Any) -> Any:
     for v in vals:
         if isinstance(v, bool) or not isinstance(v, (int, float)):
             if not (k == "int" and isinstance(v, str)):
-                raise FieldError(f"{json.dumps(v)} is not a number; expected {ftype.describe()}")
+                raise FieldError(f"{clipped(json.dumps(v))} is not a number; expected {ftype.describe()}")
     return _from_tokens(ftype, vals)
 
 

@@ -19,6 +19,7 @@ from . import fields as F
 from .build import Builder
 from .line_index import LineIndex
 from .model import FieldDecl, LoadError, Location, Node, Scene
+from .paths import clipped, quoted
 from .xml_loader import _IGNORED_ATTRIBUTES
 
 # A string (as a whole, so braces inside it are not structure), or a structural character
@@ -254,10 +255,14 @@ class _Reader:
         scene = self.b.scene
         for c in self.objects(head, "component", "component"):
             level = c.get("@level", 1)
-            if isinstance(level, str) and level.strip().isdigit():
-                level = int(level)
+            if isinstance(level, str):  # read as XML's attribute ("²".isdigit(), and int("²") raised)
+                try:
+                    level = F.parse_xml(F.FIELD_TYPES["SFInt32"], level)
+                except F.FieldError:
+                    pass
             if isinstance(level, bool) or not isinstance(level, int):
-                self.b.error(self.key(c, "@level"), "component", f"level {level!r} is not an integer")
+                shown = quoted(level) if isinstance(level, str) else clipped(repr(level))
+                self.b.error(self.key(c, "@level"), "component", f"level {shown} is not an integer")
                 level = 1
             self.b.component(self.string(c, "@name", "component") or "", level)
         for u in self.objects(head, "unit", "UNIT"):
@@ -492,5 +497,5 @@ def _json_type(v: Any) -> str:
     if isinstance(v, (int, float)):
         return f"the number {v!r}"
     if isinstance(v, str):
-        return f"the string {v!r}"
+        return f"the string {quoted(v)}"
     return "an array" if isinstance(v, list) else "an object"

@@ -22,6 +22,20 @@ def printable(text: str) -> str:
     return text if text.isprintable() else "".join(c if c.isprintable() else repr(c)[1:-1] for c in text)
 
 
+QUOTE_LIMIT = 80  # characters of a value a message quotes: a value of 10^4 numbers once made a 40 KB line
+
+
+def clipped(shown: str, limit: int = QUOTE_LIMIT) -> str:
+    """A value as a message shows it (its repr, its JSON), cut to its first `limit` characters
+    where longer, saying how long it was."""
+    return shown if len(shown) <= limit else f"{shown[:limit]}... ({len(shown):,} characters)"
+
+
+def quoted(text: str, limit: int = QUOTE_LIMIT) -> str:
+    """Text from a user's file quoted in a message (repr), at most `limit` characters of it."""
+    return repr(text) if len(text) <= limit else f"{text[:limit]!r}... ({len(text):,} characters)"
+
+
 def none_under(folders: list[str]) -> str:
     """What a command says where scene_files found nothing: the folders named, as text."""
     return f"no X3D files (.x3d, .x3dv, .x3dj) under {', '.join(map(shown, folders))}"

@@ -9,6 +9,8 @@ from typing import Callable
 
 import numpy as np
 
+from . import fields as F
+
 # the largest trace read: ~1.5e7 rows at full precision, what a validation holds in about a GiB
 TRACE_LIMIT = 1 << 30  # bytes
 
@@ -41,7 +43,11 @@ class ViewBuilder:
 
     GROWTH = 1.25
 
-    def __init__(self) -> None:
+    def __init__(self, strict: bool = False) -> None:
+        # strict: rows read from a file, whose numbers are X3D's: add_row refuses what float()
+        # alone read (1_000 as 1000, nan, two numbers apart by a no-break space); rows made in
+        # memory (Trace.rows, a test's non-finite value) are read as float() reads them
+        self.strict = strict
         self._series: dict[tuple[str, str], list] = {}  # key: [times, values, rows used]
         self._rows: dict[tuple[str, str], tuple[list[float], list[list[float]]]] = {}
         self._texts: dict[tuple[str, str], tuple[list[float], list[str]]] = {}
@@ -82,6 +88,10 @@ class ViewBuilder:
         self.count += 1
         self._loose.append(time)
         values = numbers(value)
+        if values is not None and self.strict:
+            problem = F.numbers_problem(value)
+            if problem is not None:
+                raise F.FieldError(problem)
         if values is None:  # SFBool, SFNode names, MFString (CollisionSensor rows): kept as text
             t, s = self._texts.setdefault(key, ([], []))
             t.append(time)

@@ -11,16 +11,19 @@ from . import fields as F
 from .build import Builder
 from .line_index import LineIndex
 from .model import Location, Node, Scene
+from .paths import quoted
 
 # the rest of the header line is a comment (Titania and X_ITE write their names there)
 _HEADER = re.compile(rb"^\s*#(X3D V[34]\.\d+|VRML V2\.0) [A-Za-z0-9_-]+[^\r\n]*")
 # A string may lack its closing quote only at the end of the file: the loader reports it.
 # Possessive (*+, ++) throughout: a file ending in a long run of blanks made the regex try
 # every way of splitting it (2^n: a hang), and a string of 10^7 characters took 1.3 GiB of
-# backtracking state, one entry per character.
-_TOKEN = re.compile(r'(?:[\s,]+|#[^\n\r]*)*+("(?:[^"\\]++|\\.)*+"?|[\[\]{}]|[^\s,"#\[\]{}]+)', re.S)
+# backtracking state, one entry per character. Whitespace is ClassicVRML's (19776-2: space, tab,
+# CR, LF and the comma), not Python's \s: a no-break space or a form feed is part of a token.
+_TOKEN = re.compile(r'(?:[ \t\r\n,]+|#[^\n\r]*)*+("(?:[^"\\]++|\\.)*+"?|[\[\]{}]|[^ \t\r\n,"#\[\]{}]+)', re.S)
 _CLOSED_STRING = re.compile(r'"(?:[^"\\]++|\\.)*+"', re.S)
-_NUMBER = re.compile(r"^[+-]?(?:0[xX][0-9a-fA-F]+|(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)$")
+# possessive: a name of 10^5 digits and a letter was quadratic (3 minutes)
+_NUMBER = re.compile(rf"(?:[+-]?+0[xX][0-9a-fA-F]++|{F.NUMBER})\Z")
 _ACCESS = frozenset({"inputOnly", "outputOnly", "initializeOnly", "inputOutput",
                      "eventIn", "eventOut", "field", "exposedField"})
 _KEYWORDS = frozenset({"DEF", "USE", "ROUTE", "TO", "PROTO", "EXTERNPROTO", "IS", "NULL", "IMPORT", "EXPORT",
@@ -32,7 +35,7 @@ _KEYWORDS = frozenset({"DEF", "USE", "ROUTE", "TO", "PROTO", "EXTERNPROTO", "IS"
 MAX_TOKENS = 2_000_000
 _END = " end of file"  # after the last token; no real token starts with a space
 _NUMBER_START = frozenset("0123456789+-.")
-_INTEGER = re.compile(r"[+-]?(?:0[xX][0-9a-fA-F]{1,16}|\d{1,18})\Z")
+_INTEGER = re.compile(r"[+-]?(?:0[xX][0-9a-fA-F]{1,16}|[0-9]{1,18})\Z")
 
 
 def load_vrml(path: str, source: bytes, scene: Scene) -> None:
@@ -96,7 +99,7 @@ class _Parser:
     def shown(self, k: int = 0) -> str:
         """The next token as a message shows it."""
         t = self.peek(k)
-        return "the end of the file" if t == _END else repr(t)
+        return "the end of the file" if t == _END else quoted(t)
 
     def peek(self, k: int = 0) -> Any:
         return self.toks[self.i + k]
@@ -112,13 +115,13 @@ class _Parser:
         at = self.i
         t = self.next()
         if t != what:
-            raise self.b.fatal(self.loc(at), f"expected '{what}', found {t!r}")
+            raise self.b.fatal(self.loc(at), f"expected '{what}', found {quoted(t)}")
 
     def ident(self, what: str) -> str:
         at = self.i
         t = self.next()
         if t in "[]{}" or t.startswith('"') or _NUMBER.match(t) or t in _KEYWORDS:
-            raise self.b.fatal(self.loc(at), f"expected {what}, found {t!r}")
+            raise self.b.fatal(self.loc(at), f"expected {what}, found {quoted(t)}")
         return t
 
     # -- statements -------------------------------------------------------------
@@ -135,9 +138,9 @@ class _Parser:
                     self.next()
                     level = self.next()
                 try:
-                    self.b.component(name, int(level))
-                except ValueError:
-                    self.b.error(at, "COMPONENT", f"level {level!r} is not an integer")
+                    self.b.component(name, F.parse_xml(F.FIELD_TYPES["SFInt32"], level))
+                except F.FieldError:
+                    self.b.error(at, "COMPONENT", f"level {quoted(level)} is not an integer")
             elif kw == "UNIT":
                 category, name, factor = self.next(), self.next(), self.next()
                 self.b.unit(category, name, factor, at)
@@ -153,7 +156,7 @@ class _Parser:
         at = self.i
         t = self.next()
         if not t.startswith('"'):
-            raise self.b.fatal(self.loc(at), f"expected a quoted string, found {t!r}")
+            raise self.b.fatal(self.loc(at), f"expected a quoted string, found {quoted(t)}")
         return F.parse_vrml(F.FIELD_TYPES["SFString"], [t])
 
     def statement(self) -> Node | None:
@@ -201,7 +204,7 @@ class _Parser:
             at = self.loc()
             t = self.next()
         if t in "[]{}" or t.startswith('"') or _NUMBER.match(t) or t in _KEYWORDS:
-            raise self.b.fatal(at, f"expected a node, found {t!r}")
+            raise self.b.fatal(at, f"expected a node, found {quoted(t)}")
         if t in self.b.protos:
             return self.proto_instance(t, def_name, at)
         node = self.b.node(t, at, def_name)
@@ -303,10 +306,13 @@ class _Parser:
         return self.scalars(count)
 
     def scalars(self, count: int) -> list[str]:
+        """Up to count tokens of a value outside brackets: numbers, strings, booleans, and what
+        Python would read as a number (1_000, inf, ١٠), so that it is refused as one, not read
+        as the next field's name."""
         out = []
         while len(out) < count:
             t = self.peek()
-            if not (t[0] in _NUMBER_START or t[0] == '"' or t == "TRUE" or t == "FALSE"):
+            if not (t[0] in _NUMBER_START or t[0] == '"' or t == "TRUE" or t == "FALSE" or F.reads_as_float(t)):
                 break
             out.append(self.next())
         return out

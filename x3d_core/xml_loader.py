@@ -12,6 +12,7 @@ from . import fields as F
 from .build import Builder
 from .line_index import LineIndex
 from .model import Location, Node, Scene
+from .paths import quoted
 
 _PARSER_OPTIONS = dict(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
                        huge_tree=True, remove_comments=True, remove_pis=True)
@@ -203,9 +204,10 @@ class _Reader:
         for el in head:
             if el.tag == "component":
                 try:
-                    level = int(el.get("level", "1"))
-                except ValueError:
-                    self.b.error(self.loc(el, "level"), "component", f"level {el.get('level')!r} is not an integer")
+                    level = F.parse_xml(F.FIELD_TYPES["SFInt32"], el.get("level", "1"))
+                except F.FieldError:
+                    self.b.error(self.loc(el, "level"), "component",
+                                 f"level {quoted(el.get('level'))} is not an integer")
                     level = 1
                 self.b.component(el.get("name", ""), level)
             elif el.tag == "unit":

@@ -4,8 +4,10 @@
 (docs/implementers.md; docs/commands/run.md): a problem here is the file's, not the
 physics', so it is reported with its line and stops the validation (exit 2). Checked:
 
-- the header `time,node,field,value`, and four columns on every row;
-- time: a finite number, never less than the row before's, the first 0 (within
+- the header `time,node,field,value` (a UTF-8 BOM before it read as nothing; lines may end
+  in LF, CRLF or a lone CR), and four columns on every row;
+- time: a finite number in X3D's grammar (x3d_core.fields.number: float() read `1_0` as 10),
+  never less than the row before's, the first 0 (within
   START_TOLERANCE: the initial state is a frame);
 - node: a name of the scene (its DEF, else x3drbp's TYPE_k: x3d_core.world.node_names);
 - field: an output of that node's type (outputOnly or inputOutput), or `F[i]` / `F[i].SUB`
@@ -49,7 +51,9 @@ from x3d_core import fields as F
 from x3d_core import schema
 from x3d_core.model import Scene
 from x3d_core.inputs import InputRefused, open_regular
-from x3d_core.trace import HEADER, TRACE_LIMIT, TraceView, ViewBuilder, chunks, header_problem, read_header
+from x3d_core.paths import quoted
+from x3d_core.trace import (HEADER, TRACE_LIMIT, TraceView, ViewBuilder, chunks, header_problem, line_reader,
+                            read_header)
 from x3d_core.trace_npz import NotTrace, read_npz
 from x3d_core.world import node_names, worlds
 
@@ -62,8 +66,8 @@ _NULL = ("", "NULL")  # an SFNode output holding no node
 MAX_PROBLEMS = 1000  # then the reading stops, saying so
 # the first row's time, from 0: the initial state is a frame (a browser's float32 clock starts at 0 exactly)
 START_TOLERANCE = 1e-6  # s
-# a plain decimal number, as the bulk check takes it (anything else goes row by row)
-_NUMBER = r"[0-9.eE+\-]+"
+# a number in X3D's grammar, as the bulk check takes it (anything else goes row by row)
+_NUMBER = F.NUMBER
 
 
 @dataclass(frozen=True)
@@ -93,7 +97,7 @@ class _Fields:
         name = m.group(1) if m else fld
         fd = spec.fields.get(name)
         if fd is None or fd.access not in ("outputOnly", "inputOutput"):
-            return f"{spec.name} has no output field {name!r}"
+            return f"{spec.name} has no output field {quoted(name)}"
         if m is None:
             return fd.type
         if fd.type.name != "MFNode":
@@ -103,7 +107,8 @@ class _Fields:
         held = schema.node_type(fd.accepts[0]) if fd.accepts else None
         sub = held.fields.get(m.group(3)) if held is not None else None
         if sub is None:
-            return f"{spec.name}.{name} holds {held.name if held else 'nodes'}, which have no field {m.group(3)!r}"
+            return (f"{spec.name}.{name} holds {held.name if held else 'nodes'}, which have no field "
+                    f"{quoted(m.group(3))}")
         return sub.type
 
 
@@ -124,13 +129,13 @@ def _axis_problem(value: str, length: float) -> str:
 
 def _value_problem(ftype: F.FieldType, value: str, names: set[str]) -> str | None:
     if ftype.kind == "node":
-        return None if value in names or value in _NULL else f"value {value!r} names no node of the scene"
+        return None if value in names or value in _NULL else f"value {quoted(value)} names no node of the scene"
     try:
         parsed = F.parse_xml(ftype, value)
     except ValueError as e:
-        return f"value {value!r} is not {ftype.describe()}: {e}"
+        return f"value {quoted(value)} is not {ftype.describe()}: {e}"
     bad = _bad_axis(np.asarray(parsed, dtype=np.float64)) if ftype.rotation else None
-    return None if bad is None else _axis_problem(repr(value), bad[1])
+    return None if bad is None else _axis_problem(quoted(value), bad[1])
 
 
 def check_trace(path: str, scene: Scene) -> tuple[TraceView, list[Problem]]:
@@ -151,7 +156,8 @@ def _check_csv(path: str, fields: _Fields) -> tuple[TraceView, list[Problem]]:
     b = ViewBuilder()
     state = _State(fields, set(fields.types))
     try:
-        with open_regular(path, TRACE_LIMIT) as f:
+        with open_regular(path, TRACE_LIMIT) as raw:
+            f = line_reader(raw)
             header, lines = read_header(f)
             problem = header_problem(header, lenient=True)
             if problem:
@@ -279,7 +285,7 @@ def _bulk_rows(flat: list[str], state: _State, b: ViewBuilder) -> bool:
     parsed_times = dict.fromkeys(times)  # a frame's rows share their time: each read once
     try:
         for text in parsed_times:
-            parsed_times[text] = float(text)
+            parsed_times[text] = F.number(text)
     except ValueError:
         return False
     t = np.fromiter(map(parsed_times.__getitem__, times), np.float64, len(times))
@@ -326,7 +332,7 @@ def _bulk_values(ftype: F.FieldType, vals: list[str], names: set[str]) -> np.nda
         pattern = _PATTERNS.get(w)
         if pattern is None:
             one = _NUMBER + f"(?: {_NUMBER})" * (w - 1)
-            pattern = _PATTERNS[w] = re.compile(f"{one}(?:\n{one})*")
+            pattern = _PATTERNS[w] = re.compile(f"{one}(?:\n{one})*+")
         joined = "\n".join(vals)
         if pattern.fullmatch(joined) is None:
             return None
@@ -348,11 +354,11 @@ def _row_problem(cols: list[str], last: float, fields: _Fields, names: set[str])
         return f"{len(cols)} columns, expected 4 ({','.join(HEADER)})"
     text, node, fld, value = cols
     try:
-        t = float(text)
-    except ValueError:
-        return f"time {text!r} is not a number"
+        t = F.number(text)
+    except F.FieldError as e:
+        return f"time {e}"
     if not math.isfinite(t):
-        return f"time {text!r} is not finite"
+        return f"time {quoted(text)} is not finite"
     if t < last:
         return f"time {t:g} is before the previous row's {last:g} (times never decrease)"
     ftype = _output_type(fields, names, node, fld)
@@ -362,9 +368,9 @@ def _row_problem(cols: list[str], last: float, fields: _Fields, names: set[str])
 def _output_type(fields: _Fields, names: set[str], node: str, fld: str) -> F.FieldType | str:
     """The type of an output a row names, or why the scene has no such output."""
     if node not in names:
-        return f"node {node!r} is not in the scene (DEF names, or TYPE_k for nodes without one)"
+        return f"node {quoted(node)} is not in the scene (DEF names, or TYPE_k for nodes without one)"
     ftype = fields.of(node, fld)
-    return f"field {fld!r} of {node}: {ftype}" if isinstance(ftype, str) else ftype
+    return f"field {quoted(fld)} of {node}: {ftype}" if isinstance(ftype, str) else ftype
 
 
 def _missing(path: str, have: set[tuple[str, str]], scene: Scene) -> list[Problem]:
