@@ -156,17 +156,18 @@ def blueprint(backends: Sequence[str], pairs: bool, joints: bool) -> rrb.Bluepri
 def write_recording(out: str, scene: Scene, runs: Sequence[tuple[str, TraceView]],
                     pairs: Sequence[PairComparison] = ()) -> float:
     """Writes the recording of these runs (backend, parsed trace) and their comparisons to
-    `out`, atomically: rerun saves to a temporary file beside it (`.x3drbp-PID-NAME-*.tmp`,
-    x3d_core.atomic.replacing), renamed over `out` once rerun has closed it, so a run killed
-    while saving leaves the previous recording, or none, never a truncated one; the
-    temporary file such a kill leaves is removed by the next write to that folder. `out`
-    a symbolic link: its target is replaced; /dev/null: the recording is discarded. The
-    file gets the usual 0666 less the umask (an existing one keeps its mode). Returns the
-    seconds it took; atomic.CannotWrite (one line, the path and why) where it cannot be
-    written."""
+    `out`, whole or not at all: rerun encodes it in memory (its memory sink: no file, no
+    writer thread), and the bytes go through x3d_core.atomic as every other output does. Not
+    rr.save: its file sink writes in a thread of its own, and on a full disk it either kept
+    the command waiting on a flush that never ended (deaf to SIGTERM, native code) or logged
+    the error and returned, leaving a truncated .rrd under its final name. `out` a symbolic
+    link: its target is replaced; /dev/null: the recording is discarded. The file gets the
+    usual 0666 less the umask (an existing one keeps its mode). Returns the seconds it took;
+    atomic.CannotWrite (one line, the path and why) where it cannot be written."""
     started = time.perf_counter()
     rec = rr.RecordingStream("x3drbp", make_default=False)
     rec.set_log_time_enabled(False)  # simulation time is the one timeline
+    memory = rec.memory_recording()  # before anything is logged: it holds the whole stream
     shapes = placed_shapes(scene)
     any_joints = False
     for k, (backend, trace) in enumerate(runs):
@@ -180,10 +181,6 @@ def write_recording(out: str, scene: Scene, runs: Sequence[tuple[str, TraceView]
     for p in pairs:
         for d in (p.position, p.orientation):
             _divergence(rec, p, d)
-    with atomic.replacing(out) as tmp:  # the whole recording, or the previous file
-        try:
-            rec.save(tmp, default_blueprint=blueprint([b for b, _ in runs], bool(pairs), any_joints))
-            rec.flush()
-        finally:
-            rec.disconnect()  # the file closed, its footer written, before it is renamed or removed
+    rec.send_blueprint(blueprint([b for b, _ in runs], bool(pairs), any_joints), make_active=False, make_default=True)
+    atomic.write_bytes(out, memory.drain_as_bytes())
     return time.perf_counter() - started

@@ -64,7 +64,7 @@ def _modules(package: str) -> list[str]:
 
 
 def test_no_writer_opens_its_output_in_place():
-    # a library's own save (rerun's) must be handed atomic.replacing's temporary name, tmp
+    # a library's own save must be handed atomic.replacing's temporary name, tmp
     writing = re.compile(r"""open\([^)]*,\s*["'][wa]b?["']|\.savefig\(\s*path|write_text\(|write_bytes\("""
                          r"""|\.save\((?!tmp\b)""")
     found = []

@@ -3,6 +3,7 @@ frames on the timeline, and the divergence series against compare's JSON."""
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 
@@ -77,9 +78,8 @@ def test_run_recording_has_one_backend_and_no_divergence(tmp_path):
 
 
 def test_a_failed_recording_keeps_the_previous_file_and_leaves_no_partial_one(tmp_path, monkeypatch):
-    import rerun as rr
-
     from reports.rerun_recording import write_recording
+    from x3d_core import atomic
     from x3d_core.load import load
     from x3d_core.trace import TraceView, read_trace
 
@@ -87,16 +87,14 @@ def test_a_failed_recording_keeps_the_previous_file_and_leaves_no_partial_one(tm
     assert cli_main(["run", CRADLE, "--backend", "mujoco", "--duration", "0.25", "--trace", str(trace)]) == 0
     rrd = tmp_path / "run.rrd"
     rrd.write_bytes(b"the previous recording")
-    flush = rr.RecordingStream.flush
 
-    def fails_once_written(self, *args, **kwargs):  # the file is being written, then the write fails
-        flush(self, *args, **kwargs)
-        assert [p for p in os.listdir(tmp_path) if p.endswith(".tmp") and os.path.getsize(tmp_path / p)]
-        raise OSError("disk full")
+    def fails_once_written(src, dst):  # the recording is written beside it, then the write fails
+        assert os.path.getsize(src) > 1000 and os.path.dirname(src) == str(tmp_path)
+        raise OSError(errno.ENOSPC, "No space left on device")
 
-    monkeypatch.setattr(rr.RecordingStream, "flush", fails_once_written)
+    monkeypatch.setattr(atomic.os, "replace", fails_once_written)
     runs = [("mujoco", TraceView(read_trace(str(trace))))]
-    with pytest.raises(OSError, match="disk full"):
+    with pytest.raises(atomic.CannotWrite, match=f"cannot write {rrd}: No space left"):
         write_recording(str(rrd), load(CRADLE), runs)
     assert rrd.read_bytes() == b"the previous recording"
     assert sorted(os.listdir(tmp_path)) == ["run.rrd", "t.csv"]

@@ -22,11 +22,17 @@ print it as one line, `x3drbp COMMAND: cannot write PATH: REASON`, and exit 1); 
 temporary file is gone by then. A temporary file is named `.x3drbp-PID-NAME-XXXXXXXX.tmp`:
 one left behind by a killed process (its pid gone, or untouched for an hour) is removed by
 the next write to the same folder.
+
+A command that fills a folder with many files (`conformance --out DIR`) holds it for its
+life (`holding`), so that a second command into it is refused at once rather than removing
+or overwriting the first's files under it.
 """
 
 from __future__ import annotations
 
 import contextlib
+import errno
+import fcntl
 import json
 import os
 import stat
@@ -37,6 +43,7 @@ from typing import Any
 
 PREFIX = ".x3drbp-"
 SUFFIX = ".tmp"
+LOCK = ".x3drbp.lock"  # in a folder a command holds (holding): the holder's pid
 STALE_S = 3600.0  # a temporary file nobody wrote for this long is a killed writer's
 DEAD_GRACE_S = 60.0  # ... and one whose pid is gone, once untouched this long (a pid of another pid namespace)
 
@@ -53,6 +60,15 @@ class CannotWrite(OSError):
 
     def __reduce__(self):  # pickled across processes (dask workers) whole
         return type(self), (self.path, self.reason, self.errno)
+
+
+class InUse(OSError):
+    """A folder another process holds (`holding`): `pid`, the holder's, None where it has not
+    written it yet."""
+
+    def __init__(self, path: str, pid: int | None):
+        super().__init__(errno.EBUSY, "in use by another x3drbp command")
+        self.path, self.pid = path, pid
 
 
 def _reason(e: BaseException) -> str:
@@ -279,3 +295,25 @@ def write_text(path: str, text: str) -> None:
 def write_json(path: str, data: Any, indent: int | None = 1) -> None:
     """data as JSON with a final line break, written atomically."""
     write_text(path, json.dumps(data, indent=indent) + ("\n" if indent is not None else ""))
+
+
+@contextlib.contextmanager
+def holding(folder: str) -> Iterator[None]:
+    """Holds folder (made, with its parents) for the block: an exclusive flock on FOLDER/.x3drbp.lock,
+    which then holds this process's pid. InUse at once where another process holds it. The lock
+    goes when the process does, however it ends (a kill too), so none is ever stale; the file
+    stays, since removing it would let a command that opened it first and one that made it anew
+    each hold a file of that name. OSError where the folder or the file cannot be made."""
+    os.makedirs(folder, exist_ok=True)
+    fd = os.open(os.path.join(folder, LOCK), os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            said = os.pread(fd, 32, 0).decode("ascii", "replace").strip()
+            raise InUse(folder, int(said) if said.isdigit() else None) from None
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)
+        yield
+    finally:
+        os.close(fd)

@@ -22,7 +22,8 @@ it is a terminal (not with -q). Exit status: 0 when at
 least one pair was compared, whatever the divergences (they are results); 1 when nothing
 could be compared: the scene does not load (each error one line), it has nothing to
 simulate (no enabled RigidBody in an enabled RigidBodyCollection: one line), or fewer than
-two backends ran (the verdicts say why); 2 on bad usage: an unknown
+two backends ran (the verdicts say why), and when --json or --rerun cannot be written (a
+full disk too: `cannot write PATH: REASON`, nothing half-written); 2 on bad usage: an unknown
 backend, fewer than two backends named (or installed), a threshold or setting that is
 not a positive number; 130 or 143 when interrupted by SIGINT or SIGTERM (every run stopped,
 one line). A backend the probe gave no answer on is listed as unavailable, with why.

@@ -15,6 +15,10 @@ the child wrote. Verdicts:
 - error: the run could not start for reasons that are not the engine's: the scene does not
   load, the backend is unknown or not installed, the trace lacks what the expectation reads.
 
+A trace the child could not write (a full disk, a kept trace's folder removed) is no verdict
+but the command's failure: atomic.CannotWrite naming it (the command says `cannot write
+PATH: REASON` and exits 1), and no pair starts after it.
+
 Pairs run in parallel, at most os.cpu_count() at a time. The pool is of threads, each
 waiting on its child process: the children are the processes that do the work, and a
 thread pool spares a second interpreter per pair and any pickling.
@@ -30,12 +34,13 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import TypeVar
 
+from x3d_core import atomic
 from x3d_core.trace import TraceView, read_view
 
 from conformance.cases.case import Case
 from conformance.results import ERROR, Convergence, Result, Settings, judge
 from conformance.runner import children
-from conformance.runner.children import DEFAULT_TIMEOUT, run_child
+from conformance.runner.children import DEFAULT_TIMEOUT, Outcome, run_child
 
 T = TypeVar("T")  # what run_many's jobs return
 
@@ -62,11 +67,21 @@ def evaluate(case: Case, backend: str, traces: Sequence[TraceView], settings: Se
     return result
 
 
+def _unwritten(out: Outcome, trace: str) -> atomic.CannotWrite | None:
+    """The child's own `x3drbp run: cannot write TRACE: REASON` (its last line, so the end of
+    the reason) as the command's failure; None for any other outcome."""
+    said = f"x3drbp run: cannot write {trace}: "
+    if out.verdict == ERROR and said in out.reason:
+        return atomic.CannotWrite(trace, out.reason.rsplit(said, 1)[1])
+    return None
+
+
 def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
              settings: Sequence[Settings] | None = None, keep: str | None = None) -> Result:
     """Run one case on one backend (every run of the case, one child each) and judge it.
-    `settings` overrides the case's runs (convergence studies); `keep`, a folder, keeps the
-    traces there as CASE-BACKEND[-k].csv."""
+    `settings` overrides the case's runs (convergence studies); `keep`, a folder that exists,
+    keeps the traces there as CASE-BACKEND[-k].csv (one gone mid-run is not made again: the
+    traces kept before it would be missing). atomic.CannotWrite where a trace could not be written."""
     settings = tuple(settings or case.runs)
     started = time.perf_counter()
     dt = settings[0].dt
@@ -74,7 +89,6 @@ def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
         return Result(case.name, backend, ERROR, f"no scene file {case.path}", dt=dt)
     with tempfile.TemporaryDirectory(prefix="x3drbp-conf-") as tmp:
         folder = keep or tmp
-        os.makedirs(folder, exist_ok=True)
         traces = []
         for k, s in enumerate(settings):
             suffix = f"-{k}" if len(settings) > 1 else ""
@@ -83,6 +97,9 @@ def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
             if os.path.exists(path):
                 os.unlink(path)
             out = run_child(case.path, backend, s, path, timeout)
+            unwritten = _unwritten(out, path)
+            if unwritten is not None:
+                raise unwritten
             if out.verdict is not None:
                 return Result(case.name, backend, out.verdict, out.reason, dt=dt,
                               wall_s=time.perf_counter() - started)
@@ -98,12 +115,25 @@ def run_pair(case: Case, backend: str, timeout: float = DEFAULT_TIMEOUT,
 
 def run_many(jobs: Sequence[Callable[[], T]], workers: int | None = None, progress: bool = False) -> list[T]:
     """Run independent jobs in parallel (results in the jobs' order); with `progress`, a bar
-    of jobs done on stderr (the commands ask for it where stderr is a terminal)."""
+    of jobs done on stderr (the commands ask for it where stderr is a terminal). Once a job
+    could not write (atomic.CannotWrite: a full disk fails every run after it), no job starts;
+    those running end, and such a failure is raised."""
     workers = max(1, min(workers or os.cpu_count() or 1, len(jobs) or 1))
+    unwritten: list[atomic.CannotWrite] = []  # list.append is atomic under the GIL
+
+    def unless_unwritten(job: Callable[[], T]) -> T | None:
+        if unwritten:
+            return None
+        try:
+            return job()
+        except atomic.CannotWrite as e:
+            unwritten.append(e)
+            raise
+
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        futures = [pool.submit(job) for job in jobs]
+        futures = [pool.submit(unless_unwritten, job) for job in jobs]
         children.wait_all(futures, progress)
-        return [f.result() for f in futures]
+        return [f.result() for f in futures]  # a job was skipped (None) only once another raised: raised here
 
 
 def run_matrix(cases: Sequence[Case], backends: Sequence[str], timeout: float = DEFAULT_TIMEOUT,
