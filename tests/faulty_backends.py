@@ -9,6 +9,7 @@ every other name loads as usual. Nothing of this is registered outside that chil
 
 from __future__ import annotations
 
+import ctypes
 import os
 import signal
 import sys
@@ -16,7 +17,7 @@ import time
 
 import numpy as np
 
-FAULTS = ("segv", "hang", "stuck", "raise", "nan", "huge")
+FAULTS = ("segv", "hang", "stuck", "gil", "raise", "nan", "huge")
 FAULT_AT = 0.1  # seconds: the first frames run clean, so a blow-up has frames to keep
 
 
@@ -36,6 +37,9 @@ class _FaultySim:
         elif self._fault == "stuck":  # as an engine's C loop: no Python runs, no signal handler either
             signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGALRM, signal.SIGINT})
             time.sleep(3600)
+        elif self._fault == "gil":  # as pybullet's step of 100 overlapping boxes: C that holds the interpreter lock
+            signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGALRM, signal.SIGINT})
+            ctypes.PyDLL(None).sleep(3600)  # PyDLL keeps the lock through the call: no Python thread runs
         elif self._fault == "raise":
             raise RuntimeError("the engine refused to step")
 

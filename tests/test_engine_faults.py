@@ -31,9 +31,9 @@ def outcomes(tmp_path_factory):
     script = f'exec "{sys.executable}" "{os.path.join(ROOT, "tests", "faulty_backends.py")}" "$@"\n'
     mp = pytest.MonkeyPatch()
     mp.setattr(children.sys, "executable", fake_python(tmp, script))
-    names = ["faulty-segv", "faulty-hang", "faulty-raise", "faulty-nan", "faulty-huge", INSTALLED[0]]
+    names = ["faulty-segv", "faulty-hang", "faulty-gil", "faulty-raise", "faulty-nan", "faulty-huge", INSTALLED[0]]
     jobs = [(lambda n=n: children.run_child(PENDULUM, n, SETTINGS, str(tmp / f"{n}.csv"),
-                                          timeout=6 if n == "faulty-hang" else 120)) for n in names]
+                                          timeout=6 if n in ("faulty-hang", "faulty-gil") else 120)) for n in names]
     try:
         results = verdicts.run_many(jobs, workers=len(jobs))
     finally:
@@ -44,6 +44,7 @@ def outcomes(tmp_path_factory):
 @pytest.mark.parametrize("backend,verdict,reason", [
     ("faulty-segv", results.CRASHED, "killed by SIGSEGV"),
     ("faulty-hang", results.TIMED_OUT, "no result within 6 s"),
+    ("faulty-gil", results.TIMED_OUT, "no result within 6 s"),  # the command, another process, ends its group
     ("faulty-raise", results.ERROR, "RuntimeError: the engine refused to step"),
     ("faulty-nan", results.BLEW_UP, f"blew up at t={FAULT_AT:g}: Bob has a non-finite state"),
     ("faulty-huge", results.BLEW_UP, f"blew up at t={FAULT_AT:g}: Bob's angular velocity is beyond 1e+12"),

@@ -55,6 +55,26 @@ class RunSettings:
         return times
 
 
+# A collection's solver iterations over a run (its steps x its iterations field) at most: an
+# iteration of ODE's quick step costs ~50 ns a body (58 ns for one on a hinge, 48 ns each of a
+# 50-link chain: docs/limits.md), so the bound is ~1.5 h of CPU a body, what the 10^9 steps a run
+# may take (options.MAX_STEPS) cost at ODE's ~6 us a step for one body. iterations 1000000000 for
+# the default 240 steps asked for 4 h a body, at --duration 10 for 40 h: without end.
+MAX_SOLVER_ITERATIONS = 10**11
+
+
+def too_much_solving(worlds: list[World], settings: RunSettings) -> tuple[World, float] | None:
+    """The first world whose iterations field makes more than MAX_SOLVER_ITERATIONS over the
+    run's steps, with how many; None where none does. Asked before any engine is built: every
+    backend is refused alike, as for the steps themselves (DART and Drake ignore the field,
+    PhysX takes 255 at most; the scene asks for the work all the same)."""
+    steps = settings.duration / settings.dt
+    for w in worlds:
+        if steps * w.iterations > MAX_SOLVER_ITERATIONS:
+            return w, steps * w.iterations
+    return None
+
+
 class _Damping:
     """autoDamp as ODE defines it: each step takes a fraction of each velocity away. The spec
     (37.4.10) damps "a multiple of the value calculated in the last frame" each frame; its model
@@ -268,7 +288,7 @@ def run(worlds: list[World], engine: Engine, settings: RunSettings, frame_times:
     line (world.parallel): one answer on every backend."""
     zero = [axis for w in worlds for axis in undirected(w)]
     if zero:
-        raise Unsupported("; ".join(f"{a} = 0 0 0: a joint axis of no direction (the spec gives none in its place)"
+        raise Unsupported("; ".join(f"{a}: a joint axis of no direction (the spec gives none in its place)"
                                     for a in zero))
     one_line = [joint for w in worlds for joint in parallel(w)]
     if one_line:

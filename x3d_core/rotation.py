@@ -7,17 +7,23 @@ import numpy as np
 IDENTITY = np.array([1.0, 0.0, 0.0, 0.0])
 
 
+def unit(v: np.ndarray) -> np.ndarray:
+    """Vectors (..., 3) scaled to length 1, each by its largest component first: the norm of
+    1e200 0 0 overflows to inf and that of 1e-170 0 0 underflows to 0, where either is +x. Only
+    a zero vector (each component 0 or -0) has no direction: it stays zero."""
+    v = np.asarray(v, dtype=np.float64)
+    big = np.abs(v).max(axis=-1, keepdims=True)
+    v = np.divide(v, big, out=np.zeros_like(v), where=big > 0)
+    norm = np.linalg.norm(v, axis=-1, keepdims=True)  # in [1, sqrt 3]
+    return np.divide(v, norm, out=np.zeros_like(v), where=norm > 0)
+
+
 def from_axis_angle(rot: np.ndarray) -> np.ndarray:
     """X3D SFRotation(s) (x, y, z, angle) to quaternions; a zero axis means no rotation."""
     rot = np.asarray(rot, dtype=np.float64)
-    axis = rot[..., :3]
-    # scaled by its largest component first: the norm of an axis of 1e308s would overflow
-    big = np.abs(axis).max(axis=-1, keepdims=True)
-    axis = np.divide(axis, big, out=np.zeros_like(axis), where=big > 0)
-    norm = np.linalg.norm(axis, axis=-1, keepdims=True)
-    unit = np.divide(axis, norm, out=np.zeros_like(axis), where=norm > 0)
-    half = 0.5 * rot[..., 3:4] * (norm > 0)
-    return np.concatenate([np.cos(half), unit * np.sin(half)], axis=-1)
+    axis = unit(rot[..., :3])
+    half = 0.5 * rot[..., 3:4] * np.any(axis != 0, axis=-1, keepdims=True)
+    return np.concatenate([np.cos(half), axis * np.sin(half)], axis=-1)
 
 
 def to_axis_angle(q: np.ndarray) -> np.ndarray:

@@ -6,16 +6,14 @@ import sys
 
 import numpy as np
 
+from . import rotation as R
 from .applied import CANONICAL, canonical
 from .model import Diagnostic, Node, Scene
-from .world import body_inertia
+from .world import AXES, PARALLEL, body_inertia
 
 # A pair of axes counts as perpendicular when |cos| is below this: well under the
 # float32 rounding of an axis written with 6-7 digits, far above any intended angle.
 PERPENDICULAR_COS = 1e-5
-# Joint axes, each a direction: X3D 3.x's default, 0 0 0, gives none (4.0's do)
-AXIS_FIELDS = {"SingleAxisHingeJoint": ("axis",), "DoubleAxisHingeJoint": ("axis1", "axis2"),
-               "UniversalJoint": ("axis1", "axis2"), "MotorJoint": ("motor1Axis", "motor2Axis", "motor3Axis")}
 
 
 def by_type(scene: Scene) -> dict[str, list[Node]]:
@@ -35,7 +33,7 @@ def diagnostic(scene: Scene, node: Node, field: str, message: str, severity: str
 
 
 def _joints(groups: dict[str, list[Node]]) -> list[Node]:
-    return [j for t in AXIS_FIELDS.keys() | {"BallJoint", "SliderJoint"} for j in groups.get(t, [])]
+    return [j for t in AXES.keys() | {"BallJoint"} for j in groups.get(t, [])]
 
 
 def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
@@ -72,14 +70,18 @@ def validate(scene: Scene, groups: dict[str, list[Node]]) -> None:
         elif b1 is b2:
             warn(joint, "body2", "joint joins a body to itself")
         _force_output(joint, err, warn)
-        if joint.type_name == "UniversalJoint":
-            a1, a2 = joint.get("axis1"), joint.get("axis2")
-            n1, n2 = np.linalg.norm(a1), np.linalg.norm(a2)
-            if n1 and n2 and abs(float(np.dot(a1, a2)) / (n1 * n2)) > PERPENDICULAR_COS:
-                angle = np.degrees(np.arccos(np.clip(np.dot(a1, a2) / (n1 * n2), -1, 1)))
+        if joint.type_name in ("UniversalJoint", "DoubleAxisHingeJoint"):
+            u1, u2 = R.unit(joint.get("axis1")), R.unit(joint.get("axis2"))  # 1e200 0 0 is +x, no overflow
+            cos = float(np.dot(u1, u2))
+            if joint.type_name == "UniversalJoint" and abs(cos) > PERPENDICULAR_COS:
+                angle = np.degrees(np.arccos(np.clip(cos, -1, 1)))
                 warn(joint, "axis2", f"axis1 and axis2 are {angle:.6g} degrees apart, not perpendicular; "
                                      "the spec leaves the joint undefined")
-        for f in AXIS_FIELDS.get(joint.type_name, ()) if joint.type_name != "MotorJoint" else ():
+            elif joint.type_name == "DoubleAxisHingeJoint" and np.any(u1) and np.any(u2) \
+                    and np.linalg.norm(R.cross(u1, u2)) < PARALLEL:  # world.parallel's test: every backend refuses it
+                warn(joint, "axis2", "axis1 and axis2 are parallel: one line, not the two independent axes the "
+                                     "joint turns about")
+        for f in AXES.get(joint.type_name, ()) if joint.type_name != "MotorJoint" else ():
             if not np.any(joint.get(f)):  # a MotorJoint's zero axis is defined: "disabled" (37.4.9)
                 warn(joint, f, "axis is 0 0 0 and defines no direction")
     for body in groups.get("RigidBody", []):

@@ -211,23 +211,27 @@ def _bodies(nodes: list[Node], names: dict[int, str]) -> Bodies:
                                      num("disableTime")], axis=-1).reshape(n, 3))
 
 
-_AXES = {"SingleAxisHingeJoint": ("axis",), "SliderJoint": ("axis",),
+# each joint type's axis fields, in the order of Joint.axes's rows
+AXES = {"SingleAxisHingeJoint": ("axis",), "SliderJoint": ("axis",),
          "DoubleAxisHingeJoint": ("axis1", "axis2"), "UniversalJoint": ("axis1", "axis2"),
          "MotorJoint": ("motor1Axis", "motor2Axis", "motor3Axis")}
 
 
 def undirected(w: World) -> list[str]:
-    """The axes the world's joints need that are 0 0 0, each named as JointType NAME.field: a
-    zero axis defines no direction and the spec gives none in its place (it is X3D 3.3's
-    default for most joint axes), so every backend refuses it rather than each failing its
-    own way. A joint needs the axes of its type where it joins two ends an engine builds it
-    between (not a body to itself, or static to static). A MotorJoint needs none: its zero axis
-    is one the clause defines, "disabled" (37.4.9), and pushes nothing (evaluator._Motors)."""
+    """The axes the world's joints need that are zero, each named as JointType NAME.field =
+    the value the scene gives (0 0 0, or -0 0 0): a zero axis defines no direction and the spec
+    gives none in its place (it is X3D 3.3's default for most joint axes), so every backend
+    refuses it rather than each failing its own way. Any other finite axis, 1e200 0 0 or
+    1e-170 0 0, has one (rotation.unit). A joint needs the axes of its type where it joins two
+    ends an engine builds it between (not a body to itself, or static to static). A MotorJoint
+    needs none: its zero axis is one the clause defines, "disabled" (37.4.9), and pushes nothing
+    (evaluator._Motors)."""
     out = []
     for j in w.joints:
         if j.body1 == j.body2 or j.type == "MotorJoint":
             continue
-        out += [f"{j.type} {j.name}.{f}" for k, f in enumerate(_AXES.get(j.type, ())) if not np.any(j.axes[k])]
+        out += [f"{j.type} {j.name}.{f} = {F.format_xml(F.FIELD_TYPES['SFVec3f'], j.node.get(f))}"
+                for k, f in enumerate(AXES.get(j.type, ())) if not np.any(j.axes[k])]
     return out
 
 
@@ -261,11 +265,6 @@ def parallel(w: World) -> list[str]:
     return out
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
-    n = np.linalg.norm(v)
-    return v / n if n > 0 else np.zeros(3)
-
-
 def forced_outputs(outputs: tuple[str, ...], wanted: list[str]) -> tuple[str, ...]:
     """The outputs a forceOutput value selects (37.3.3): all where "ALL" is anywhere in it,
     beside "NONE" too (the clause says both there: docs/spec-loose-ends.md, section 22);
@@ -283,8 +282,8 @@ def _joint(node: Node, rows: dict[int, int], fixed: np.ndarray, names: dict[int,
         return rows[id(b)]
 
     axes = np.zeros((3, 3))
-    for k, f in enumerate(_AXES.get(node.type_name, ())):
-        axes[k] = _unit(np.asarray(node.get(f), dtype=np.float64))
+    for k, f in enumerate(AXES.get(node.type_name, ())):
+        axes[k] = R.unit(node.get(f))  # 1e200 0 0 is +x; 0 0 0 stays zero (undirected)
     spec = node.spec
     params = {f: float(node.get(f)) for f, fd in spec.fields.items()
               if fd.access != "outputOnly" and fd.type.name in ("SFFloat", "SFInt32", "SFBool")}

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
+import select
 import signal
 import sys
-import threading
 import time
 from collections import Counter
 from collections.abc import Iterator
@@ -18,18 +19,19 @@ from backends import base
 from x3d_core import atomic
 from x3d_core.engine import Engine, Simulation, Stopped, TimedOut, Unsupported, on_engine_abort, target_accuracy
 from x3d_core.analysis import Use
-from x3d_core.evaluator import RunSettings, run
+from x3d_core.evaluator import MAX_SOLVER_ITERATIONS, RunSettings, run, too_much_solving
 from x3d_core.model import Scene
 from x3d_core.outcome import EMPTY, NOTHING_TO_SIMULATE, outcome_warnings, simulates
 from x3d_core.trace import Trace
 from x3d_core.trace_npz import write_npz
+from x3d_core.validate import diagnostic
 from x3d_core.world import World, worlds
 
 from conformance.cli import options
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE, EXIT_UNSUPPORTED = 0, 1, 2, 3
 NAMED, LEAD = 4, 120  # a default note's features named, and characters of its note: one short line each
-STUCK_GRACE = 5.0  # s an engine call may run past --timeout before the process ends without a trace
+STUCK_GRACE = 5.0  # s an engine call may run past --timeout before the watchdog ends the run without a trace
 
 
 class _StepClock:
@@ -90,12 +92,24 @@ def scene_to_run(path: str) -> tuple[Scene, list[World]] | None:
     return scene, ws
 
 
+STARTED, ENDED = b"s", b"e"  # what a run under a watchdog tells it (_watchdog): its time limit began, is over
+
+
+def _tell(fd: int, word: bytes) -> None:
+    """One word to the watchdog (none where fd is -1: no --timeout); a watchdog gone is no error of the run."""
+    if fd >= 0:
+        try:
+            os.write(fd, word)
+        except OSError:
+            pass
+
+
 @contextmanager
-def time_limit(seconds: float | None, said: str) -> Iterator[None]:
+def time_limit(seconds: float | None, watchdog: int = -1) -> Iterator[None]:
     """TimedOut raised in the main thread once `seconds` of wall time have passed (between two
-    steps: the evaluator keeps the frames before); should an engine call hold the interpreter
-    STUCK_GRACE s past that, the process ends with exit 1 and one line `said` + why, since no
-    Python runs until the call returns."""
+    steps: the evaluator keeps the frames before); the watchdog process (_watchdog, on fd
+    `watchdog`) told when the limit starts and ends, to end the run should an engine call
+    keep the interpreter STUCK_GRACE s past it."""
     if seconds is None:
         yield
         return
@@ -103,22 +117,85 @@ def time_limit(seconds: float | None, said: str) -> Iterator[None]:
     def expire(signum: int, frame: object) -> None:
         raise TimedOut(f"passed its time limit of {seconds:g} s")
 
-    def stuck() -> None:
-        print(f"{said}: passed its time limit of {seconds:g} s inside one engine call (no trace written)",
-              file=sys.stderr, flush=True)
-        os._exit(EXIT_ERROR)
-
     previous = signal.signal(signal.SIGALRM, expire)
-    watchdog = threading.Timer(seconds + STUCK_GRACE, stuck)
-    watchdog.daemon = True
+    _tell(watchdog, STARTED)
     signal.setitimer(signal.ITIMER_REAL, seconds)
-    watchdog.start()
     try:
         yield
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
-        watchdog.cancel()
+        _tell(watchdog, ENDED)
         signal.signal(signal.SIGALRM, previous)
+
+
+def _watchdog(seconds: float, said: str) -> tuple[int | None, int]:
+    """The command forked, before it imports the engine: (None, fd) in the child, which runs
+    on and tells fd when its time limit starts and ends (time_limit); (its exit status, -1) in
+    the parent, which waits for it. The parent, not a thread of the run, keeps the limit: an
+    engine call that holds the interpreter lock (pybullet's 90 s step of 100 overlapping
+    boxes) lets no thread of its process run, nor a Python signal handler. Past STUCK_GRACE s
+    beyond the limit the parent SIGKILLs the run and says one line `said` + why, exit 1; the
+    trace is written only after the limit ends, so none is half written."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    r, w = os.pipe()
+    parent = os.getpid()
+    pid = os.fork()
+    if pid == 0:
+        os.close(r)
+        _die_with(parent)
+        return None, w
+    os.close(w)
+    try:
+        return _watch(pid, r, seconds, said), -1
+    finally:
+        os.close(r)
+
+
+def _die_with(parent: int) -> None:
+    """In the run: SIGKILLed should the watchdog end first (a `kill -9` of the command's pid),
+    where Linux can say so; the run's group, the command's own, is what the runners end."""
+    if sys.platform.startswith("linux"):
+        import ctypes  # here: only a watched run pays its import
+        ctypes.CDLL(None).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+        if os.getppid() != parent:  # it ended before the call above
+            os._exit(EXIT_ERROR)
+
+
+def _word(fd: int, timeout: float | None) -> bytes | None:
+    """The run's next word on fd (b"" once it has closed it: ended), or None past timeout s."""
+    if not select.select([fd], [], [], timeout)[0]:
+        return None
+    return os.read(fd, 1)
+
+
+def _watch(pid: int, fd: int, seconds: float, said: str) -> int:
+    """The watchdog's side: the run's exit status, or EXIT_ERROR after one line where it kept
+    an engine call STUCK_GRACE s past its limit (then SIGKILLed). SIGTERM is passed on to the
+    run; SIGINT ignored, as a terminal's Ctrl-C reaches the run too (one process group), which
+    says how it ended."""
+    def pass_on(signum: int, frame: object) -> None:
+        try:
+            os.kill(pid, signum)
+        except ProcessLookupError:  # reaped already
+            pass
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, pass_on)
+    if _word(fd, None) == STARTED and _word(fd, seconds + STUCK_GRACE) is None:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        print(f"{said}: passed its time limit of {seconds:g} s inside one engine call (no trace written)",
+              file=sys.stderr, flush=True)
+        return EXIT_ERROR
+    code = os.waitstatus_to_exitcode(os.waitpid(pid, 0)[1])
+    if code < 0:  # killed by a signal (a segfault): the command dies of it too, as an unwatched run would
+        resource.setrlimit(resource.RLIMIT_CORE, (0, resource.getrlimit(resource.RLIMIT_CORE)[1]))  # no core of its own
+        if -code != signal.SIGKILL:
+            signal.signal(-code, signal.SIG_DFL)
+        os.kill(os.getpid(), -code)
+        return 128 - code  # a signal its caller had it block: the shell's convention
+    return code
 
 
 def refusal(uses: list[Use], note: str) -> str:
@@ -160,6 +237,20 @@ def cmd_run(args: argparse.Namespace) -> int:
     if loaded is None:
         return EXIT_ERROR
     scene, ws = loaded
+    settings = RunSettings(duration=args.duration, dt=args.dt, frame_rate=args.frame_rate)
+    over = too_much_solving(ws, settings)
+    if over is not None:  # as --dt 1e-12's steps: before any work
+        w, iterations = over
+        steps = f"{settings.duration / settings.dt:.3g} steps (--duration {args.duration:g} at --dt {args.dt:g})"
+        print(diagnostic(scene, w.node, "iterations", f"{w.iterations} iterations a step for {steps} make "
+                         f"{iterations:.3g} solver iterations; a run takes at most {MAX_SOLVER_ITERATIONS:.3g}",
+                         "error"), file=sys.stderr)
+        return EXIT_ERROR
+    watchdog = -1
+    if args.timeout is not None:
+        status, watchdog = _watchdog(args.timeout, f"{args.scene}: {args.backend}")
+        if status is not None:
+            return status
     try:
         backend = base.load(args.backend)
     except ImportError as e:
@@ -178,12 +269,12 @@ def cmd_run(args: argparse.Namespace) -> int:
         for note, uses in refused.items():  # a refusal's reason once, whatever number of uses it covers
             print(f"{args.scene}: unsupported by {args.backend}: {refusal(uses, note)}", file=sys.stderr)
         return EXIT_UNSUPPORTED
-    settings = RunSettings(duration=args.duration, dt=args.dt, frame_rate=args.frame_rate)
 
     def stopped(e: Stopped) -> None:
         """What did run written, and one line: for a Stopped raised, and for an engine that
         ends the process from inside a step (engine.engine_abort, ODE's assertions)."""
         kept = "no trace written"
+        _tell(watchdog, ENDED)  # an engine abort writes from inside its step: no watchdog kills it half way
         if e.trace is not None:
             _write_trace(e.trace, args.trace)
             kept = f"the frames before it written to {args.trace or 'standard output'}"
@@ -192,7 +283,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     on_engine_abort(stopped)
     try:
         step_s, step_cpu_s, simulation_s, simulation_cpu_s = [], [], [], []
-        with time_limit(args.timeout, f"{args.scene}: {args.backend}"):
+        with time_limit(args.timeout, watchdog):
             for k in range(args.repeat):  # repeats are timed; the trace is the first run's
                 started, cpu = time.perf_counter(), time.process_time()
                 clock = _StepClock(backend) if args.timing else None
