@@ -7,6 +7,10 @@ import os
 
 import pytest
 
+# every run afresh: no test reads a run another test, or the user's own commands, left in the run
+# cache (conformance/runner/cache.py); the cache's own tests point it at a folder of theirs
+os.environ["X3DRBP_CACHE"] = "off"
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared"))
 CORPUS = os.path.join(SHARED, "corpus")

@@ -28,6 +28,9 @@ COMMANDS = {"check": "check", "advise": "advise", "run": "run", "backends": "run
             "conformance": "conformance", "expectations": "expectations", "stability": "stability",
             "sweep": "sweep", "report": "report", "validate": "validate", "x-ite": "x_ite"}
 
+# the commands whose runs go through the run cache (conformance/runner/cache.py): each takes --no-cache
+CACHED = ("advise", "compare", "conformance", "expectations", "report", "stability", "sweep", "validate")
+
 EXIT_INTERRUPTED = 130
 # standard output closed by its reader (`x3drbp run SCENE | head -1`): what a shell reports for
 # a command killed by SIGPIPE, 128 + 13, as `git log | head` or `cat big | head` give; not 1,
@@ -106,13 +109,19 @@ def main(argv: list[str] | None = None) -> int:
     sub = parser.add_subparsers(dest="command", required=True)
     for module in _modules(sys.argv[1:] if argv is None else argv):
         importlib.import_module(f"conformance.cli.{module}").add_command(sub)
+    for command in CACHED:
+        if command in sub.choices:
+            sub.choices[command].add_argument(
+                "--no-cache", action="store_true",
+                help="run every run afresh and keep none (default: reuse a run made before with the same scene "
+                     "bytes, engine version, x3drbp source and settings; docs/commands/report.md)")
     parser.set_defaults(main=main)  # `x3drbp report` runs the other commands through it
     args = _parsed(parser, sub, argv)
     given = _resolve_outputs(args)
     args.given = {**given, **_resolve_scenes(args)}
     try:
         _check_outputs(args)
-        status = args.func(args)
+        status = _uncached(args) if getattr(args, "no_cache", False) else args.func(args)
         if sys.stdout is not None:
             sys.stdout.flush()  # here, where a reader gone is caught, not at exit
         return status
@@ -130,6 +139,13 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as e:  # the last resort: one line, never a traceback
         _say(f"x3drbp {args.command}: {_oserror(e, given)}")
         return EXIT_CANNOT_WRITE
+
+
+def _uncached(args: argparse.Namespace) -> int:
+    """The command with the run cache off (--no-cache), its steps' too where it runs others (report)."""
+    from conformance.runner import cache  # here: an `x3drbp run` child never needs it
+    with cache.turned_off(True):
+        return args.func(args)
 
 
 def _parsed(parser: argparse.ArgumentParser, sub: argparse._SubParsersAction, argv: list[str] | None

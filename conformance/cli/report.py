@@ -1,7 +1,7 @@
 """`x3drbp report`: the main job. Every measurement x3drbp makes, on every installed backend,
 as one static HTML page with its plots, and the same in markdown.
 
-    x3drbp report [--out DIR] [--backends LIST] [--scenes DIR_OR_FILE] [--quick] [--x-ite]
+    x3drbp report [--out DIR] [--backends LIST] [--scenes DIR_OR_FILE] [--quick] [--x-ite] [--no-cache]
 
 Each step is the command of its name, run into a folder of DIR (--scenes: your scenes,
 files or folders, go into compare, advise and sweep beside the bundled examples):
@@ -45,7 +45,7 @@ from x3d_core import atomic
 from x3d_core.outcome import EMPTY, simulates
 from x3d_core.paths import none_under, scene_files
 
-from conformance.cli import as_typed, options
+from conformance.cli import CACHED, as_typed, options
 from conformance import cases as C
 from conformance import expectations
 from conformance.results import ACCURACY, CONVENTIONS, PASS, UNSUPPORTED
@@ -81,6 +81,12 @@ def _steps(out: str, backends: list[str], quick: bool, x_ite: bool, yours: list[
              ("stability", [["stability", *chosen, "--out", os.path.join(out, "stability")]]),
              ("x_ite", [["x-ite", "cases", "--against", ",".join(backends), "--out", os.path.join(out, "x_ite")]])]
     return [s for s in steps if not (quick and s[0] == "sweep") and (x_ite or s[0] != "x_ite")]
+
+
+def uncached(steps: list[tuple[str, list[list[str]]]]) -> list[tuple[str, list[list[str]]]]:
+    """The steps with --no-cache on each command that takes it: so a step's log line, run alone, runs as it did."""
+    return [(step, [[*argv, "--no-cache"] if argv[0] in CACHED else argv for argv in commands])
+            for step, commands in steps]
 
 
 def _run(main: Callable[[list[str]], int], argv: list[str], log: str, bars: TextIO | None = None) -> int:
@@ -155,6 +161,11 @@ def features(matrix: dict, tables: dict) -> dict:
 
 @children.interruptible
 def cmd_report(args: argparse.Namespace) -> int:
+    with probe.remembered():  # the steps ask the backends and their declarations the report asked
+        return _report(args)
+
+
+def _report(args: argparse.Namespace) -> int:
     from reports.report_page import dead_links, write_report  # reports read results; imported when there are some
     try:
         info, named = probe.chosen(options.names(args.backends))
@@ -188,7 +199,8 @@ def cmd_report(args: argparse.Namespace) -> int:
         os.makedirs(os.path.join(out, sub), exist_ok=True)
     timings, failed = {}, []
     started = time.perf_counter()
-    for step, commands in _steps(out, backends, args.quick, args.x_ite, yours):
+    steps = _steps(out, backends, args.quick, args.x_ite, yours)
+    for step, commands in uncached(steps) if getattr(args, "no_cache", False) else steps:
         t0 = time.perf_counter()
         log = os.path.join(logs, f"{step}.log")
         open(log, "w").close()

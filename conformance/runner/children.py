@@ -15,6 +15,9 @@ the child and whatever it starts. A command wrapped in `interruptible` answers S
 SIGTERM by stopping them all (`stop`: each group SIGTERM, then SIGKILL), and exits
 128 + the signal with one line.
 
+A run made before with the same scene bytes, engine version, x3drbp source and options is
+read back from the run cache (cache.py: its trace, timing and exit status) rather than run.
+
 A run's notes of what its backend approximates (`SCENE: note: BACKEND approximates ...`, on
 its stderr) are said by the command that ran it, once each, not by every child: inside
 `notes_shown` run_child hands them on, and they are printed when the block ends; outside it
@@ -38,7 +41,7 @@ from dataclasses import dataclass, field
 from typing import TextIO
 
 from conformance.results import BLEW_UP, CRASHED, ERROR, TIMED_OUT, UNSUPPORTED, Settings
-from conformance.runner import fork_server
+from conformance.runner import cache, fork_server
 from conformance.runner.fork_server import GRACE, WarmChild, kill_group
 
 DEFAULT_TIMEOUT = 60.0
@@ -345,14 +348,20 @@ def run_child(scene: str, backend: str, settings: Settings, trace: str,
     notes = _notes
     cmd = [sys.executable, "-m", "conformance.cli", "run", scene, "--backend", backend, *settings.args(),
            "--trace", trace, *(notes.flag() if notes is not None else ("-q",)), *extra]
-    try:
-        warm = fork_server.server(ROOT, _live, _signal is not None) if fork_server.usable() else None
+    with cache.claimed(cmd[3:], backend, ROOT) as kept:  # None: not cached (conformance/runner/cache.py says when)
+        reused = kept.reused(timeout) if kept is not None else None
         try:
-            ended = call(cmd, timeout, stdout=False, warm=warm, backend=backend)
-        except fork_server.Gone:  # the server could not take it, or ended during it: the run afresh
-            ended = call(cmd, timeout, stdout=False)
-    except OSError as e:
-        return Outcome(ERROR, f"could not start {sys.executable}: {e}")
+            ended = Ended(reused[0], "", reused[1]) if reused is not None else _started(cmd, timeout, backend)
+        except OSError as e:
+            return Outcome(ERROR, f"could not start {sys.executable}: {e}")
+        out = _outcome(ended, scene, backend, trace, timeout, notes)
+        if kept is not None and reused is None and out.verdict in cache.KEPT:
+            kept.keep(ended.returncode, ended.stderr, timeout)
+        return out
+
+
+def _outcome(ended: Ended, scene: str, backend: str, trace: str, timeout: float, notes: Notes | None) -> Outcome:
+    """The verdict of a run that ended so, its notes handed to `notes`."""
     if ended.returncode is None:
         return classify(None, "", timed_out=True, timeout=timeout)
     marker = f"{scene}: note: {backend} approximates "
@@ -365,3 +374,12 @@ def run_child(scene: str, backend: str, settings: Settings, trace: str,
     if out.verdict is None and not os.path.exists(trace):
         return Outcome(ERROR, "the run succeeded but wrote no trace")
     return out
+
+
+def _started(cmd: list[str], timeout: float, backend: str) -> Ended:
+    """The run, forked by the command's fork server where it can be, else afresh."""
+    warm = fork_server.server(ROOT, _live, _signal is not None) if fork_server.usable() else None
+    try:
+        return call(cmd, timeout, stdout=False, warm=warm, backend=backend)
+    except fork_server.Gone:  # the server could not take it, or ended during it: the run afresh
+        return call(cmd, timeout, stdout=False)

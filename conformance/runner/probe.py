@@ -6,13 +6,14 @@ and a command pays only for the engines it names.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 from conformance.results import BackendInfo
-from conformance.runner import children
+from conformance.runner import cache, children
 from conformance.runner.children import DEFAULT_TIMEOUT
 
 _PROBE = """
@@ -28,7 +29,8 @@ for name in names:  # one answer line each, as soon as it is known: a crash or h
     else:
         try:
             answer = {"version": str(b.version()), "integration": getattr(b, "integration", None),
-                      "accurate_integration": getattr(b, "accurate_integration", None)}
+                      "accurate_integration": getattr(b, "accurate_integration", None),
+                      "scope": getattr(b, "scope", None)}
         except Exception as e:  # a backend whose engine imports but cannot say its version
             answer = {"unavailable": f"version() failed: {type(e).__name__}: {e}"}
     print("\\nx3drbp-answer " + json.dumps({name: answer}), flush=True)
@@ -62,9 +64,45 @@ def answers(script: str, args: Sequence[str], timeout: float, what: str) -> tupl
 
 
 def ask(script: str, args: Sequence[str], timeout: float, what: str) -> tuple[Any, str]:
-    """One answer (answers()'s last) of a script that ran to its end: (the answer, or None and why there is none)."""
-    found, why = answers(script, args, timeout, what)
-    return (found[-1], "") if found and not why else (None, why)
+    """One answer (answers()'s last) of a script that ran to its end: (the answer, or None and why
+    there is none). Inside remembered(), one asked before is answered again without a child; so is
+    one an earlier command asked of the same x3drbp source, engines and files (cache.question)."""
+    if _said is not None and (script, *args) in _said:
+        return _said[(script, *args)], ""
+    kept = cache.question(script, args)
+    said = kept.reused(0.0) if kept is not None else None
+    try:
+        answer = json.loads(said[1]) if said is not None else None
+    except ValueError:  # an entry edited: asked again
+        said = None
+    if said is None:
+        found, why = answers(script, args, timeout, what)
+        if not found or why:
+            return None, why
+        answer = found[-1]
+        if kept is not None:
+            kept.keep(0, json.dumps(answer), 0.0)
+    if _said is not None:
+        _said[(script, *args)] = answer
+    return answer, ""
+
+
+_said: dict[tuple[str, ...], Any] | None = None  # inside remembered(): ask()'s answers, by script and arguments
+_found: dict[str, BackendInfo] | None = None  # ... and backend_table()'s, by backend (none that went unanswered)
+
+
+@contextlib.contextmanager
+def remembered() -> Iterator[None]:
+    """The block's questions each asked of a child once: x3drbp report's steps, each a command run
+    in its process, asked the backends the report had asked, and their declarations, in ten
+    children importing every engine (1.2 s of CPU each); an answer that did not come is asked again."""
+    global _said, _found
+    previous = _said, _found
+    _said, _found = ({}, {}) if _said is None else previous
+    try:
+        yield
+    finally:
+        _said, _found = previous
 
 
 class Unprobed(BackendInfo):
@@ -103,6 +141,8 @@ def backend_table(timeout: float = DEFAULT_TIMEOUT, names: Sequence[str] = ()) -
     such engine costing one child and at most one `timeout`; an engine left out of `names` is
     never imported. ValueError naming any name the registry does not know, before any child."""
     registered = known(names)
+    if _found is not None and all(n in _found for n in names or registered):
+        return {n: _found[n] for n in dict.fromkeys(names or registered)}
     found: dict[str, dict] = {}
     out: dict[str, BackendInfo] = {}
     asked: list[str] = list(dict.fromkeys(names))
@@ -122,7 +162,10 @@ def backend_table(timeout: float = DEFAULT_TIMEOUT, names: Sequence[str] = ()) -
             break
     for name, d in found.items():
         out[name] = BackendInfo(name, d.get("version"), d.get("unavailable"), d.get("integration"),
-                                d.get("accurate_integration"))
+                                d.get("accurate_integration"), d.get("scope"))
+    cache.learn({n: i.version if i.usable else None for n, i in out.items()})  # the runs' keys need no probe of their own
+    if _found is not None:
+        _found.update((n, i) for n, i in out.items() if not isinstance(i, Unprobed))
     return {n: out[n] for n in asked}
 
 
@@ -132,3 +175,12 @@ def chosen(names: Sequence[str], timeout: float = DEFAULT_TIMEOUT) -> tuple[dict
     naming unknown ones."""
     info = backend_table(timeout, names)
     return info, named_backends(names, info)
+
+
+def _version(backend: str) -> str | None:
+    """The backend's engine version for the run cache's keys (None: not usable here)."""
+    info = backend_table(names=[backend]).get(backend)
+    return info.version if info is not None and info.usable else None
+
+
+cache.asks_versions(_version)
