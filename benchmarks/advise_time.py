@@ -1,39 +1,61 @@
-"""Benchmark: the wall time of `x3drbp advise FILE` on a five-body scene, against a 60 s target.
+"""Benchmark: the wall and CPU time of `x3drbp advise FILE`, against a target, and against an
+earlier revision side by side.
 
-The scene, written here into a temporary folder: a 4-link hinge chain hanging from a fixed
-base, released 0.3 rad from the vertical, and a ball dropped onto a static floor beside it,
-sliding along it: five moving RigidBodies, four SingleAxisHingeJoints and a
-CollisionCollection, so `advise` classes it as "joints and contacts". It is planar (every
-body, velocity and gravity in the XY plane, hinge axes along z, a sphere and a box centred
-on z = 0) and uses no field at a value any of the five backends refuses, so that every
-backend runs it (pymunk runs planar scenes only); the script says so where a backend still
-"cannot run it" or a run "did not end well".
+Two scenes, written here into a temporary folder (--scene):
+- chain_and_ball (the default): a 4-link hinge chain hanging from a fixed base, released 0.3
+  rad from the vertical, and a ball dropped onto a static floor beside it, sliding along it:
+  five moving RigidBodies, four SingleAxisHingeJoints and a CollisionCollection, so `advise`
+  classes it as "joints and contacts". It is planar (every body, velocity and gravity in the
+  XY plane, hinge axes along z, a sphere and a box centred on z = 0) and uses no field at a
+  value any backend refuses, so that every backend runs it (pymunk runs planar scenes only);
+  target 60 s;
+- ball_chain: a 10-link BallJoint chain hanging from a fixed base, 0.3 rad from the vertical
+  and tilted out of the XY plane (issue 38's scene): joints only, no contacts, so Drake runs
+  it error-controlled (its reference, and its costliest runs: about 1 CPU s per simulated s,
+  at the default budget); pymunk refuses it (not planar), every other backend runs it;
+  target 30 s on 2 quiet cores.
+The script says so where a backend still "cannot run it" or a run "did not end well" (beyond
+pymunk on ball_chain).
 
 Timed: the whole command as a subprocess, from its start to its exit (interpreter start,
-imports, the backends' probe and declarations, the judgement, the runs at every step with
-their repeats, the reference runs, the text), with advise's own defaults unless options are
-passed on; --repeat times, each after the one before has ended. Printed: each run's wall
-time with the load average before it, then the median and the spread (lowest-highest)
-against the target, with the machine's CPU count and load average.
+imports, the backends' probe and declarations, the judgement, the runs at every step and
+those timed again, the reference runs, the text), with advise's own defaults unless options
+are passed on; --repeat times, each after the one before has ended: its wall time, and its
+CPU time (user + system of it and every child it waited for: what another load on the machine
+barely moves), with the load average before it. Each run starts with an empty run cache
+(X3DRBP_CACHE, a fresh folder: conformance/runner/cache.py), as on a fresh machine, and with
+Python's bytecode compiled beforehand (benchmarks/measure.py: compiled_env).
 
-    python benchmarks/advise_time.py [--repeat 3] [--target 60] [--keep DIR] [-- ADVISE OPTIONS...]
+With --against REV, a second side: the same command at revision REV (its files from git
+archive, run with `python -m conformance.cli` in that tree), the two sides taking turns, and
+the ratio of this tree's medians to REV's.
+
+    python benchmarks/advise_time.py [--scene chain_and_ball|ball_chain] [--repeat 3] [--target S]
+                                     [--against REV] [--keep DIR] [-- ADVISE OPTIONS...]
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import resource
 import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-TARGET_S = 60.0  # the wall time advise should stay under for a scene of a few bodies
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+
+from measure import compiled_env, tree_at  # noqa: E402  (benchmarks/measure.py, beside this script)
+
 LINKS = 4
 LINK_LENGTH = 0.3  # m
 BASE = np.array([0.0, 2.0, 0.0])
@@ -87,55 +109,129 @@ def scene_x3d() -> str:
             "</X3D>\n")
 
 
-def command() -> list[str]:
-    """`x3drbp`, the console script beside this interpreter (the venv's), else the module."""
-    script = os.path.join(os.path.dirname(sys.executable), "x3drbp")
-    return [script] if os.access(script, os.X_OK) else [sys.executable, "-m", "conformance.cli"]
+def ball_chain_x3d(links: int = 10) -> str:
+    """A chain of `links` bodies joined by BallJoints, hanging from a fixed base along a line
+    0.3 rad from the vertical and tilted out of the XY plane (issue 38's scene, value for value)."""
+    base = np.array([0.0, 2.0, 0.0])
+    direction = np.array([np.sin(0.3), -np.cos(0.3), 0.1])
+    direction /= np.linalg.norm(direction)
+    bodies = [f"<RigidBody DEF='Base' fixed='true' position='{_vec(base)}'/>"]
+    joints = []
+    for k in range(links):
+        bodies.append(f"<RigidBody DEF='L{k + 1}' mass='0.5' position='{_vec(base + direction * LINK_LENGTH * (k + 0.5))}' "
+                      f"inertia='{INERTIA}'/>")
+        parent = "Base" if k == 0 else f"L{k}"
+        joints.append(f"<BallJoint anchorPoint='{_vec(base + direction * LINK_LENGTH * k)}'>"
+                      f"<RigidBody USE='{parent}' containerField='body1'/><RigidBody USE='L{k + 1}' "
+                      "containerField='body2'/></BallJoint>")
+    return ("<?xml version='1.0' encoding='UTF-8'?>\n"
+            "<X3D profile='Full' version='4.0'><head><component name='RigidBodyPhysics' level='2'/></head><Scene>\n"
+            "<RigidBodyCollection>\n" + "\n".join([*bodies, *joints]) + "\n</RigidBodyCollection></Scene></X3D>\n")
+
+
+@dataclass(frozen=True)
+class Bench:
+    write: Callable[[], str]
+    said: str  # the scene in a few words
+    target: float  # s of wall time advise should stay under
+    refusing: tuple[str, ...] = ()  # backends that cannot run it, as expected
+
+
+SCENES = {
+    "chain_and_ball": Bench(scene_x3d, f"{LINKS} links on hinges from a fixed base and a ball on a floor: 5 moving "
+                                       "bodies, joints and contacts", 60.0),
+    "ball_chain": Bench(ball_chain_x3d, "10 links on ball joints from a fixed base: joints", 30.0, ("pymunk",)),
+}
+
+
+def _cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def _timed(argv: list[str], cwd: str, env: dict[str, str]) -> tuple[float, float, float, subprocess.CompletedProcess]:
+    """One run of the command: (load average before, wall s, CPU s of it and its children, what it gave)."""
+    load, cpu, started = os.getloadavg()[0], _cpu(), time.perf_counter()
+    out = subprocess.run(argv, cwd=cwd, env=env, capture_output=True, text=True)
+    return load, time.perf_counter() - started, _cpu() - cpu, out
+
+
+def _spread(xs: list[float]) -> str:
+    return f"{min(xs):.1f}-{max(xs):.1f}"
+
+
+def _first_line(stdout: str) -> str:
+    return next((line for line in stdout.splitlines() if line and not line.startswith(" ")), "")
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--repeat", type=int, default=3, help="timed runs of the command (default 3)")
-    ap.add_argument("--target", type=float, default=TARGET_S, help=f"seconds (default {TARGET_S:g})")
+    ap.add_argument("--scene", choices=tuple(SCENES), default="chain_and_ball", help="the scene (default chain_and_ball)")
+    ap.add_argument("--repeat", type=int, default=3, help="timed runs of the command, a side (default 3)")
+    ap.add_argument("--target", type=float, help="seconds of wall time (default: the scene's)")
+    ap.add_argument("--against", metavar="REV", help="also time advise at this revision (git archive), taking turns")
     ap.add_argument("--keep", metavar="DIR", help="also copy the scene (and the last run's output) into DIR")
     ap.add_argument("advise", nargs="*", metavar="ADVISE OPTIONS", help="passed on to x3drbp advise (after --)")
     args = ap.parse_args(argv)
     if args.repeat < 1:
         ap.error("--repeat must be 1 or more")
-    walls, loads, out = [], [], None
+    bench = SCENES[args.scene]
+    target = bench.target if args.target is None else args.target
     with tempfile.TemporaryDirectory(prefix="x3drbp-advise-bench-") as tmp:
-        scene = os.path.join(tmp, "chain_and_ball.x3d")
+        scene = os.path.join(tmp, f"{args.scene}.x3d")
         with open(scene, "w", encoding="utf-8") as f:
-            f.write(scene_x3d())
-        argv_ = [*command(), "advise", scene, *args.advise]
-        print("$ " + " ".join(["x3drbp", "advise", "chain_and_ball.x3d", *args.advise]) +
-              f"  ({LINKS} links on hinges from a fixed base and a ball on a floor: 5 moving bodies)\n", flush=True)
+            f.write(bench.write())
+        env = compiled_env(tmp, MUJOCO_GL=os.environ.get("MUJOCO_GL", "disable"))
+        sides = {"this tree": ROOT}
+        if args.against:
+            sides[args.against] = tree_at(args.against, ROOT, tmp)
+        for tree in sides.values():  # the bytecode cache filled before any run is timed
+            subprocess.run([sys.executable, "-m", "compileall", "-q",
+                            *(os.path.join(tree, d) for d in ("x3d_core", "backends", "conformance", "reports"))],
+                           env=env, check=True, stdout=subprocess.DEVNULL)
+        print("$ " + " ".join(["x3drbp", "advise", os.path.basename(scene), *args.advise]) + f"  ({bench.said})\n",
+              flush=True)
+        runs: dict[str, list[tuple[float, float, float]]] = {side: [] for side in sides}
+        last: dict[str, str] = {}
         for k in range(args.repeat):
-            loads.append(os.getloadavg()[0])
-            started = time.perf_counter()
-            out = subprocess.run(argv_, cwd=ROOT, capture_output=True, text=True)
-            walls.append(time.perf_counter() - started)
-            if out.returncode != 0:
-                print(f"x3drbp advise exited {out.returncode}:\n{out.stderr}", file=sys.stderr)
-                return 1
-            print(f"run {k + 1}: {walls[-1]:.1f} s (load average {loads[-1]:.2f} before)", flush=True)
+            for side, tree in sides.items():
+                fresh = dict(env, X3DRBP_CACHE=os.path.join(tmp, f"cache-{len(runs[side])}-{side.replace('/', '_')}"))
+                load, wall, cpu, out = _timed([sys.executable, "-m", "conformance.cli", "advise", scene, *args.advise],
+                                              tree, fresh)
+                if out.returncode != 0:
+                    print(f"x3drbp advise ({side}) exited {out.returncode}:\n{out.stderr}", file=sys.stderr)
+                    return 1
+                runs[side].append((load, wall, cpu))
+                last[side] = out.stdout
+                print(f"run {k + 1}, {side}: {wall:.1f} s wall, {cpu:.1f} s CPU (load average {load:.2f} before)",
+                      flush=True)
         if args.keep:
             os.makedirs(args.keep, exist_ok=True)
             shutil.copy(scene, args.keep)
             with open(os.path.join(args.keep, "advise.txt"), "w", encoding="utf-8") as f:
-                f.write(out.stdout)
-    trouble = [line.strip() for line in out.stdout.splitlines()
-               if line.strip().startswith(("cannot run it:", "did not end well:"))]
-    median = statistics.median(walls)
+                f.write(last["this tree"])
     print()
-    print("| scene | runs | median wall s | spread (s) | target (s) | within | CPUs | load average (1, 5, 15 min) |")
-    print("|---|---:|---:|---|---:|---|---:|---|")
-    print(f"| chain_and_ball (5 bodies, joints and contacts) | {len(walls)} | {median:.1f} | "
-          f"{min(walls):.1f}-{max(walls):.1f} | {args.target:g} | {'yes' if median <= args.target else 'NO'} | "
-          f"{os.cpu_count()} | {', '.join(f'{x:.2f}' for x in os.getloadavg())} |")
-    print()
-    print("The last run's advice:\n")
-    print(out.stdout.rstrip())
+    print("| scene | side | runs | median wall s | spread (s) | median CPU s | spread (s) | target (s) | within | CPUs "
+          "| load average before each run | load average (1, 5, 15 min) after |")
+    print("|---|---|---:|---:|---|---:|---|---:|---|---:|---|---|")
+    after = ", ".join(f"{x:.2f}" for x in os.getloadavg())
+    medians = {}
+    for side, rows in runs.items():
+        loads, walls, cpus = (list(col) for col in zip(*rows))
+        medians[side] = statistics.median(walls), statistics.median(cpus)
+        print(f"| {args.scene} | {side} | {len(rows)} | {medians[side][0]:.1f} | {_spread(walls)} | "
+              f"{medians[side][1]:.1f} | {_spread(cpus)} | {target:g} | {'yes' if medians[side][0] <= target else 'NO'} "
+              f"| {os.cpu_count()} | {', '.join(f'{x:.2f}' for x in loads)} | {after} |")
+    if args.against:
+        (w, c), (w0, c0) = medians["this tree"], medians[args.against]
+        print(f"\nthis tree against {args.against}: CPU {c / c0:.2f}x ({c:.1f} s against {c0:.1f} s), "
+              f"wall {w / w0:.2f}x ({w:.1f} s against {w0:.1f} s; under load, read the CPU)")
+    for side, text in last.items():
+        print(f"\nThe last run's advice ({side}):\n")
+        print(text.rstrip())
+    trouble = [line.strip() for line in last["this tree"].splitlines()
+               if line.strip().startswith(("cannot run it:", "did not end well:"))
+               and not any(line.strip().split(": ")[1].startswith(b) for b in bench.refusing)]
     if trouble:
         print("\nnot every backend ran the scene: " + "; ".join(trouble), file=sys.stderr)
         return 1

@@ -5,9 +5,13 @@ and the verdicts of the conformance cases that exercise them), then a small swee
 (conformance/analyses/sweep.py) of the scene as the file gives it on every backend that can
 run it, at a few steps, against one common reference (Drake's error-controlled run where
 Drake runs the scene in continuous mode, whether or not it is compared; else one backend's
-fine run; sweep.py says which and how its own error is estimated), with each run's speed
-the median of repeats; and how long each run stays within 1 mm / 1 mrad of each other backend's run at
-the same step. The recommendation is a rule, stated here and in docs/commands/advise.md, not a score:
+fine run; sweep.py says which and how its own error is estimated; Drake's fine run is that
+error-controlled run where it is the reference), and how long each run stays within 1 mm /
+1 mrad of each other backend's run at the same step. Each run is timed once, and the runs whose
+speed could change the advice (unsettled()) `repeats` times in all, their speed the median,
+until no such run is left: the 3 repeats of a 5 s Drake run far from any tie and from the
+budget are not paid for. The recommendation is a rule, stated here and in
+docs/commands/advise.md, not a score:
 
 1. Out: a backend that refuses a feature the scene uses, and every run that did not end
    well (blew up, crashed, timed out). Set aside: a backend that fails (violates the spec
@@ -31,23 +35,24 @@ the same step. The recommendation is a rule, stated here and in docs/commands/ad
 5. Nothing affordable: no recommendation; the fastest run is named with its cost. No
    recommendation either where no run ended well, or where every backend refuses a use
    the scene makes (a routed input, say: each refusal is listed).
-Speeds whose repeats' spreads overlap the fastest's, or that differ from it by less than
-SPEED_RESOLUTION (1 ms per simulated second) or SPEED_RELATIVE (30% of it), are ties, and
-the advice says a tie is
-one ("tied on speed with ...; chosen by tie-break 1: fewer approximations"), never "the
-fastest". The tie-breaks (TIEBREAKS): 1, fewer approximations of what the scene uses (one
-per declared note, however many uses it covers); 2, fewer conformance cases exercising the
-scene's features whose accuracy is graded beyond its bound; 3, the run that stays within
-1 mm / 1 mrad of more other backends for the whole run; 4, the coarser step; 5, the
-backend's name. Each other backend's best run by the same rule is a runner-up, with what
-it would cost or lose against the recommendation.
+A speed ties with the fastest's (tie(): one reason each) where their repeats' spreads overlap,
+where it is within SPEED_RELATIVE (30%) of it, or, within a factor SPEED_NOISE (2) of it, where
+it is within SPEED_RESOLUTION (1 ms per simulated second) of it or is the same backend's run at
+a coarser step (which does no more work); the advice says a tie is one ("tied on speed with
+...; chosen by tie-break 1: fewer approximations"), never "the fastest", and names the
+tie-break that set aside the last rival. The tie-breaks (TIEBREAKS): 1, fewer approximations
+of what the scene uses (one per declared note, however many uses it covers); 2, fewer
+conformance cases exercising the scene's features whose accuracy is graded beyond its bound;
+3, the run that stays within 1 mm / 1 mrad of more other backends for the whole run; 4, the
+coarser step; 5, the backend's name. Each other backend's best run by the same rule is a
+runner-up, with what it would cost or lose against the recommendation.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -71,15 +76,18 @@ WITHIN, CANNOT_RANK, MOST_ACCURATE, NONE_AFFORDABLE, NONE_RAN, NONE_CAN = (
     "nothing fits the budget", "no run ended well", "every backend refuses a use the scene makes")
 CANNOT_RANK_SAID = ("accuracy cannot be ranked on this scene (the reference's uncertainty exceeds the tolerance); "
                     "ranked by speed among the runs it cannot place beyond the tolerance")
-# CPU s per simulated s: speeds closer than this are ties. Runs this cheap (1,000x real time)
-# are resolved by no measure under load (a busy sibling hyperthread doubled a 0.3 ms run's CPU
-# time), and no budget hangs on the difference.
-SPEED_RESOLUTION = 1e-3
-# and speeds within this fraction of each other: single runs' CPU time varies by up to 30% on a
-# shared machine (benchmarks/engine_speed.py, load 2), and a load widens some runs' spreads and
-# not others' (an error-controlled integrator's cost barely depends on the step: Drake's runs at
-# 1/60 and 1/240 swapped places under a CPU hog)
+# Speeds within this fraction of each other are ties: single runs' CPU time varies by up to 30%
+# on a shared machine (benchmarks/engine_speed.py, load 2), and a load widens some runs' spreads
+# and not others'.
 SPEED_RELATIVE = 0.3
+# The most a load was measured to stretch a run's CPU time: a busy sibling hyperthread doubled a
+# 0.3 ms run's. The floor below and tie()'s coarser step hold within this factor only: beyond it
+# the measure tells runs apart, so that 0.1 ms against 0.57 ms (5.7x) is no tie, however cheap.
+SPEED_NOISE = 2.0
+# CPU s per simulated s: speeds closer than this (and within SPEED_NOISE) are ties. Runs this
+# cheap (1,000x real time) are resolved by no measure under load finer than that factor, and no
+# budget hangs on the difference.
+SPEED_RESOLUTION = 1e-3
 TIEBREAKS = ("fewer approximations", "fewer cases graded beyond their bound",
              "within 1 mm / 1 mrad of more backends for the whole run", "the coarser step", "the backend's name")
 
@@ -168,6 +176,7 @@ class Option:
     cost: Cost | None  # CPU s in the engine's steps per simulated s: what the rule ranks (load does not reorder it)
     parts: dict[str, float | None] = field(default_factory=dict)  # other backend -> when they part (None: never)
     wall: Cost | None = None  # wall s in the engine's steps per simulated s: shown, not ranked
+    timed: int = 1  # timed runs its speed is the median of (one where the speed could not change the advice)
 
     @property
     def ran(self) -> bool:
@@ -216,7 +225,7 @@ def _option_json(o: Option) -> dict:
     d = {"backend": o.backend, "dt": o.dt, "verdict": o.verdict, "reason": o.reason, "error": o.error,
          "self_error": o.self_error, "parts": o.parts}
     if o.cost is not None:
-        d.update(cpu_per_sim_s=o.cost.median, cpu_low=o.cost.low, cpu_high=o.cost.high)
+        d.update(cpu_per_sim_s=o.cost.median, cpu_low=o.cost.low, cpu_high=o.cost.high, timed=o.timed)
     if o.wall is not None:
         d.update(wall_per_sim_s=o.wall.median, wall_low=o.wall.low, wall_high=o.wall.high)
     return d
@@ -246,23 +255,60 @@ def _label(o: Option) -> str:
     return f"{o.backend} at dt {dt_label(o.dt)}"
 
 
+# why a speed ties with the fastest's, in tie()'s order: the words the first line says (never
+# "the fastest", which it says of a run nothing ties with)
+SPREADS = "within their spreads"
+RELATIVE = f"within {SPEED_RELATIVE:.0%} of each other's cost, as much as single runs vary on a shared machine"
+FLOOR = (f"within {SPEED_RESOLUTION * 1e3:g} ms of CPU per simulated s and a factor {SPEED_NOISE:g} of each "
+         "other, finer than runs this cheap are told apart")
+COARSER = (f"as a coarser step of the same backend within a factor {SPEED_NOISE:g} of its cost (a coarser step "
+           "does no more work)")
+
+
+def tie(o: Option, first: Option) -> str | None:
+    """Why run o's speed cannot be told from that of `first`, the fastest (SPREADS, RELATIVE,
+    FLOOR or COARSER), or None where it can. COARSER: a coarser step does no more work (fewer
+    steps; for an error-controlled integrator, fewer step boundaries to land on), so where it
+    measures costlier than a finer one of the same backend, the measure is the load's. On the
+    bundled pendulum Drake's runs take 1,971 integrator steps a simulated second at dt 1/60 and
+    2,073 at 1/240 (its error control sets the step, not the cap), yet at load average 6 one
+    timing each put 1/60 at 1.38x the cost of 1/240: beyond the 30% tie, so that advise chose
+    1/240 under load and 1/60 on a quiet machine (tests/test_advise_load.py failed so)."""
+    a, b = o.cost, first.cost
+    if a.ties(b):
+        return SPREADS
+    if a.median <= (1 + SPEED_RELATIVE) * b.median:
+        return RELATIVE
+    if a.median <= SPEED_NOISE * b.median:
+        if a.median - b.median <= SPEED_RESOLUTION:
+            return FLOOR
+        if o.backend == first.backend and o.dt > first.dt:
+            return COARSER
+    return None
+
+
+def _decided(chosen: Option, rivals: list[Option], judged: dict[str, Judged]) -> int:
+    """The tie-break that chose the run from its tied rivals: the one that set aside the last of
+    them (each rival falls at the first tie-break on which the two differ)."""
+    mine = _tiebreak(chosen, judged)
+    return max(next(i for i, (a, b) in enumerate(zip(mine, _tiebreak(r, judged))) if a != b) for r in rivals)
+
+
 def _fastest(group: list[Option], judged: dict[str, Judged]) -> tuple[Option, str, str]:
-    """The fastest by median, ties (spreads overlapping its own) broken by the tie-breaks; what
-    to say of its speed ('the fastest' only where nothing ties with it), and that in a few words."""
+    """The fastest by median, the runs whose speed ties with it (tie()) decided by the
+    tie-breaks; what to say of its speed ('the fastest' only where nothing ties with it), and
+    that in a few words."""
     first = min(group, key=lambda o: o.cost.median)
-    margin = max(SPEED_RESOLUTION, SPEED_RELATIVE * first.cost.median)
-    tied = [o for o in group if o.cost.ties(first.cost) or o.cost.median - first.cost.median <= margin]
+    tied = [o for o in group if tie(o, first) is not None]
     chosen = min(tied, key=lambda o: _tiebreak(o, judged))
     others = [o for o in tied if o is not chosen]
     if not others:
         return chosen, "the fastest", "the fastest"
-    rival = min(others, key=lambda o: _tiebreak(o, judged))
-    k = next(i for i, (a, b) in enumerate(zip(_tiebreak(chosen, judged), _tiebreak(rival, judged))) if a != b)
-    # why they tie, in the words that hold: a runner-up at a quarter of the cost is no tie "within
-    # its spread", but it is one within the resolution no measure on a shared machine beats
-    why = ("within their spreads" if all(o.cost.ties(first.cost) for o in tied) else
-           f"within {margin * 1e3:.2g} ms of CPU per simulated s of each other, finer than runs this cheap are "
-           "told apart")
+    k = _decided(chosen, others, judged)
+    # why they tie, each in the words that hold for it (a runner-up at a quarter of the cost is no
+    # tie "within its spread"), in tie()'s order
+    why = " or ".join(r for r in (SPREADS, RELATIVE, FLOOR, COARSER)
+                      if any(tie(o, first) == r for o in tied if o is not first))
     return chosen, (f"tied on speed with {' and '.join(map(_label, others))} {why}; "
                     f"chosen by tie-break {k + 1}: {TIEBREAKS[k]}"), f"tied on speed; tie-break {k + 1}: {TIEBREAKS[k]}"
 
@@ -333,21 +379,55 @@ def choose(options: Sequence[Option], judged: dict[str, Judged], budget: float, 
     return Choice(chosen, rule, said, [o for o, _, _, _ in others], settled)
 
 
+def _outcome(c: Choice) -> tuple:
+    """What a choice says: the run, the branch, the first line (its ties, its tie-break, a run it
+    passed over) and how the branch settled it."""
+    return None if c.chosen is None else _key(c.chosen), c.rule, c.said, c.settled
+
+
+def unsettled(options: Sequence[Option], judged: dict[str, Judged], budget: float, tolerance: float,
+              reference_error: float) -> list[int]:
+    """The runs (indices into options) whose speed could change the advice: the chosen one (the
+    advice states its speed), and each that, its speed anywhere a single timing may put it (a
+    factor 1 + SPEED_RELATIVE either way; SPEED_NOISE under SPEED_RESOLUTION), would change what
+    the choice says (_outcome): a run that could tie with the chosen one or outrun it, or cross
+    the budget where that decides. Each run alone, the others as measured: advise asks again once
+    these are timed again, until none is left."""
+    said = choose(options, judged, budget, tolerance, reference_error)
+    out = []
+    for k, o in enumerate(options):
+        if not o.ran or judged[o.backend].refused:
+            continue
+        if o is said.chosen:
+            out.append(k)
+            continue
+        f = SPEED_NOISE if o.cost.median < SPEED_RESOLUTION else 1 + SPEED_RELATIVE
+        for g in (1 / f, f):
+            moved = replace(o, cost=Cost(o.cost.median * g, o.cost.low * g, o.cost.high * g))
+            if _outcome(choose([moved if p is o else p for p in options], judged, budget, tolerance,
+                               reference_error)) != _outcome(said):
+                out.append(k)
+                break
+    return out
+
+
 def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.BackendPlan],
            judged: dict[str, dict[str, Judged]], dts: Sequence[float] = DEFAULT_DTS,
            duration: float = DEFAULT_DURATION, window: float = S.DEFAULT_WINDOW, budget: float = DEFAULT_BUDGET,
            tolerance: float = DEFAULT_TOLERANCE, timeout: float = children.DEFAULT_TIMEOUT,
            workers: int | None = None, progress: bool = False, repeats: int = S.REPEATS) -> list[Advice]:
-    """Advice for each scene (loaded, with something to simulate), in the order given."""
+    """Advice for each scene (loaded, with something to simulate), in the order given: each run
+    timed once, then those whose speed could change the advice (unsettled) `repeats` times in all."""
     out = []
     controlled = S.drake_usable(plans, timeout)  # Drake's error-controlled reference wherever it can run
     for path in paths:
         able = {b: p for b, p in plans.items() if not judged[path][b].refused}  # a refusal needs no run
         (target,) = S.targets([path], dts, window, duration, scenes)
-        swept = (S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, repeats, controlled)
-                 if able else None)
+        swept = (S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, 1, controlled,
+                             reference_as_fine=True) if able else None)
         options = [] if swept is None else [
-            Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cost, wall=p.wall) for p in swept.points]
+            Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cost, wall=p.wall,
+                   timed=len(res.cpu_s)) for p, (_, res) in zip(swept.points, swept.runs)]
         if swept is not None:
             for o in options:
                 mine = swept.positions.get((target.name, o.backend, o.dt))
@@ -363,6 +443,16 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
             reference = reference.without({b: f"which fails {', '.join(cs)}" for b in able
                                            if (cs := _outdone(b, list(able), judged[path]))})
         ref_error = reference.error if isinstance(reference, S.Reference) else 0.0
+        again: set[int] = set()
+        while swept is not None and repeats > 1:
+            picked = [k for k in unsettled(options, judged[path], budget, tolerance, ref_error) if k not in again]
+            if not picked:
+                break
+            S.time_again(swept, picked, repeats - 1, None, workers, progress)
+            again.update(picked)
+            for k in picked:
+                p, (_, res) = swept.points[k], swept.runs[k]
+                options[k].cost, options[k].wall, options[k].timed = p.cost, p.wall, len(res.cpu_s)
         choice = choose(options, judged[path], budget, tolerance, ref_error)
         if not able:
             choice.rule = choice.said = NONE_CAN

@@ -62,7 +62,11 @@ Error, against one reference per scene, common to every backend:
   wrong rest pose is a distance), where an event measure would need to know, per scene,
   which body's which contact is the event.
 Self-consistency, beside it: each backend against its own run at that fine step, as a
-backend's convergence says nothing of whether it converges to what the others do.
+backend's convergence says nothing of whether it converges to what the others do. advise
+(reference_as_fine) takes Drake's error-controlled reference run for Drake's fine run where it
+is the reference, rather than run Drake's fine pair: both are Drake's RK3 at its tighter target
+over the window, their caps (the finest step; an eighth of it) only bounding the steps its
+error control picks, and on a 10-link ball-joint chain that pair cost 9.3 s of CPU of advise's 76.
 
 Speed: CPU time per simulated second, the child's own measure (`x3drbp run --timing`) of
 the time spent in the engine's steps, over the run's simulated seconds: the integration cost
@@ -97,7 +101,7 @@ from x3d_core.model import Scene
 from conformance import cases as C
 from conformance import results
 from conformance.results import Settings
-from conformance.runner import children, probe
+from conformance.runner import cache, children, probe
 from conformance.analyses.distribute import executor
 from conformance.analyses.sweep_job import Job, JobResult, run_job
 from conformance.analyses.sweep_metrics import Cost, Positions, comparison_interval, pareto, window_error
@@ -402,21 +406,27 @@ class Sweep:
     controlled: dict[str, tuple[Job, JobResult, JobResult]]  # scene -> Drake's reference run, at the looser target
     units: dict[str, str]  # scene -> the error's unit
     positions: dict[tuple[str, str, float], Positions]  # (scene, backend, dt) -> a run's poses (no variation asked)
+    runs: list[tuple[Job, JobResult]]  # each point's job and what it gave, in the points' order (time_again)
 
 
 def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequence[float],
               iterations: Sequence[int], accuracy: Sequence[bool], timeout: float = children.DEFAULT_TIMEOUT,
               scheduler: str | None = None, workers: int | None = None, progress: bool = False,
-              repeats: int = REPEATS, controlled: bool | None = None) -> Sweep:
+              repeats: int = REPEATS, controlled: bool | None = None, reference_as_fine: bool = False) -> Sweep:
     """Every target on every planned backend at every step and variation, on the executor, and
     each target without a closed form's reference runs: every backend's fine run and, where
     `controlled` (None: wherever the drake backend is usable, compared or not), Drake's
-    error-controlled one. Empty iterations or accuracy: the scene's own."""
+    error-controlled one. Empty iterations or accuracy: the scene's own. reference_as_fine
+    (advise): where Drake's error-controlled run is the reference, it is Drake's fine run too,
+    and Drake's own fine pair is not run (_fine_or_reference)."""
     common = [t for t in chosen if t.case is None]
     if controlled is None:  # asked of a child only where some scene needs a reference run
         controlled = bool(common) and drake_usable(plans, timeout)
+    # Drake's fine pair, left for after where its error-controlled run may stand for it: a scene
+    # without events, which Drake steps in continuous mode (one with events it steps at the fixed step)
+    deferred = {t.name: t for t in common if reference_as_fine and controlled and DRAKE in plans and not t.events}
     fine_jobs = {(t.name, b): _fine_jobs(t, plan, dts, iterations, timeout)
-                 for t in common for b, plan in plans.items()}
+                 for t in common for b, plan in plans.items() if not (b == DRAKE and t.name in deferred)}
     drake_jobs = {t.name: _controlled_jobs(t, dts, timeout) for t in common} if controlled else {}
     keyed = [(Point(t.name, plan.name, dt, its, acc),
               Job(t.scene, plan.name, t.settings.with_dt(dt), its, acc, t.case, timeout, repeats))
@@ -427,12 +437,16 @@ def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequ
                         progress))
     ran = [(pair[0], next(done), next(done)) for pair in pairs]
     fine, drake = dict(zip(fine_jobs, ran[:len(fine_jobs)])), dict(zip(drake_jobs, ran[len(fine_jobs):]))
+    if deferred:
+        fine.update(_fine_or_reference(deferred, drake, plans[DRAKE], dts, iterations, timeout, scheduler, workers,
+                                       progress))
     references = {t.name: common_reference(t.name, plans, fine, drake.get(t.name), t.events) for t in common}
-    points, units, poses = [], {}, {}
+    points, units, poses, runs = [], {}, {}, []
     for key, job in keyed:
         res = next(done)
         _fill(key, job, res, references.get(key.scene), fine.get((key.scene, key.backend)))
         points.append(key)
+        runs.append((job, res))
         if res.unit:
             units.setdefault(key.scene, res.unit)
         if res.positions is not None and job.iterations is None and job.prefer_accuracy is None:
@@ -441,7 +455,53 @@ def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequ
         units.setdefault(t.name, "m" if t.case is None else "")
     tolerances = {s: r.error if isinstance(r, Reference) else 0.0 for s, r in references.items()}
     mark_pareto(points, tolerances)
-    return Sweep(points, fine, references, drake, units, poses)
+    return Sweep(points, fine, references, drake, units, poses, runs)
+
+
+def _fine_or_reference(deferred: Mapping[str, Target], drake: dict[str, tuple[Job, JobResult, JobResult]],
+                       plan: BackendPlan, dts: Sequence[float], iterations: Sequence[int], timeout: float,
+                       scheduler: str | None, workers: int | None, progress: bool
+                       ) -> dict[tuple[str, str], tuple[Job, JobResult, JobResult]]:
+    """Drake's fine run of each deferred scene: its error-controlled reference run (with its check
+    at the looser target) where that is the reference, as Drake's own finer run: at the target
+    accuracy its fine run would have (preferAccuracy TRUE), over the same window, capped at the
+    finest swept step rather than an eighth of it, a cap that only bounds the steps its error
+    control picks for that target (module docstring). Else (Drake stepped the scene at the fixed
+    step after all, or the run failed) its fine pair, run now, as for every other backend."""
+    out, missing = {}, []
+    for name, t in deferred.items():
+        ran = drake[name]
+        if isinstance(error_controlled(*ran), str):
+            missing.append(t)
+        else:
+            out[(name, DRAKE)] = ran
+    pairs = [_fine_jobs(t, plan, dts, iterations, timeout) for t in missing]
+    done = iter(execute([j for pair in pairs for j in pair], scheduler, workers, progress) if pairs else ())
+    out.update({(t.name, DRAKE): (pair[0], next(done), next(done)) for t, pair in zip(missing, pairs)})
+    return out
+
+
+def time_again(sweep: Sweep, picked: Sequence[int], extra: int, scheduler: str | None = None,
+               workers: int | None = None, progress: bool = False) -> None:
+    """Time the picked points (indices into sweep.points) `extra` more times, in one child each
+    (`x3drbp run --repeat EXTRA`), the longest measured first, and set their speeds to the median
+    and spread of every timing, the point's own included. A point whose further run did not end
+    well keeps its own timings (the run that ended well measured them). advise times each point
+    once, and again only the runs whose speed could change its advice. The run cache
+    (conformance/runner/cache.py) keys a run by its options: a run of EXTRA repeats is another
+    than the point's own, but one of a single repeat is the same, and reading it back would count
+    the point's one timing twice, so that one is neither read back nor kept."""
+    jobs = [replace(sweep.runs[k][0], repeats=extra) for k in picked]
+    expected = [sum(sweep.runs[k][1].cpu_s) for k in picked]
+    with cache.turned_off(any(job == sweep.runs[k][0] for k, job in zip(picked, jobs))):
+        done = execute(jobs, scheduler, workers, progress, expected) if jobs else []
+    for k, res in zip(picked, done):
+        if not res.cpu_s:
+            continue
+        job, first = sweep.runs[k]
+        more = replace(first, step_s=first.step_s + res.step_s, cpu_s=first.cpu_s + res.cpu_s)
+        sweep.runs[k] = (replace(job, repeats=len(more.cpu_s)), more)
+        _time(sweep.points[k], job, more)
 
 
 def drake_usable(plans: dict[str, BackendPlan], timeout: float) -> bool:
@@ -527,13 +587,7 @@ def fine_reference(scene: str, plans: dict[str, BackendPlan],
 def _fill(p: Point, job: Job, res: JobResult, reference: Reference | str | None,
           fine: tuple[Job, JobResult, JobResult] | None) -> None:
     p.verdict, p.reason = res.verdict, res.reason
-    if res.step_s:
-        cost = Cost.of([s / job.settings.duration for s in res.step_s])
-        p.wall_per_sim_s, p.wall_low, p.wall_high = cost.median, cost.low, cost.high
-        p.simulation_per_sim_s = res.simulation_s / job.settings.duration
-    if res.cpu_s:
-        cpu = Cost.of([s / job.settings.duration for s in res.cpu_s])
-        p.cpu_per_sim_s, p.cpu_low, p.cpu_high = cpu.median, cpu.low, cpu.high
+    _time(p, job, res)
     if res.positions is None:
         p.error = res.error
         return
@@ -549,10 +603,24 @@ def _fill(p: Point, job: Job, res: JobResult, reference: Reference | str | None,
         p.verdict, p.reason = results.ERROR, str(e)
 
 
-def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, progress: bool) -> list[JobResult]:
-    """Run the jobs on the executor, longest first (a long job last would leave workers idle);
-    results in the jobs' order. The bar goes to stderr, and only when asked."""
-    order = sorted(range(len(jobs)), key=lambda k: -jobs[k].settings.duration / jobs[k].settings.dt)
+def _time(p: Point, job: Job, res: JobResult) -> None:
+    """The point's speeds from its run's timings: the median of the repeats and their spread."""
+    if res.step_s:
+        cost = Cost.of([s / job.settings.duration for s in res.step_s])
+        p.wall_per_sim_s, p.wall_low, p.wall_high = cost.median, cost.low, cost.high
+        p.simulation_per_sim_s = res.simulation_s / job.settings.duration
+    if res.cpu_s:
+        cpu = Cost.of([s / job.settings.duration for s in res.cpu_s])
+        p.cpu_per_sim_s, p.cpu_low, p.cpu_high = cpu.median, cpu.low, cpu.high
+
+
+def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, progress: bool,
+            expected: Sequence[float] | None = None) -> list[JobResult]:
+    """Run the jobs on the executor, longest first (a long job last would leave workers idle):
+    by `expected` cost where it is known (a job timed before), else by steps; results in the
+    jobs' order. The bar goes to stderr, and only when asked."""
+    length = expected or [job.settings.duration / job.settings.dt for job in jobs]
+    order = sorted(range(len(jobs)), key=lambda k: -length[k])
     with executor(scheduler, workers) as ex:
         futures = {k: ex.submit(run_job, jobs[k]) for k in order}
         children.wait_all(list(futures.values()), progress)

@@ -11,7 +11,9 @@ exercise them: the pinned ones, or those of a conformance run's matrix.json with
 against one common reference over the first --window seconds (Drake's error-controlled run
 where Drake runs the scene in continuous mode, else one backend's fine run; said, with its
 own error), its speed (the engine's steps' CPU time in the child, so
-that other load does not reorder the backends; median of --repeats timed runs), and how long it stays within 1 mm / 1 mrad of each other backend at that step; then
+that other load does not reorder the backends; timed once, and where the speed could change
+the advice --repeats times in all, the median), and how long it stays within 1 mm / 1 mrad
+of each other backend at that step; then
 the recommendation by the rule conformance/analyses/advice.py states (docs/commands/advise.md too): of the
 runs that fit --budget (CPU seconds per simulated second, default 1: real time), the
 fastest within --tolerance of the reference (default 1 mm), else the most accurate; a tie
@@ -165,7 +167,8 @@ def add_command(sub) -> None:
     p.add_argument("--window", type=options.positive, default=S.DEFAULT_WINDOW, metavar="S",
                    help=f"seconds compared with the reference (default {S.DEFAULT_WINDOW:g})")
     p.add_argument("--repeats", type=options.repeats, default=S.REPEATS, metavar="N",
-                   help=f"timed runs of each, for the median speed and its spread (default {S.REPEATS})")
+                   help=f"timed runs of each run whose speed could change the advice, for the median speed "
+                        f"and its spread (default {S.REPEATS}; the others are timed once)")
     p.add_argument("--verdicts", metavar="matrix.json",
                    help="the conformance verdicts of a run (x3drbp conformance --out DIR: DIR/matrix.json) "
                         "instead of the pinned ones")
