@@ -178,6 +178,9 @@ class Backend(ABC):
     integration: str | None = None
     # the scheme where a collection's preferAccuracy is TRUE, where the engine then changes it
     accurate_integration: str | None = None
+    # the scenes it takes at all, where not every scene ("planar scenes only"): said beside any
+    # recommendation of it, as a scene it suits may not be the reader's
+    scope: str | None = None
 
     @abstractmethod
     def version(self) -> str:

@@ -337,6 +337,7 @@ class PymunkSimulation:
 class PymunkBackend(Backend):
     name = "pymunk"
     integration = POSITION_FIRST  # Chipmunk moves a body, then adds the step's loads (module notes)
+    scope = "planar scenes only"  # x3d_core.planar: a world whose bodies leave their plane is refused
     declared = {
         **unsupported("not built: x3d_core.planar cuts 2D sections for a world's collider alone, so a collection "
                       "only a sensor watches has no Chipmunk shapes (shapes_collide could test them without a response)",

@@ -352,6 +352,7 @@ class BackendInfo:
     unavailable: str | None = None  # why it cannot be used here
     integration: str | None = None  # backends.base.Backend.integration
     accurate_integration: str | None = None  # ... and where preferAccuracy is TRUE, if it differs
+    scope: str | None = None  # backends.base.Backend.scope: the scenes it takes, where not every one
 
     def integration_for(self, prefer_accuracy: bool) -> str | None:
         """The scheme a run of a scene steps by: the accurate one where a collection prefers accuracy."""

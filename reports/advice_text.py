@@ -4,7 +4,11 @@ from __future__ import annotations
 
 from conformance.results import dt_label
 
-from .text import escape, num, one_line
+from .text import escape, num, one_line, untemporary
+
+# advice.json's `rule`, the branch that decided (docs/commands/advise.md)
+WITHIN, CANNOT_RANK, MOST_ACCURATE = ("within the tolerance", "accuracy cannot be ranked",
+                                      "none within the tolerance: the most accurate")
 
 
 def _find(scene: dict, key: dict | None) -> dict | None:
@@ -15,6 +19,44 @@ def _find(scene: dict, key: dict | None) -> dict | None:
 
 def _run(o: dict) -> str:
     return f"{o['backend']} at dt {dt_label(o['dt'])}"
+
+
+def length(m: float) -> str:
+    """A tolerance in the unit a reader thinks in: 1 mm, not 0.001 m."""
+    return f"{num(m * 1e3)} mm" if m < 1 else f"{num(m)} m"
+
+
+def decided(scene: dict, settings: dict) -> str:
+    """What chose the scene's run, first: the branch of the rule in plain words (the fastest within
+    the tolerance of the reference; the most accurate, none being within it; the fastest of what
+    the reference cannot tell apart), then how a tie on speed was broken (advice.json's `settled`)."""
+    rule, settled, tol = scene["rule"], scene.get("settled") or "", length(settings["tolerance"])
+    tie = settled if settled.startswith("tied") else ""
+    if scene["recommended"] is None:
+        return f"none: {rule}"
+    if rule == WITHIN:
+        said = f"within {tol} of the reference, {tie}" if tie else f"fastest within {tol} of the reference"
+    elif rule == CANNOT_RANK:
+        said = ((tie or "fastest") + f"; accuracy cannot be ranked (the reference's uncertainty, "
+                f"{num(scene['reference']['error'])} m, exceeds {tol})")
+    elif rule == MOST_ACCURATE:
+        said = f"most accurate: none within {tol} of the reference" + (f"; {tie}" if tie else "")
+    else:  # a branch this text does not know: the rule's own words
+        said = "; ".join(filter(None, (rule, settled)))
+    return said
+
+
+def rule_line(settings: dict) -> str:
+    """The rule in one sentence, first: what decides every scene's answer."""
+    return (f"What decides: the fastest run within {length(settings['tolerance'])} of the scene's reference (over "
+            f"the first {settings['window']:g} s); where none is, the most accurate; of the runs that fit the budget "
+            f"({settings['budget']:g} CPU s per simulated s) on backends that refuse nothing the scene uses. Speeds "
+            "too close to tell apart tie, and a tie-break decides. \"chosen as\" says which decided each scene.")
+
+
+def _backend(name: str, scopes: dict[str, str]) -> str:
+    """A backend's name, with what it is limited to where it is (pymunk: planar scenes only)."""
+    return f"{name} ({scopes[name]})" if name in scopes else name
 
 
 def _speed(o: dict) -> str:
@@ -67,8 +109,9 @@ def _versus(o: dict, best: dict) -> str:
             f"({'+' if o['error'] >= best['error'] else '-'}{num(abs(o['error'] - best['error']))} m)")
 
 
-def scene_lines(scene: dict, settings: dict) -> list[str]:
-    """One scene's advice as indented lines."""
+def scene_lines(scene: dict, settings: dict, scopes: dict[str, str] | None = None) -> list[str]:
+    """One scene's advice as indented lines; scopes: what a backend is limited to, where it is
+    (the conformance matrix's `scope`), said beside it when it is recommended."""
     best = _find(scene, scene["recommended"])
     head = f"{scene['scene']} ({scene['kind']}): "
     lines = []
@@ -86,7 +129,7 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
         if ref_error > settings["tolerance"]:
             own += (f"; the reference's uncertainty ({num(ref_error)} m) exceeds the tolerance: errors under it "
                     "cannot be told apart")
-        lines += [head + f"{_run(best)} ({scene['said']})",
+        lines += [head + f"{_backend(best['backend'], scopes or {})} at dt {dt_label(best['dt'])} ({scene['said']})",
                   f"  error {num(best['error'])} m from the reference over the first {settings['window']:g} s "
                   f"({_reference(scene)}){own}; self-consistency {num(best['self_error'])} m",
                   f"  speed {_speed(best)}; budget {settings['budget']:g} CPU s per simulated s",
@@ -103,7 +146,8 @@ def scene_lines(scene: dict, settings: dict) -> list[str]:
         lines.append(f"  cannot run it: {b}: {why[0]}" + (f" (and {len(why) - 1} more)" if len(why) > 1 else ""))
     bad = [o for o in scene["options"] if o["error"] is None]
     for o in bad:
-        lines.append(f"  did not end well: {_run(o)}: {o['verdict']}" + (f": {o['reason']}" if o["reason"] else ""))
+        why = f": {untemporary(o['reason'])}" if o["reason"] else ""  # its temporary files are gone: said so
+        lines.append(f"  did not end well: {_run(o)}: {o['verdict']}{why}")
     return lines
 
 
@@ -113,40 +157,42 @@ def render(doc: dict) -> str:
     out = []
     for scene in doc["scenes"]:
         out += scene_lines(scene, s) + [""]
+    # advise times a run once where its speed cannot change the advice (each option's "timed")
+    once = s["repeats"] > 1 and any(o.get("timed") == 1 for scene in doc["scenes"] for o in scene["options"])
     out.append(f"steps {', '.join(dt_label(d) for d in s['dts'])}; runs of {s['duration']:g} s, error over the first "
                f"{s['window']:g} s; tolerance {s['tolerance']:g} m; budget {s['budget']:g} CPU s per simulated s; "
-               f"speed the engine's steps' CPU time, the median of {s['repeats']} repeats; the rule: docs/commands/advise.md")
+               f"speed the engine's steps' CPU time, the median of {s['repeats']} repeats"
+               + (" for each run whose speed could change the advice, one timed run for the others" if once else "")
+               + "; the rule: docs/commands/advise.md")
     return "\n".join(out) + "\n"
 
 
-def markdown(doc: dict, details: bool = True) -> str:
-    """advice.json as markdown: a table of the answers and the rule's settings, then (details)
-    each scene's reasons, folded."""
-    s = doc["settings"]
-    lines = ["| scene | kind | recommended | step | error (m) | CPU s per simulated s | chosen as | runner-up |",
-             "|---|---|---|---|---:|---:|---|---|"]
+def markdown(doc: dict, details: bool = True, scopes: dict[str, str] | None = None) -> str:
+    """advice.json as markdown: what decides, a table of the answers and the rule's settings, then
+    (details) each scene's reasons, folded; scopes as scene_lines takes them."""
+    s, scopes = doc["settings"], scopes or {}
+    lines = [rule_line(s), "",
+             "| scene | kind | recommended | error (m) | CPU s per simulated s | chosen as | runner-up |",
+             "|---|---|---|---:|---:|---|---|"]
     for scene in doc["scenes"]:
         best = _find(scene, scene["recommended"])
         runner = _find(scene, scene["runners_up"][0]) if scene["runners_up"] else None
         name = escape(scene["scene"])
         if best is None:
-            lines.append(f"| {name} | {scene['kind']} | none: {escape(scene['rule'])} | - | - | - | - | - |")
+            lines.append(f"| {name} | {scene['kind']} | - | - | - | {escape(decided(scene, s))} | - |")
             continue
-        # how the rule settled it, beside a runner-up that may be cheaper or closer: a tie and its
-        # tie-break, or the runner-up's failed cases and approximations
-        chosen_as = "; ".join(filter(None, (scene["rule"], scene.get("settled"))))
+        # beside a runner-up that may be cheaper or closer: its failed cases and approximations
         versus = _versus(runner, best) + _flaws(scene["judged"][runner["backend"]]) if runner else "-"
-        lines.append(f"| {name} | {scene['kind']} | {best['backend']} | {dt_label(best['dt'])} | {num(best['error'])} "
-                     f"| {num(best['cpu_per_sim_s'])} | {escape(chosen_as)} | {escape(versus)} |")
+        lines.append(f"| {name} | {scene['kind']} | {escape(_backend(best['backend'], scopes))} at dt "
+                     f"{dt_label(best['dt'])} | {num(best['error'])} | {num(best['cpu_per_sim_s'])} | "
+                     f"{escape(decided(scene, s))} | {escape(versus)} |")
     lines += ["", f"Budget {s['budget']:g} CPU s per simulated second, tolerance {s['tolerance']:g} m over the first "
-                  f"{s['window']:g} s, steps {', '.join(dt_label(d) for d in s['dts'])}, runs of {s['duration']:g} s. "
-                  "The rule (docs/commands/advise.md): the fastest run within the tolerance of the scene's reference; "
-                  "if none, the most accurate; only runs that fit the budget, of backends that refuse nothing "
-                  "the scene uses."]
+                  f"{s['window']:g} s, steps {', '.join(dt_label(d) for d in s['dts'])}, runs of {s['duration']:g} s "
+                  "(the rule: docs/commands/advise.md)."]
     if details:
         lines += ["", "<details markdown=\"1\"><summary>Why, per scene: error, speed, agreement, approximations, the cases, "
                       "the runners-up</summary>", "", "```"]
         for scene in doc["scenes"]:
-            lines += [*map(one_line, scene_lines(scene, s)), ""]  # a name's line break would end the block
+            lines += [*map(one_line, scene_lines(scene, s, scopes)), ""]  # a name's line break would end the block
         lines += ["```", "", "</details>"]
     return "\n".join(lines) + "\n"

@@ -13,7 +13,7 @@ from conformance.results import RAN, BackendRun, Comparison, Crossing, Divergenc
 
 from x3d_core.integration import lead
 
-from .text import energy_grew, escape, num
+from .text import energy_grew, escape, num, untemporary
 
 _SHOWN_BODIES = 3  # bodies named at a first crossing; the rest counted
 _G = 9.8  # m/s^2, X3D's default gravity: the scale of the integration order's note
@@ -93,7 +93,7 @@ def render(c: Comparison) -> str:
               "state readback), as the child timed it; '(child)': of the whole child process."]
     stopped = [r for r in c.runs if r.verdict != RAN]
     if stopped:
-        lines += [""] + [f"- {r.backend}: **{r.verdict}**: {escape(r.reason)}" for r in stopped]
+        lines += [""] + [f"- {r.backend}: **{r.verdict}**: {escape(untemporary(r.reason))}" for r in stopped]
     grew = [r for r in c.runs if r.energy is not None]
     if grew:
         lines += [""] + [f"- {energy_grew(r.backend, r.energy)}" for r in grew]

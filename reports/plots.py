@@ -9,6 +9,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
+from matplotlib.lines import Line2D  # noqa: E402
 
 from x3d_core import atomic  # noqa: E402
 
@@ -16,7 +17,11 @@ from .sweep_tables import NO_RESULTS, measured, variation  # noqa: E402
 from .text import plotted  # noqa: E402
 
 _MARKERS = "os^Dv<>p*h"
-TITLE_WIDTH = 80  # characters a title line holds at 10 points over the axes (the legend beside them): longer lines were cut off
+# shown beside its front's table on a 1400 px page (about 560 px there) and at its own size below
+# it on a narrower one: 700 x 520 px, its text 8-9 points at 100 dpi (11-12 px at full size)
+SIZE, DPI = (7.0, 5.2), 100
+# characters a title line holds at 9 points over the axes (the legend beside them): longer ones were cut off
+TITLE_WIDTH = 62
 
 
 def sweep_plot(doc: dict, scene: str, path: str) -> None:
@@ -29,7 +34,7 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     plot that says so (log axes of nothing are matplotlib's error)."""
     info = next(s for s in doc["scenes"] if s["name"] == scene)
     points = measured([p for p in doc["points"] if p["scene"] == scene])
-    fig, ax = plt.subplots(figsize=(10, 6))
+    fig, ax = plt.subplots(figsize=SIZE)
     method = info.get("reference_method")
     title = f"{scene}: {info['reference']}" + (f" ({info['reference_backend']}, {method})" if method else "")
     title += f", {info['quantity']}"
@@ -38,43 +43,66 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     else:
         ax.axis("off")
         ax.text(0.5, 0.5, f"no results: {NO_RESULTS}", ha="center", va="center", transform=ax.transAxes)
-    ax.set_title(textwrap.fill(plotted(title), TITLE_WIDTH), fontsize=10)
+    ax.set_title(textwrap.fill(plotted(title), TITLE_WIDTH), fontsize=9)
     fig.tight_layout()
     png = io.BytesIO()
-    fig.savefig(png, format="png", dpi=110)
+    fig.savefig(png, format="png", dpi=DPI)
     atomic.write_bytes(path, png.getvalue())
     plt.close(fig)
 
 
 def _draw(ax, doc: dict, points: list[dict], unit: str, uncertainty: float | None) -> str:
     """The points on log axes, and the reference's uncertainty where it has one above 0; what
-    the title adds (the floor that errors of 0 are drawn at)."""
+    the title adds (the floor that errors of 0 are drawn at). The legend is the code, not a line
+    per variation (28 of them ran off a 600 px picture): a colour per backend, a marker per
+    iterations value, dashed where preferAccuracy is TRUE."""
     nonzero = [p["error"] for p in points if p["error"] > 0]
     floor = min(nonzero) / 10 if nonzero else 1e-16
+    iterations = list(dict.fromkeys(variation(p).split(" | ")[0] for p in sorted(points, key=_its)))
+    legend = []
     for b, backend in enumerate(doc["backends"]):  # a backend keeps its colour in every plot
         mine = [p for p in points if p["backend"] == backend]
-        for v, var in enumerate(dict.fromkeys(variation(p) for p in mine)):
+        if mine:
+            legend.append(Line2D([], [], color=f"C{b}", linewidth=2, label=backend))
+        for var in dict.fromkeys(variation(p) for p in mine):
             line = sorted((p for p in mine if variation(p) == var), key=lambda p: -p["dt"])
             its, acc = var.split(" | ")
             x = [p["cpu_per_sim_s"] for p in line]
             spread = [[m - (p.get("cpu_low") or m) for m, p in zip(x, line)],
                       [(p.get("cpu_high") or m) - m for m, p in zip(x, line)]]
             ax.errorbar(x, [max(p["error"], floor) for p in line], xerr=spread, color=f"C{b}",
-                        marker=_MARKERS[v % len(_MARKERS)], linestyle="--" if acc == "TRUE" else "-",
+                        marker=_MARKERS[iterations.index(its) % len(_MARKERS)], markersize=5,
+                        linestyle="--" if acc == "TRUE" else "-", linewidth=1.2,
                         label=f"{backend} it={its} acc={acc}", alpha=0.8, capsize=2)
+    legend += [Line2D([], [], color="grey", marker=_MARKERS[k % len(_MARKERS)], linestyle="none",
+                      label="iterations: the scene's own" if its == "-" else f"iterations {its}")
+               for k, its in enumerate(iterations)]
+    legend += [Line2D([], [], color="grey", linestyle="-", label="preferAccuracy FALSE"),
+               Line2D([], [], color="grey", linestyle="--", label="preferAccuracy TRUE")]
     front = [p for p in points if p["pareto_scene"] and p.get("tie_scene") is None]
-    ax.scatter([p["cpu_per_sim_s"] for p in front], [max(p["error"], floor) for p in front], s=180,
-               facecolors="none", edgecolors="black", linewidths=1.5, label="Pareto front (all backends)", zorder=3)
+    legend.append(ax.scatter([p["cpu_per_sim_s"] for p in front], [max(p["error"], floor) for p in front], s=140,
+                             facecolors="none", edgecolors="black", linewidths=1.5, label="Pareto front", zorder=3))
     for p in front:
         ax.annotate(p["dt_label"], (p["cpu_per_sim_s"], max(p["error"], floor)), textcoords="offset points",
-                    xytext=(6, 6), fontsize=8)
+                    xytext=(6, 5), fontsize=8)
     if uncertainty:
-        ax.axhline(uncertainty, color="black", linestyle=":", linewidth=1,
-                   label=f"the reference's uncertainty ({uncertainty:.3g} {unit}): errors below it tie")
+        legend.append(ax.axhline(uncertainty, color="black", linestyle=":", linewidth=1,
+                                 label=f"the reference's uncertainty ({uncertainty:.3g} {unit}): errors below it tie"))
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("CPU time in the engine's steps per simulated second (s), median of the repeats and spread")
-    ax.set_ylabel(f"error ({unit})" if unit else "error")
+    ax.set_xlabel("CPU s in the engine's steps per simulated s (median, spread)", fontsize=9)
+    ax.set_ylabel(f"error ({unit})" if unit else "error", fontsize=9)
+    ax.tick_params(labelsize=8)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    ax.legend(handles=legend, labels=[_wrapped(h.get_label()) for h in legend], fontsize=8, loc="upper left",
+              bbox_to_anchor=(1.01, 1.0))
     return " (0 drawn at the floor)" if any(p["error"] == 0 for p in points) else ""
+
+
+def _its(p: dict) -> tuple:
+    """Iterations values in order, the scene's own ('-') last."""
+    return (p["iterations"] is None, p["iterations"] or 0)
+
+
+def _wrapped(label: str) -> str:
+    return textwrap.fill(label, 24)

@@ -3,11 +3,13 @@
 Reads results only. The page leads with the answers (reports/summary.py: what conforms,
 which backend and step for each kind of scene, the findings), then each section is the
 markdown its own command rendered (headings moved one level down), the long tables
-folded, each comparison's plot beside what it draws and each sweep's below its tables: do the engines conform, which backend for which
-scene, where do they part, what does speed cost in error, what survives the hard cases,
-and what each engine declares against what was measured. The HTML is that markdown
-through Python-Markdown, in one page beside its PNGs; every link in it points at a file
-under DIR.
+folded, each comparison's plot first under its heading and each sweep's front beside its
+plot: do the engines conform, which backend for which scene, where do they part, what does
+speed cost in error, what survives the hard cases, and what each engine declares against
+what was measured. The HTML is that markdown through Python-Markdown, in one page beside its
+PNGs, each shown where it is read and linked to itself at full size; every link in it points
+at a file under DIR. No table runs off a page 900 px wide (tests/test_report_layout.py lays
+the page out in Chromium): a table's words break where a name's parts meet (breakable).
 """
 
 from __future__ import annotations
@@ -26,7 +28,8 @@ from x3d_core import atomic
 
 from .advice_text import markdown as render_advice
 from .compare_text import render as render_comparison
-from .summary import answers, scene_name, yours
+from .summary import answers, scene_name, scopes, yours
+from .sweep_tables import markdown as render_sweep, plot as sweep_plot, scene_parts
 from .text import escape, link
 from .x_ite_text import render as render_x_ite
 
@@ -35,16 +38,17 @@ EXTENSIONS = ["tables", "toc", "md_in_html", "fenced_code"]  # Python-Markdown's
 
 _STYLE = """
 body { font: 15px/1.45 system-ui, sans-serif; margin: 2em auto; max-width: 82em; padding: 0 1em; color: #222; }
-table { border-collapse: collapse; margin: 0.6em 0 1.2em; font-size: 13px; }
-th, td { border: 1px solid #ccc; padding: 3px 7px; vertical-align: top; }
+table { border-collapse: collapse; margin: 0.6em 0 1.2em; font-size: 12px; }
+th, td { border: 1px solid #ccc; padding: 3px 5px; vertical-align: top; }
 th { background: #f3f3f3; }
 tr:nth-child(even) td { background: #fafafa; }
 code { background: #f3f3f3; padding: 0 3px; }
-img { max-width: 100%; border: 1px solid #ddd; }
+pre { white-space: pre-wrap; overflow-wrap: break-word; font-size: 12px; }
+img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 h1 { border-bottom: 2px solid #444; } h2 { border-bottom: 1px solid #aaa; margin-top: 2em; }
 details { margin: 0.4em 0 1em; } summary { cursor: pointer; color: #245; }
 .side { display: flex; flex-wrap: wrap; gap: 1.2em; align-items: flex-start; }
-.side > div { flex: 1 1 34em; min-width: min-content; } .side > p { flex: 1 1 30em; margin: 0; }
+.side > div { flex: 1 1 30em; min-width: min-content; } .side > p { flex: 1 1 28em; margin: 0; }
 """  # no box scrolls or clips a table: a table too wide to stand beside its plot pushes the plot below
 _MARK = {"native": "native", "approximate": "approx.", "unsupported": "unsupported"}
 
@@ -101,12 +105,18 @@ def _features(data: dict) -> str:
 
 def _folded(summary: str, body: str) -> str:
     """Markdown folded under a summary line (open it to read)."""
-    return f'<details markdown="1"><summary>{html.escape(summary)}</summary>\n\n{body.strip()}\n\n</details>\n'
+    return f'<details markdown="1"><summary>{html.escape(summary, quote=False)}</summary>\n\n{body.strip()}\n\n</details>\n'
+
+
+def _picture(image: str, alt: str) -> str:
+    """A plot on the page, linked to itself: a click shows it at full size."""
+    return f"[!{link(image, alt)}]({urllib.parse.quote(image, errors='surrogateescape')})"
 
 
 def _beside(body: str, image: str, alt: str) -> str:
     """Markdown with its plot beside it (below it on a narrow screen)."""
-    return f'<div class="side" markdown="1">\n<div markdown="1">\n\n{body.strip()}\n\n</div>\n\n!{link(image, alt)}\n\n</div>\n'
+    return (f'<div class="side" markdown="1">\n<div markdown="1">\n\n{body.strip()}\n\n</div>\n\n'
+            f'{_picture(image, alt)}\n\n</div>\n')
 
 
 def comparisons(out: str) -> list[tuple[str, Comparison]]:
@@ -133,28 +143,35 @@ def _comparisons(out: str, found: list[tuple[str, Comparison]]) -> str:
         if parted and os.path.exists(os.path.join(out, "compare", rrd)):
             text += f"\nWhere they part, as a rerun recording: {link('compare/' + rrd, rrd)} (open it with `rerun`).\n"
         plot = f"compare/{name}{DIVERGENCE}"
-        body = _beside(text, plot, f"{name}: divergence over time") if os.path.exists(os.path.join(out, plot)) else text
-        parts += ["", f"### {escape(scene_name(comparison.scene, mine))}", "", body]
+        if os.path.exists(os.path.join(out, plot)):  # first, where the reader looks: the tables say it in figures
+            text = _picture(plot, f"{name}: divergence over time, each pair of backends") + "\n\n" + text
+        parts += ["", f"### {escape(scene_name(comparison.scene, mine))}", "", text]
     return "\n".join(parts) + "\n"
 
 
 def _sweep(out: str, meta: dict) -> str:
-    """The sweep's markdown, each scene's fronts at the page's full width (eight columns: beside
-    a plot they were squeezed) with its plot below them, the notes before them folded."""
-    sweep = _read(os.path.join(out, "sweep", "sweep.md"))
-    if not sweep:
+    """Each swept scene (sweep.json): its Pareto front over every backend beside its plot, each
+    backend's own front folded under them (long: a row per point), the runs without an error;
+    the notes on what is measured folded before them."""
+    path = os.path.join(out, "sweep", "sweep.json")
+    if not os.path.exists(path):
         return "## Speed against error\n\n" + (_absent(meta, "sweep") if "sweep" in meta.get("failed", ())
                                                 else "Not run (`x3drbp report --quick` leaves it out).\n")
-    head, *scenes = re.split(r"^(?=### )", _section(sweep, "sweep"), flags=re.M)
-    with open(os.path.join(out, "sweep", "sweep.json"), encoding="utf-8") as f:
-        names = [scene["name"] for scene in json.load(f)["scenes"]]  # as given: the headings' are escaped
+    with open(path, encoding="utf-8") as f:
+        doc = json.load(f)
+    head = _section(render_sweep(doc)).split("\n### ", 1)[0]
     parts = ["## Speed against error", "", _folded("What is measured, and how", head)]
-    for chunk, name in zip(scenes, names, strict=True):
-        title, _, body = chunk.partition("\n")
-        plot = f"sweep/sweep_{name}.png"
-        parts += [title, "", body.strip(), ""]
-        if os.path.exists(os.path.join(out, plot)):
-            parts += ["!" + link(plot, f"{name}: error against speed"), ""]
+    for scene in doc["scenes"]:
+        name, part = scene["name"], scene_parts(doc, scene)
+        plot = f"sweep/{sweep_plot(name)}"
+        front = "\n".join(part.front)
+        parts += [f"### {escape(name)}", "", part.reference, "",
+                  _beside(front, plot, f"{name}: error against speed") if os.path.exists(os.path.join(out, plot))
+                  else front, ""]
+        if part.own:
+            parts += [_folded(f"Each backend's own front ({len(part.own) - 2} points)", "\n".join(part.own)), ""]
+        if part.missing:
+            parts += ["Without an error:", "", *part.missing, ""]
     return "\n".join(parts) + "\n"
 
 
@@ -201,8 +218,8 @@ def report_markdown(out: str, found: list[tuple[str, Comparison]] | None = None)
     parts.append("## Conformance\n\n" + (_folded("The matrix: every case on every backend, and why each verdict",
                                                    _section(matrix, "conformance")) if matrix else _absent(meta, "conformance")))
     advice = _read(os.path.join(out, "advice", "advice.json"))
-    parts.append("## Which backend for which scene\n\n" + (render_advice(json.loads(advice)) if advice
-                                                          else _absent(meta, "advise")))
+    parts.append("## Which backend for which scene\n\n" + (render_advice(json.loads(advice), scopes=scopes(out))
+                                                          if advice else _absent(meta, "advise")))
     parts.append(_comparisons(out, found))
     parts.append(_sweep(out, meta))
     stability = _read(os.path.join(out, "stability", "stability.md"))
@@ -218,6 +235,21 @@ def report_markdown(out: str, found: list[tuple[str, Comparison]] | None = None)
         text = render_x_ite(json.loads(x_ite), json.loads(matrix_json) if matrix_json else None)
         parts.append("## X_ITE\n\n" + _section(text, "x_ite"))
     return "\n".join(parts)
+
+
+# where a long name may break across lines: after a _, or a / or . before a letter (not a step's
+# 1/240 nor a number's point), and where a lower-case letter meets a capital (suspension|Error)
+_JOINS = re.compile(r"_(?=\w)|[/.](?=[A-Za-z])|(?<=[a-z])(?=[A-Z])")
+_TEXT = re.compile(r">([^<]+)<")  # the text between two tags (escaped: no < or > inside)
+
+
+def breakable(page: str) -> str:
+    """HTML whose text may break at the joins of a long name (<wbr>: no character copied, nothing
+    drawn where it does not break): the names of features, cases, files and engine calls
+    (disableCollisionsBetweenLinkedBodies) set a table's narrowest width, and ran the
+    conformance, feature and advice tables off a 900 px page. Only text between tags changes;
+    an entity (&lt;) holds none of the joins."""
+    return _TEXT.sub(lambda m: ">" + _JOINS.sub(lambda j: j.group(0) + "<wbr>", m.group(1)) + "<", page)
 
 
 _LINK = re.compile(r"""(?:href|src)=["']([^"'#]+)(?:#[^"']*)?["']""")
@@ -241,7 +273,7 @@ def write_report(out: str) -> str:
         divergence_plot(comparison, stem + DIVERGENCE)
     text = report_markdown(out, found)
     atomic.write_text(os.path.join(out, "report.md"), text)
-    body = md.markdown(text, extensions=EXTENSIONS)
+    body = breakable(md.markdown(text, extensions=EXTENSIONS))
     page = os.path.join(out, "index.html")
     atomic.write_text(page, "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
                             f"<title>{html.escape('x3drbp report')}</title><style>{_STYLE}</style></head>\n"

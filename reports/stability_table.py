@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from conformance.results import EnergyGrowth
 
-from .text import energy_grew, escape, link, num
+from .text import energy_grew, escape, link, num, untemporary
 
 HELD = ("survived", "stopped")
 PLAIN = (*HELD, "unsupported", "error")  # not a breakdown: no bold
@@ -89,5 +89,5 @@ def markdown(data: dict) -> str:
         lines += ["", "## Why", ""]
         for r in others:
             trace = f" (trace: {link(r['trace'])})" if r.get("trace") else ""
-            lines.append(f"- {_run(r, label)}: {_label(r['verdict'])}: {escape(r['reason'])}{trace}")
+            lines.append(f"- {_run(r, label)}: {_label(r['verdict'])}: {escape(untemporary(r['reason']))}{trace}")
     return "\n".join(lines) + "\n"

@@ -42,6 +42,13 @@ def conformance_lines(matrix: dict) -> list[str]:
     return lines
 
 
+def scopes(out: str) -> dict[str, str]:
+    """What each backend of the conformance run is limited to, where it is (its matrix.json's
+    `scope`: pymunk, planar scenes only): said wherever it is recommended."""
+    matrix = _load(os.path.join(out, "conformance", "matrix.json")) or {}
+    return {b: d["scope"] for b, d in (matrix.get("backends") or {}).items() if d.get("scope")}
+
+
 def yours(out: str) -> set[str]:
     """The user's own scenes of the report in out (report.json's `scenes`, `report --scenes`),
     as absolute paths: they are no example scenes, and the page must not call them so."""
@@ -144,6 +151,9 @@ def declared_findings(doc: dict) -> list[str]:
     return out
 
 
+FIELDS_LISTED = 6  # fields without effect named in X_ITE's line; more are folded beneath it
+
+
 def x_ite_line(data: dict) -> str:
     """X_ITE's verdicts counted, its clock's reading, and the fields its probes found ignored."""
     counts = {k: sum(c["verdict"] == k for c in data["cases"]) for k in ("right", "conventions", "ignores", "wrong",
@@ -157,7 +167,8 @@ def x_ite_line(data: dict) -> str:
             f"is wrong in {counts['wrong']}, and could not run {counts['error']}"
             + ("" if lag is None else f"; its physics clock lags the frames by up to {num(lag)} s"
                + (" (37.2.2.1)" if not all(k["ok"] for k in clock) else ""))
-            + (f"; fields without effect: {', '.join(ignored)}" if ignored else "") + ".")
+            + (f"; fields without effect: {', '.join(ignored)}" if 0 < len(ignored) <= FIELDS_LISTED else
+               f"; {len(ignored)} fields without effect (listed below)" if ignored else "") + ".")
 
 
 def answers(out: str, comparisons: list[Comparison]) -> str:
@@ -166,16 +177,23 @@ def answers(out: str, comparisons: list[Comparison]) -> str:
     matrix = _load(os.path.join(out, "conformance", "matrix.json"))
     parts += ["**What conforms** (every case on every backend; [details](#conformance)):", ""]
     parts += conformance_lines(matrix) if matrix else ["Not run."]
+    # beside the engines: how a browser's author gets the same answer for theirs
+    parts += ["", "**How to judge your own browser** (or any implementation): record its trace of a scene, one row "
+                  "per frame and output (the format: docs/implementers.md), then", "",
+              "    x3drbp validate SCENE --trace THEIRS.csv --dt STEP", "",
+              "says whether it conforms, measure by measure (the case's closed form where SCENE is a case's), and "
+              "how far it is from each engine's run of the scene."]
     x_ite = _load(os.path.join(out, "x_ite", "x_ite.json"))
     if x_ite:
         parts += ["", f"**How X_ITE conforms** ([details](#x_ite)): {escape(x_ite_line(x_ite))}"]
-    parts += ["", "**How to judge your own browser**: record its trace of a scene (the format: docs/implementers.md), "
-                  "then `x3drbp validate SCENE --trace THEIRS.csv --dt STEP` says whether it conforms, measure by "
-                  "measure, and how far it is from each engine's run."]
+        ignored = sorted({f for c in x_ite["cases"] for f in c["ignored"]})
+        if len(ignored) > FIELDS_LISTED:
+            parts += ["", f'<details markdown="1"><summary>The {len(ignored)} fields without effect in X_ITE</summary>',
+                      "", escape(", ".join(ignored)), "", "</details>"]
     advice = _load(os.path.join(out, "advice", "advice.json"))
     parts += ["", "**Which backend, at which step, for each kind of scene** (`x3drbp advise`; "
-                  "[how it is chosen](#which-backend-for-which-scene)):", ""]
-    parts.append(advice_markdown(advice, details=False) if advice else "Not run.")
+                  "[the details](#which-backend-for-which-scene)):", ""]
+    parts.append(advice_markdown(advice, details=False, scopes=scopes(out)) if advice else "Not run.")
     mine = yours(out)
     title = "Where the runs of the example scenes" + (" and of yours" if mine else "") + " part"
     findings = [(title, compare_findings(comparisons, mine), "where-the-backends-part")]

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from collections import Counter
+from dataclasses import dataclass
 
-from .text import escape, link, num
+from .text import escape, link, num, untemporary
 
 NO_RESULTS = "no run gave both an error and a speed"  # what "no results" means, wherever it is said
 
@@ -72,20 +73,40 @@ def markdown(doc: dict) -> str:
              f"better in one beyond the ties; {doc['measured']['ties']}. '-' in iterations or preferAccuracy: "
              "the backend does not honour the field and ran the scene's own value."]
     for scene in doc["scenes"]:
-        name = scene["name"]
-        points = [p for p in doc["points"] if p["scene"] == name]
-        lines += ["", f"## {escape(name)}", "",
-                  f"Reference: {reference(scene)}. Plot: {link(f'sweep_{name}.png')}", ""]
-        if measured(points):
-            lines += ["Pareto front over every backend:", ""]
-            lines += _rows(points, scene["unit"], "pareto_scene", points)
-            lines += ["", "Each backend's own front:", ""]
-            lines += _rows(points, scene["unit"], "pareto_backend", points)
-        else:
-            lines.append(f"No results: {NO_RESULTS}.")
-        missing = Counter((p["backend"], p["verdict"], p["reason"]) for p in points if p["error"] is None)
-        if missing:
-            lines += ["", "Without an error:", ""]
-            lines += [f"- {backend}: {n} run(s) {verdict}" + (f": {escape(reason)}" if reason else "")
-                      for (backend, verdict, reason), n in missing.items()]
+        part = scene_parts(doc, scene)
+        lines += ["", f"## {escape(scene['name'])}", "", part.reference + f" Plot: {link(plot(scene['name']))}", ""]
+        lines += part.front
+        if part.own:
+            lines += ["", "Each backend's own front:", "", *part.own]
+        if part.missing:
+            lines += ["", "Without an error:", "", *part.missing]
     return "\n".join(lines) + "\n"
+
+
+def plot(name: str) -> str:
+    """A scene's plot, beside sweep.json (conformance/cli/sweep.py writes it)."""
+    return f"sweep_{name}.png"
+
+
+@dataclass
+class SceneParts:
+    """One scene's part of sweep.md, each piece markdown: what its error is measured against, its
+    Pareto front over every backend (its title and table, or that there are no results), each
+    backend's own front (its table, or nothing) and the runs without an error (a list)."""
+    reference: str
+    front: list[str]
+    own: list[str]
+    missing: list[str]
+
+
+def scene_parts(doc: dict, scene: dict) -> SceneParts:
+    points = [p for p in doc["points"] if p["scene"] == scene["name"]]
+    if measured(points):
+        front = ["Pareto front over every backend:", "", *_rows(points, scene["unit"], "pareto_scene", points)]
+        own = _rows(points, scene["unit"], "pareto_backend", points)
+    else:
+        front, own = [f"No results: {NO_RESULTS}."], []
+    missing = Counter((p["backend"], p["verdict"], p["reason"]) for p in points if p["error"] is None)
+    return SceneParts(f"Reference: {reference(scene)}.", front, own,
+                      [f"- {backend}: {n} run(s) {verdict}" + (f": {escape(untemporary(reason))}" if reason else "")
+                       for (backend, verdict, reason), n in missing.items()])

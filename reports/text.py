@@ -40,6 +40,21 @@ def escape(text: str) -> str:
     return _MARKDOWN.sub(r"\\\1", html.escape(printable(one_line(text)), quote=False))
 
 
+# a file in a run's temporary folder (tempfile's x3drbp-sweep-k2j3h4l5/scene.x3d): gone before any
+# reader follows it; at the head of a reason, as its subject, with the line it names in that copy
+_TEMPORARY = r"(?:/[^/\s'\"]+)*/x3drbp-[a-z_]+-[a-z0-9_]{8}(?:/[^/\s'\":,;)]+)*"
+_TEMPORARY_SUBJECT = re.compile(rf"^{_TEMPORARY}(?::\d+)*: ")
+_TEMPORARY_PATH = re.compile(_TEMPORARY)
+
+
+def untemporary(text: str) -> str:
+    """A reason as it reads once its run's temporary files are deleted: a path into them dropped
+    where it heads the reason ("/tmp/x3drbp-sweep-.../scene.x3d: blew up at t=2" is "blew up at
+    t=2"), elsewhere its file's name alone, said to be temporary."""
+    text = _TEMPORARY_SUBJECT.sub("", text)
+    return _TEMPORARY_PATH.sub(lambda m: f"{m.group(0).rsplit('/', 1)[1]} (temporary)", text)
+
+
 def plotted(text: str) -> str:
     """Text as text in a matplotlib title or label: each $ escaped, or a name such as
     `a$x^2$.x3d` is set as mathematics and `a$\\frac$.x3d` stops the plot with a parse error;
