@@ -46,6 +46,7 @@ by pybullet's shape query where the bodies are at each frame's end (_Watched).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import chain
 
 import numpy as np
 import pybullet as p
@@ -282,6 +283,10 @@ class BulletSimulation:
             self._shapes()
         for tree in self.trees:
             self._create(tree)
+        # what _read asks pybullet of each tree, worked out once: its multibody, whether its base is
+        # free, its link indices (None: no links)
+        self.reading = [(tree.uid, tree.free, list(range(len(tree.links))) if tree.links else None)
+                        for tree in self.trees]
         # every part of every tree, flat, in the order _read returns them
         parts = [pt for tree in self.trees for pt in tree.parts]
         self.first = np.cumsum([0] + [len(tree.parts) for tree in self.trees])  # each tree's first part
@@ -659,19 +664,22 @@ class BulletSimulation:
         velocities, centre-of-mass velocity and angular velocity, in bulk, parts in order.
         (pybullet's link frame poses come rounded to single precision; these do not.)"""
         c = self.client
-        rows = []
-        zero = (0.0, 0.0, 0.0)
-        for tree in self.trees:
-            if tree.free:
-                pos, q = p.getBasePositionAndOrientation(tree.uid, physicsClientId=c)
-                lin, ang = p.getBaseVelocity(tree.uid, physicsClientId=c) if velocities else (zero, zero)
-                rows.append((*pos, *q, *lin, *ang))
-            if tree.links:
-                for s in p.getLinkStates(tree.uid, list(range(len(tree.links))), computeLinkVelocity=int(velocities),
-                                         computeForwardKinematics=1, physicsClientId=c):
-                    lin, ang = (s[6], s[7]) if velocities else (zero, zero)
-                    rows.append((*s[0], *s[1], *lin, *ang))
-        a = np.array(rows, dtype=np.float64).reshape(-1, 13)
+        # pybullet answers in tuples, a call per free base: the calls are the engine's one way in, and
+        # the Python around them is kept to joining each part's tuples into one row
+        pose, speed, links_of = p.getBasePositionAndOrientation, p.getBaseVelocity, p.getLinkStates
+        rows: list[tuple[float, ...]] = []
+        still = ((0.0,) * 6, ())
+        for uid, free, links in self.reading:
+            if free:
+                x = pose(uid, physicsClientId=c)
+                v = speed(uid, physicsClientId=c) if velocities else still
+                rows.append(x[0] + x[1] + v[0] + v[1])
+            if links:
+                states = links_of(uid, links, computeLinkVelocity=int(velocities), computeForwardKinematics=1,
+                                  physicsClientId=c)
+                rows += ([s[0] + s[1] + s[6] + s[7] for s in states] if velocities else
+                         [s[0] + s[1] + still[0] for s in states])
+        a = np.fromiter(chain.from_iterable(rows), np.float64, 13 * len(rows)).reshape(-1, 13)
         return a[:, :3], _wxyz(a[:, 3:7]), a[:, 7:10], a[:, 10:13]
 
     def _frames(self, com: np.ndarray, q_com: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -722,6 +730,13 @@ class BulletSimulation:
             mine = slice(first, first + len(tree.parts))
             com, frame_pos, turn = all_com[mine], all_pos[mine], all_turn[mine]
             bodies = [k for k, pt in enumerate(tree.parts) if pt.row >= 0]
+            rows = [tree.parts[k].row for k in bodies]
+            if not (linear[rows].any() or angular[rows].any()):
+                # at rest (every build of a scene that starts still): the fit's answer is +0.0 exactly
+                # (LAPACK's gelsd sets x to zero for a zero right-hand side), without its Jacobian,
+                # quadratic in a chain's links, and its least squares
+                self._reset_joints(tree, np.zeros(tree.dofs))
+                continue
             jac = np.zeros((6 * len(bodies), tree.dofs))
             target = np.zeros(6 * len(bodies))
             for n, k in enumerate(bodies):
@@ -743,19 +758,23 @@ class BulletSimulation:
                         jac[v, col] = np.cross(axis, arm)
                     else:
                         jac[v, col] = turn[a] @ part.axis
-            qd = np.linalg.lstsq(jac, target, rcond=None)[0]
-            for k, part in enumerate(tree.parts):
-                link, col = tree.link(k), tree.columns[k]
-                if link < 0:
-                    p.resetBaseVelocity(tree.uid, qd[0:3], qd[3:6], physicsClientId=c)
-                elif part.joint_type == p.JOINT_FIXED:
-                    continue
-                elif part.joint_type == p.JOINT_SPHERICAL:
-                    position = p.getJointStateMultiDof(tree.uid, link, physicsClientId=c)[0]
-                    p.resetJointStateMultiDof(tree.uid, link, position, qd[col:col + 3], physicsClientId=c)
-                else:
-                    position = p.getJointState(tree.uid, link, physicsClientId=c)[0]
-                    p.resetJointState(tree.uid, link, position, qd[col], physicsClientId=c)
+            self._reset_joints(tree, np.linalg.lstsq(jac, target, rcond=None)[0])
+
+    def _reset_joints(self, tree: _Tree, qd: np.ndarray) -> None:
+        """A tree's joint velocities qd (its columns), each joint's position kept."""
+        c = self.client
+        for k, part in enumerate(tree.parts):
+            link, col = tree.link(k), tree.columns[k]
+            if link < 0:
+                p.resetBaseVelocity(tree.uid, qd[0:3], qd[3:6], physicsClientId=c)
+            elif part.joint_type == p.JOINT_FIXED:
+                continue
+            elif part.joint_type == p.JOINT_SPHERICAL:
+                position = p.getJointStateMultiDof(tree.uid, link, physicsClientId=c)[0]
+                p.resetJointStateMultiDof(tree.uid, link, position, qd[col:col + 3], physicsClientId=c)
+            else:
+                position = p.getJointState(tree.uid, link, physicsClientId=c)[0]
+                p.resetJointState(tree.uid, link, position, qd[col], physicsClientId=c)
 
     def close(self) -> None:
         """Free the pybullet client (each simulation holds one)."""

@@ -574,6 +574,12 @@ class DartSimulation:
         com = self.world.bodies.com
         for k in self.moving:
             skeleton, rows = self.skeletons[k], self.members[k]
+            if not (linear[rows].any() or angular[rows].any()):
+                # at rest (every build of a scene that starts still): the fit's answer is +0.0 exactly
+                # (LAPACK's gelsd sets x to zero for a zero right-hand side), without its least squares,
+                # cubic in a chain's links
+                skeleton.setVelocities(np.zeros(skeleton.getNumDofs()))
+                continue
             jac = np.concatenate([skeleton.getWorldJacobian(self.nodes[i], com[i]) for i in rows])  # [ang; lin]
             target = np.concatenate([np.concatenate([angular[i], linear[i]]) for i in rows])
             skeleton.setVelocities(np.linalg.lstsq(jac, target, rcond=None)[0])

@@ -266,6 +266,8 @@ class DrakeSimulation:
         self.tau_port = plant.get_applied_generalized_force_input_port()
         self.tau_port.FixValue(self.context, np.zeros(plant.num_velocities()))
         self.moving = np.flatnonzero(~b.fixed)
+        self.index = [int(body.index()) for body in self.bodies]  # each body's place in the plant's port values
+        self.offset = np.flatnonzero(np.any(b.com != 0.0, axis=1))  # the bodies whose centre of mass is off the origin
         lone = np.array([world.parent[i] == World.FREE and not np.any(world.parent == i) for i in range(len(b))],
                         dtype=bool)
         self.direct = bool(np.array_equal(lone, ~b.fixed))
@@ -435,19 +437,21 @@ class DrakeSimulation:
             raise BlewUp("Drake's state is no longer finite")
 
     def state(self) -> State:
+        """Every body's pose and velocity: Drake's objects read a body at a time (pydrake has no bulk
+        form), with no numpy call per body; the centre of mass's velocity v + w x (R com) in bulk, R com
+        worked out only where com is not zero (elsewhere it is +0.0 exactly, as numpy's R @ 0)."""
         b, plant, ctx = self.world.bodies, self.plant, self.context
         poses = plant.get_body_poses_output_port().Eval(ctx)
         vels = plant.get_body_spatial_velocities_output_port().Eval(ctx)
-        n = len(b)
-        pos, quat, lin, ang = np.zeros((n, 3)), np.zeros((n, 4)), np.zeros((n, 3)), np.zeros((n, 3))
-        for i, body in enumerate(self.bodies):
-            X, V = poses[int(body.index())], vels[int(body.index())]
-            pos[i] = X.translation()
-            q = X.rotation().ToQuaternion()
-            quat[i] = q.w(), q.x(), q.y(), q.z()
-            ang[i] = V.rotational()
-            lin[i] = V.translational() + np.cross(ang[i], X.rotation().matrix() @ b.com[i])
-        return State(pos, quat, lin, ang)
+        X = [poses[k] for k in self.index]
+        pos = np.array([x.translation() for x in X]).reshape(-1, 3)
+        quat = np.array([x.rotation().ToQuaternion().wxyz() for x in X]).reshape(-1, 4)
+        v = np.array([vels[k].get_coeffs() for k in self.index]).reshape(-1, 6)  # [angular; translational]
+        arm = np.zeros((len(X), 3))
+        for i in self.offset:
+            arm[i] = X[i].rotation().matrix() @ b.com[i]
+        ang = v[:, :3].copy()
+        return State(pos, quat, v[:, 3:] + R.cross(ang, arm), ang)
 
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
         plant, ctx, b = self.plant, self.context, self.world.bodies

@@ -33,7 +33,8 @@ The traces are checked to agree (exit status 1 where one does not): the chain's 
 car's positions to SAME at every compared frame (the car's every frame, the chain's last);
 the pile, being chaotic, as pile.py checks it (every body to pile.AGREE at pile.CHECK_T,
 before any contact, and the final mean height to PILE_HEIGHT_SAME, 1 cm). A backend without a
-native build of a scene (native_run.SCENES) is listed as such; pymunk (2D) has none.
+native build of a scene (native_run.SCENES) is listed as such; pymunk (2D) has the chain's only
+(native_pymunk.py).
 
 With --against REV, a third side: `x3drbp run` of revision REV (its files from git archive,
 run with `python -m conformance.cli` in that tree), for a before and after in one run: its
@@ -114,13 +115,14 @@ def _ratio(ours: float, native: float) -> str:
 
 
 def _commands(scene: str, backend: str, path: str, duration: float, out: str,
-              before: str | None) -> list[tuple[list[str], str, str]]:
+              before: str | None, size: int | None = None) -> list[tuple[list[str], str, str]]:
     """Each side's command of one case, the folder it runs in and the timing JSON it writes: the native
-    script (OUT.npy, OUT-native.json), `x3drbp run` (OUT.npz, OUT.json) and, with before (a tree of an
-    earlier revision), that revision's (OUT-before.npz, OUT-before.json)."""
+    script (OUT.npy, OUT-native.json; size: native_run.py's SIZE), `x3drbp run` (OUT.npz, OUT.json)
+    and, with before (a tree of an earlier revision), that revision's (OUT-before.npz, OUT-before.json)."""
     run = ["run", path, "--backend", backend, "--dt", repr(DT), "--duration", repr(duration), "--trace"]
+    sized = [] if size is None else [str(size)]
     sides = [([sys.executable, os.path.join(HERE, "native_run.py"), backend, scene, repr(duration), out + ".npy",
-               out + "-native.json"], ROOT, out + "-native.json"),
+               out + "-native.json", *sized], ROOT, out + "-native.json"),
              ([os.path.join(os.path.dirname(sys.executable), "x3drbp"), *run, out + ".npz", "--timing",
                out + ".json"], ROOT, out + ".json")]
     if before:

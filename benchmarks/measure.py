@@ -5,8 +5,8 @@ from __future__ import annotations
 import gc
 import io
 import os
-import resource
 import subprocess
+import sys
 import tarfile
 import time
 import tracemalloc
@@ -44,14 +44,38 @@ def process_wall(cmd: list[str], **options: Any) -> float:
     return time.perf_counter() - started
 
 
-def process_cpu(cmd: list[str], **options: Any) -> float:
+# Forks and runs a command, its output discarded, and prints its CPU seconds, ru_maxrss (KiB) and
+# exit status. Linux keeps in a process's ru_maxrss the resident size of the memory it replaced at
+# exec, so a child of a big process (one with numpy loaded, or a compiled pile in memory) reads at
+# least that process's size: forked from this bare interpreter (python -S), the floor is its few MB.
+_LAUNCH = """import os, sys
+pid = os.fork()
+if pid == 0:
+    null = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(null, 1)
+    os.dup2(null, 2)
+    os.execvp(sys.argv[1], sys.argv[1:])
+_, status, usage = os.wait4(pid, 0)
+print(usage.ru_utime + usage.ru_stime, usage.ru_maxrss, os.waitstatus_to_exitcode(status))
+"""
+
+
+def process_usage(cmd: list[str], **options: Any) -> tuple[float, float]:
     """The CPU seconds (user + system, the kernel's count of the child: a load beside it barely
-    moves it) of one whole process, its output discarded (CalledProcessError if it fails);
-    options go to subprocess.run (cwd, env)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, **options)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    moves it) and the peak resident memory in MB (ru_maxrss, read with wait4 by a bare launcher:
+    _LAUNCH) of one whole process, its output discarded (CalledProcessError if it fails); options
+    go to subprocess.run (cwd, env)."""
+    launched = subprocess.run([sys.executable, "-S", "-c", _LAUNCH, *cmd], check=True, capture_output=True,
+                              text=True, **options)
+    cpu, rss, status = launched.stdout.split()
+    if int(status):
+        raise subprocess.CalledProcessError(int(status), cmd)
+    return float(cpu), int(rss) / 1024  # Linux counts ru_maxrss in KiB
+
+
+def process_cpu(cmd: list[str], **options: Any) -> float:
+    """process_usage's CPU seconds."""
+    return process_usage(cmd, **options)[0]
 
 
 def compiled_env(folder: str, **extra: str) -> dict[str, str]:

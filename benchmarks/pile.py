@@ -112,7 +112,8 @@ def _vec(v) -> str:
 def draws() -> list[tuple[str, np.ndarray, np.ndarray, float]]:
     """Each body's (kind, position, unit turn axis, turn angle): the scene file and every
     native build use these. Each axis is a unit vector to the last bit, so that an X3D
-    reader's normalisation leaves it as it is."""
+    reader's normalisation leaves it as it is. The grid fills layer by layer, up to SPHERES +
+    BOXES bodies (a top layer may be part full)."""
     rng = np.random.default_rng(20250607)
     kinds = rng.permutation(["sphere"] * SPHERES + ["box"] * BOXES)
     out = []
@@ -120,6 +121,8 @@ def draws() -> list[tuple[str, np.ndarray, np.ndarray, float]]:
     for layer in range(LAYERS):
         for i in range(GRID):
             for j in range(GRID):
+                if k == len(kinds):
+                    return out
                 centre = np.array([(i - (GRID - 1) / 2) * SPACING, BOTTOM + layer * SPACING,
                                    (j - (GRID - 1) / 2) * SPACING])
                 position = centre + rng.uniform(-JITTER, JITTER, 3)
