@@ -1,13 +1,13 @@
 """The backend protocol: a declared feature table, and a build step.
 
 A backend is one module exposing `BACKEND`, an instance of a Backend subclass. It
-declares, per feature name (the names of x3d_core.analysis), whether the engine honours
+declares, per feature name (the names of x3d_core.semantics.analysis), whether the engine honours
 it natively, approximately (and how) or not at all (and why); anything it does not
 declare is unsupported. A declaration may name the one value its engine holds anyway
 (unsupported(..., native_at=0): a rigid solver's CFM): there the feature is native, since
 the scene asks for nothing the engine lacks. judged() weighs a scene's uses, each with its
 value, against them. `build(world, dt)` returns an
-x3d_core.engine.Simulation: step, read state in bulk, set velocities.
+x3d_core.semantics.engine.Simulation: step, read state in bulk, set velocities.
 
 Backends are found through the entry point group `x3drbp.backends` (registry()): each
 entry point names a backend and the module attribute that is its instance. To add an
@@ -32,12 +32,12 @@ from typing import Any
 
 import numpy as np
 
-from x3d_core import fields as F
-from x3d_core.integration import POSITION_FIRST, RK4, SEMI_IMPLICIT, in_substeps  # noqa: F401  (the backends' names)
-from x3d_core.analysis import SCRIPT_DIRECT_OUTPUT, Use, run_uses
-from x3d_core.engine import Simulation
-from x3d_core.model import Scene
-from x3d_core.world import World
+from x3d_core.model import fields as F
+from x3d_core.model.scene import Scene
+from x3d_core.semantics.analysis import SCRIPT_DIRECT_OUTPUT, Use, run_uses
+from x3d_core.semantics.engine import Simulation
+from x3d_core.semantics.integration import POSITION_FIRST, RK4, SEMI_IMPLICIT, in_substeps  # noqa: F401  (the backends' names)
+from x3d_core.semantics.world import World
 
 GROUP = "x3drbp.backends"  # the entry point group of backends
 # the backends x3drbp ships (pyproject.toml declares each): listed first, in this order
@@ -116,13 +116,13 @@ EVALUATOR: dict[str, Declared] = native(
     *(f"MotorJoint.stop{k}{f}" for k in (1, 2, 3) for f in ("Bounce", "ErrorCorrection")),
     *(f"UniversalJoint.stop{k}{f}" for k in (1, 2) for f in ("Bounce", "ErrorCorrection")))
 
-# Collision layout x3d_core resolves for every engine (x3d_core/collision.py): which
+# Collision layout x3d_core resolves for every engine (x3d_core/semantics/collision.py): which
 # collidables take part and where they sit; a backend builds what comes out
 EVALUATOR |= native(
     "CollidableShape", "CollidableShape.translation", "CollidableShape.rotation", "CollidableShape.enabled",
     "CollidableOffset", "CollidableOffset.translation", "CollidableOffset.rotation", "CollidableOffset.enabled",
     "CollisionSpace", "CollisionSpace.enabled", "CollisionCollection.enabled", "CollisionSensor.enabled",
-    # a speed hint: the geometry itself is always tested (x3d_core/collision.py says why)
+    # a speed hint: the geometry itself is always tested (x3d_core/semantics/collision.py says why)
     "CollisionSpace.useGeometry")
 
 # What every 3D backend builds from the World's bulk arrays and its joint forest
@@ -171,7 +171,7 @@ class Backend(ABC):
     # Values of a feature the engine cannot take though it honours the feature (a subnormal
     # mass whose inverse overflows): feature -> check(value), the reason or None (below, above).
     # judge() refuses such a use by value; limits that need the whole world or the step (a
-    # CFM divided by dt) are refused by build() raising x3d_core.engine.Unsupported.
+    # CFM divided by dt) are refused by build() raising x3d_core.semantics.engine.Unsupported.
     limits: dict[str, Callable[[Any], str | None]] = {}
     # SEMI_IMPLICIT, POSITION_FIRST or RK4, or another scheme in words; None: not declared. Not
     # a feature of the spec (which names no integrator), but it parts free motion between engines.
@@ -220,7 +220,7 @@ def judge(backend: Backend, use: Use) -> Declared:
 
 
 def judged(backend: Backend, scene: Scene, ws: list[World] | None = None) -> list[tuple[Use, Declared]]:
-    """Each use a run of the scene needs (x3d_core.analysis.run_uses, on its worlds ws where
+    """Each use a run of the scene needs (x3d_core.semantics.analysis.run_uses, on its worlds ws where
     built already), judged by the backend: what `x3drbp run` refuses (naming the use, field
     and value) or notes as approximated."""
     return [(u, judge(backend, u)) for u in run_uses(scene, ws)]

@@ -51,10 +51,10 @@ from itertools import chain
 import numpy as np
 import pybullet as p
 
-from x3d_core import rotation as R
-from x3d_core.collision import Collisions, ContactPoints, friction_directions
-from x3d_core.engine import BlewUp, Unsupported
-from x3d_core.world import STATIC, Joint, State, World
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import Collisions, ContactPoints, friction_directions
+from x3d_core.semantics.engine import BlewUp, Unsupported
+from x3d_core.semantics.world import STATIC, Joint, State, World
 
 from .base import BODIES, JOINTS, SEMI_IMPLICIT, Backend, in_substeps, approximate, native, unsupported
 

@@ -55,10 +55,10 @@ from dataclasses import dataclass
 import dartpy as dart
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.collision import Collisions, ContactPoints, Geometry
-from x3d_core.engine import BlewUp, Unsupported
-from x3d_core.world import STATIC, Joint, State, World
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import Collisions, ContactPoints, Geometry
+from x3d_core.semantics.engine import BlewUp, Unsupported
+from x3d_core.semantics.world import STATIC, Joint, State, World
 
 from .base import BODIES, JOINTS, SEMI_IMPLICIT, SMALLEST_NORMAL, Backend, approximate, below, native, unsupported
 

@@ -82,10 +82,10 @@ from pydrake.multibody.tree import (BallRpyJoint, FixedOffsetFrame, JacobianWrtV
 from pydrake.systems.analysis import ResetIntegratorFromFlags, Simulator
 from pydrake.systems.framework import DiagramBuilder
 
-from x3d_core import rotation as R
-from x3d_core.collision import Collisions, ContactPoints, Geometry
-from x3d_core.engine import BlewUp, Unsupported
-from x3d_core.world import STATIC, Joint, State, World
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import Collisions, ContactPoints, Geometry
+from x3d_core.semantics.engine import BlewUp, Unsupported
+from x3d_core.semantics.world import STATIC, Joint, State, World
 
 from .base import BODIES, JOINTS, Backend, approximate, native, unsupported
 
@@ -208,7 +208,7 @@ class DrakeSimulation:
         b = world.bodies
         # Drake enforces joint limits in discrete plants only (its continuous plant ignores them)
         self.discrete = world.collisions is not None or _limited(world)
-        # x3d_core.engine.target_accuracy: what a run reports of its integration
+        # x3d_core.semantics.engine.target_accuracy: what a run reports of its integration
         self.target_accuracy = None if self.discrete else ACCURATE if world.prefer_accuracy else ACCURACY
         for k in world.loop_joints:
             j = world.joints[k]

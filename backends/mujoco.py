@@ -45,10 +45,10 @@ os.environ.setdefault("MUJOCO_GL", "disable")
 import mujoco  # noqa: E402  (after MUJOCO_GL)
 import numpy as np  # noqa: E402
 
-from x3d_core import rotation as R
-from x3d_core.collision import Collisions, ContactPoints, Geometry, friction_directions
-from x3d_core.engine import BlewUp, Unsupported
-from x3d_core.world import STATIC, World, State
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import Collisions, ContactPoints, Geometry, friction_directions
+from x3d_core.semantics.engine import BlewUp, Unsupported
+from x3d_core.semantics.world import STATIC, World, State
 
 from .base import BODIES, JOINTS, RK4, SEMI_IMPLICIT, Backend, Declared, Support, approximate, native, unsupported
 

@@ -51,10 +51,10 @@ from typing import NamedTuple
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.collision import Collisions, ContactPoints, ContactParameters, Geometry
-from x3d_core.engine import BlewUp, Unsupported, engine_abort
-from x3d_core.world import STATIC, Joint, State, World
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import Collisions, ContactPoints, ContactParameters, Geometry
+from x3d_core.semantics.engine import BlewUp, Unsupported, engine_abort
+from x3d_core.semantics.world import STATIC, Joint, State, World
 
 from . import ode_lib as ode
 from .base import BODIES, JOINTS, SEMI_IMPLICIT, SMALLEST_NORMAL, Backend, approximate, below, native, unsupported
@@ -76,7 +76,7 @@ _ALL_PAIRS = 8000
 def _fatal(kind: str, number: int, text: str) -> None:
     """ODE's error and debug handler: ODE aborts the process once it returns (an assertion
     such as a quaternion it cannot normalise, after an infinite spin), so the run ends here
-    as a blow-up, with the frames before it (x3d_core.engine.engine_abort)."""
+    as a blow-up, with the frames before it (x3d_core.semantics.engine.engine_abort)."""
     engine_abort(f"ODE {kind} {number}: {text.strip()}")
 
 

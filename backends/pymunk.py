@@ -1,8 +1,8 @@
 """pymunk backend (Chipmunk2D): planar worlds only, a fourth opinion on 2D scenes.
 
-x3d_core.planar decides whether each body stays in its plane z = c (parallel planes
+x3d_core.semantics.planar decides whether each body stays in its plane z = c (parallel planes
 allowed: shapes that can never meet across them are kept apart) and gives its shapes'
-sections; a world that does not is refused (x3d_core.engine.Unsupported, naming the
+sections; a world that does not is refused (x3d_core.semantics.engine.Unsupported, naming the
 body or joint, the field and its value). Each moving body is a pymunk body with the
 mass, the moment of inertia about z, and the centre of mass in its frame; fixed bodies
 and static collidables are shapes on the space's static body, in world coordinates.
@@ -39,12 +39,12 @@ import numpy as np
 import pymunk
 import pymunk.batch as batch
 
-from x3d_core import planar
-from x3d_core import rotation as R
-from x3d_core.collision import Collisions, ContactPoints
-from x3d_core.engine import Unsupported
-from x3d_core.schema import node_type
-from x3d_core.world import STATIC, Joint, State, World
+from x3d_core.model.schema import node_type
+from x3d_core.semantics import planar
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import Collisions, ContactPoints
+from x3d_core.semantics.engine import Unsupported
+from x3d_core.semantics.world import STATIC, Joint, State, World
 
 from .base import BODIES, JOINTS, POSITION_FIRST, Backend, approximate, native, unsupported
 
@@ -317,7 +317,7 @@ class PymunkSimulation:
         return out
 
     def set_velocities(self, linear: np.ndarray, angular: np.ndarray) -> None:
-        """The in-plane parts (x3d_core.planar keeps the rest zero)."""
+        """The in-plane parts (x3d_core.semantics.planar keeps the rest zero)."""
         if self.bodies:
             rows = self.rows
             batch.set_space_bodies(self.space, _VELOCITIES,
@@ -337,12 +337,12 @@ class PymunkSimulation:
 class PymunkBackend(Backend):
     name = "pymunk"
     integration = POSITION_FIRST  # Chipmunk moves a body, then adds the step's loads (module notes)
-    scope = "planar scenes only"  # x3d_core.planar: a world whose bodies leave their plane is refused
+    scope = "planar scenes only"  # x3d_core.semantics.planar: a world whose bodies leave their plane is refused
     declared = {
-        **unsupported("not built: x3d_core.planar cuts 2D sections for a world's collider alone, so a collection "
+        **unsupported("not built: x3d_core.semantics.planar cuts 2D sections for a world's collider alone, so a collection "
                       "only a sensor watches has no Chipmunk shapes (shapes_collide could test them without a response)",
                       "CollisionSensor.collider.watchedOnly"),
-        # planar worlds only (x3d_core.planar): out-of-plane values are refused, in-plane ones native
+        # planar worlds only (x3d_core.semantics.planar): out-of-plane values are refused, in-plane ones native
         **native(*(f for f in BODIES if f != "RigidBodyCollection.gravity"), *JOINTS,
                  "RigidBodyCollection.gravity", "RigidBodyCollection.errorCorrection",
                  "SingleAxisHingeJoint.stopErrorCorrection",
@@ -364,7 +364,7 @@ class PymunkBackend(Backend):
         **approximate("Chipmunk's sequential-impulse solver runs this many sweeps over joints and contacts "
                       "together, as ODE's quick-step does (at least 1)", "RigidBodyCollection.iterations"),
         **approximate("a pivot in the plane: the joint's other freedoms turn out of the plane, where "
-                      "x3d_core.planar has shown nothing drives them", "UniversalJoint"),
+                      "x3d_core.semantics.planar has shown nothing drives them", "UniversalJoint"),
         **approximate("pymunk bounces per contact pair, not per point: the bounce is dropped where the pair's "
                       "mean approach speed is at most minBounceSpeed (ODE decides point by point; the same "
                       "wherever a pair's points approach alike, as a face landing flat)",

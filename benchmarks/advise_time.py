@@ -27,7 +27,7 @@ barely moves), with the load average before it. Each run starts with an empty ru
 Python's bytecode compiled beforehand (benchmarks/measure.py: compiled_env).
 
 With --against REV, a second side: the same command at revision REV (its files from git
-archive, run with `python -m conformance.cli` in that tree), the two sides taking turns, and
+archive, run with `python -m x3drbp` in that tree, `-m conformance.cli` before the command line's package), the two sides taking turns, and
 the ratio of this tree's medians to REV's.
 
     python benchmarks/advise_time.py [--scene chain_and_ball|ball_chain] [--repeat 3] [--target S]
@@ -54,7 +54,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 
-from measure import compiled_env, tree_at  # noqa: E402  (benchmarks/measure.py, beside this script)
+from measure import command_line, compiled_env, packages, tree_at  # noqa: E402  (benchmarks/measure.py, beside this script)
 
 LINKS = 4
 LINK_LENGTH = 0.3  # m
@@ -186,8 +186,7 @@ def main(argv: list[str] | None = None) -> int:
         if args.against:
             sides[args.against] = tree_at(args.against, ROOT, tmp)
         for tree in sides.values():  # the bytecode cache filled before any run is timed
-            subprocess.run([sys.executable, "-m", "compileall", "-q",
-                            *(os.path.join(tree, d) for d in ("x3d_core", "backends", "conformance", "reports"))],
+            subprocess.run([sys.executable, "-m", "compileall", "-q", *packages(tree)],
                            env=env, check=True, stdout=subprocess.DEVNULL)
         print("$ " + " ".join(["x3drbp", "advise", os.path.basename(scene), *args.advise]) + f"  ({bench.said})\n",
               flush=True)
@@ -196,7 +195,7 @@ def main(argv: list[str] | None = None) -> int:
         for k in range(args.repeat):
             for side, tree in sides.items():
                 fresh = dict(env, X3DRBP_CACHE=os.path.join(tmp, f"cache-{len(runs[side])}-{side.replace('/', '_')}"))
-                load, wall, cpu, out = _timed([sys.executable, "-m", "conformance.cli", "advise", scene, *args.advise],
+                load, wall, cpu, out = _timed([*command_line(tree), "advise", scene, *args.advise],
                                               tree, fresh)
                 if out.returncode != 0:
                     print(f"x3drbp advise ({side}) exited {out.returncode}:\n{out.stderr}", file=sys.stderr)

@@ -37,7 +37,7 @@ native build of a scene (native_run.SCENES) is listed as such; pymunk (2D) has t
 (native_pymunk.py).
 
 With --against REV, a third side: `x3drbp run` of revision REV (its files from git archive,
-run with `python -m conformance.cli` in that tree), for a before and after in one run: its
+run with `python -m x3drbp` in that tree, `-m conformance.cli` before the command line's package), for a before and after in one run: its
 process CPU and its simulation CPU, each over the native one.
 
     python benchmarks/engine_speed.py [--duration 2] [--repeat 5] [--backends mujoco,bullet,dart,ode,physx,drake]
@@ -61,10 +61,10 @@ sys.path[:0] = [ROOT, HERE]
 
 import car  # noqa: E402  (benchmarks/car.py, beside this script)
 import native_run  # noqa: E402
-from measure import compiled_env, process_cpu, tree_at  # noqa: E402
+from measure import command_line, compiled_env, process_cpu, tree_at  # noqa: E402
 import pile  # noqa: E402
 import run_overhead  # noqa: E402
-from x3d_core.trace import read_view  # noqa: E402
+from x3d_core.traces.trace import read_view  # noqa: E402
 
 DT, FRAME_RATE = 1 / 240, 60
 TARGET = 1.15
@@ -126,7 +126,7 @@ def _commands(scene: str, backend: str, path: str, duration: float, out: str,
              ([os.path.join(os.path.dirname(sys.executable), "x3drbp"), *run, out + ".npz", "--timing",
                out + ".json"], ROOT, out + ".json")]
     if before:
-        sides.append(([sys.executable, "-m", "conformance.cli", *run, out + "-before.npz", "--timing",
+        sides.append(([*command_line(before), *run, out + "-before.npz", "--timing",
                        out + "-before.json"], before, out + "-before.json"))
     return sides
 

@@ -7,11 +7,11 @@ SingleAxisHingeJoint, SliderJoint and UniversalJoint, and a CollisionCollection 
 every collidable by USE. Then measures, best of --repeat runs each, in one process:
 
   * lxml.etree.fromstring(data, parser): the bare XML parse of the same bytes;
-  * x3d_core.load.load(path): the full load, with validation;
+  * x3d_core.encodings.load.load(path): the full load, with validation;
 
 and the peak memory of one load (tracemalloc: Python allocations only; and the process
 max RSS before/after, in a fresh subprocess that does nothing but the load). Writes the
-ClassicVRML variant too when x3d_core.vrml_writer exists, and times its load.
+ClassicVRML variant too when x3d_core.encodings.vrml_writer exists, and times its load.
 
     python benchmarks/load_large.py [--bodies 5000] [--repeat 5] [--out PATH] [--profile [N]]
 
@@ -42,9 +42,9 @@ if ROOT not in sys.path:
 
 from lxml import etree  # noqa: E402
 
-from x3d_core.analysis import summarize  # noqa: E402
-from x3d_core.load import load  # noqa: E402
-from x3d_core.vrml_writer import write_vrml  # noqa: E402
+from x3d_core.encodings.load import load  # noqa: E402
+from x3d_core.encodings.vrml_writer import write_vrml  # noqa: E402
+from x3d_core.semantics.analysis import summarize  # noqa: E402
 
 SEED = 20240515
 JOINT_CYCLE = ("BallJoint", "SingleAxisHingeJoint", "SliderJoint", "UniversalJoint")
@@ -187,8 +187,14 @@ import json, resource, sys
 sys.path.insert(0, sys.argv[3])
 import lxml.etree as etree
 import numpy
-from x3d_core.load import load
-from x3d_core import analysis, build, fields, schema, validate, xml_loader, vrml_loader
+from x3d_core.encodings import build
+from x3d_core.encodings import xml_loader
+from x3d_core.encodings import vrml_loader
+from x3d_core.encodings.load import load
+from x3d_core.model import fields
+from x3d_core.model import schema
+from x3d_core.semantics import analysis
+from x3d_core.semantics import validate
 
 
 def peak():

@@ -29,7 +29,11 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+
+from measure import command_line  # noqa: E402  (benchmarks/measure.py, beside this script)
 BEFORE = "ba3d4dd"  # main before the fork server and the binary traces
 
 
@@ -45,7 +49,7 @@ def _job(root: str, out: str, cache: str | None) -> dict:
     env = {**os.environ, **({"X3DRBP_CACHE": cache} if cache else {})}
     started, cpu, load = time.perf_counter(), _cpu(), os.getloadavg()[0]
     for argv in (["check", "-q", "conformance/cases", "scenes"], ["report", "-q", "--out", out]):
-        subprocess.run([sys.executable, "-m", "conformance.cli", *argv], cwd=root, check=True, env=env,
+        subprocess.run([*command_line(root), *argv], cwd=root, check=True, env=env,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     wall, cpu = time.perf_counter() - started, _cpu() - cpu
     with open(os.path.join(out, "report.json"), encoding="utf-8") as f:

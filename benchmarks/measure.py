@@ -85,7 +85,7 @@ def compiled_env(folder: str, **extra: str) -> dict[str, str]:
     imports from source (measured: 85 ms of CPU more for an `x3drbp run` of the car, 25 ms for
     its native script). Time a child only after a first, untimed run with the same environment
     has filled the cache. One OpenBLAS thread on both sides, as `x3drbp` sets for itself
-    (conformance/cli): numpy's spinning threads cost each process about 0.1 s of CPU, the same on
+    (x3drbp): numpy's spinning threads cost each process about 0.1 s of CPU, the same on
     both sides, which would flatter every ratio, and a native script could set it as well."""
     env = dict(os.environ, PYTHONPYCACHEPREFIX=os.path.join(folder, "pycache"), OPENBLAS_NUM_THREADS="1", **extra)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
@@ -100,3 +100,18 @@ def tree_at(rev: str, root: str, folder: str) -> str:
     with tarfile.open(fileobj=io.BytesIO(data)) as tar:
         tar.extractall(out, filter="data")
     return out
+
+
+def command_line(tree: str) -> list[str]:
+    """How to start the x3drbp command in a tree, run with the tree as its folder: `python -m
+    x3drbp`, or `python -m conformance.cli` in a tree from before the command line had its own
+    package (the editable install would otherwise find this tree's x3drbp from that one)."""
+    own = os.path.isdir(os.path.join(tree, "x3drbp"))
+    return [sys.executable, "-m", "x3drbp" if own else "conformance.cli"]
+
+
+def packages(tree: str) -> list[str]:
+    """The tree's package folders, for its bytecode to be compiled before any run is timed."""
+    return [p for p in (os.path.join(tree, d) for d in ("x3d_core", "backends", "conformance", "reports", "x3drbp"))
+            if os.path.isdir(p)]
+

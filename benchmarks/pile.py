@@ -474,7 +474,7 @@ def contact_counts(trace) -> float:
 def refusal(name: str, backend, path: str) -> str | None:
     """Why `x3drbp run` would refuse the scene on this backend (exit 3), or None."""
     from backends import base
-    from x3d_core.load import load
+    from x3d_core.encodings.load import load
     refused = [str(u) for u, d in base.judged(backend, load(path)) if d.support is base.Support.UNSUPPORTED]
     return f"{name} refuses {', '.join(refused)}" if refused else None
 
@@ -502,10 +502,10 @@ def main(argv: list[str] | None = None) -> int:
     # x3drbp's own modules here only: benchmarks/native_run.py imports the native builds above
     # into a process that must not pay for them
     from backends import base
-    from x3d_core.engine import Unsupported
-    from x3d_core.evaluator import RunSettings, run
-    from x3d_core.load import load
-    from x3d_core.world import worlds
+    from x3d_core.semantics.engine import Unsupported
+    from x3d_core.semantics.evaluator import RunSettings, run
+    from x3d_core.encodings.load import load
+    from x3d_core.semantics.world import worlds
     if min(args.duration, args.dart_duration) < CHECK_T:
         ap.error(f"--duration and --dart-duration must reach the {CHECK_T} s check")
     folder = tempfile.mkdtemp(prefix="x3drbp-pile-bench-")

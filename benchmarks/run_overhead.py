@@ -287,9 +287,9 @@ def main(argv: list[str] | None = None) -> int:
     # x3drbp's own modules here only: benchmarks/native_run.py imports the native builds above
     # into a process that must not pay for them
     from backends import base
-    from x3d_core.evaluator import RunSettings, run
-    from x3d_core.load import load
-    from x3d_core.world import worlds
+    from x3d_core.semantics.evaluator import RunSettings, run
+    from x3d_core.encodings.load import load
+    from x3d_core.semantics.world import worlds
     folder = tempfile.mkdtemp(prefix="x3drbp-run-bench-")
     paths = {}
     for name, text in (("chain", chain_x3d()), ("boxes", boxes_x3d())):

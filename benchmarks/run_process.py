@@ -33,7 +33,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import run_overhead  # noqa: E402  (benchmarks/run_overhead.py, beside this script: the chain's scene)
 from measure import process_wall  # noqa: E402  (benchmarks/measure.py)
-from x3d_core.trace import read_view  # noqa: E402
+from x3d_core.traces.trace import read_view  # noqa: E402
 
 LINKS = 10
 SAME = 1e-9  # the two sides' values agree to rounding where they step the same model

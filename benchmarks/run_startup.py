@@ -34,7 +34,7 @@ sys.path.insert(0, ROOT)
 from conformance.results import Settings  # noqa: E402
 from conformance.runner import children, fork_server  # noqa: E402
 
-from measure import compiled_env, process_cpu, tree_at  # noqa: E402  (benchmarks/measure.py, beside this script)
+from measure import command_line, compiled_env, process_cpu, tree_at  # noqa: E402  (benchmarks/measure.py, beside this script)
 
 SCENE = os.path.join("scenes", "examples", "pendulum.x3d")
 
@@ -64,7 +64,7 @@ def main() -> int:
                     "import numpy, lxml": ([sys.executable, "-c", "import numpy, lxml.etree"], ROOT)}
         for b in backends:
             for label, tree in trees.items():
-                commands[f"x3drbp run ({b}){label}"] = ([sys.executable, "-m", "conformance.cli", "run", SCENE,
+                commands[f"x3drbp run ({b}){label}"] = ([*command_line(tree), "run", SCENE,
                                                          "--backend", b, "--duration", repr(1 / 240), "--trace",
                                                          trace, "-q"], tree)
         for cmd, cwd in commands.values():  # the bytecode cache filled

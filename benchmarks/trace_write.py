@@ -5,7 +5,7 @@ Two scenes from run_overhead.py, run on MuJoCo at dt = 1/240 s with a frame ever
 the 10-link chain for 5 s (12k rows) and the 100 free boxes for 10 s (240k rows). Each
 side (the earlier commit cloned into a temporary folder, and this tree) runs each scene
 once in a fresh interpreter and times, best of --repeat: Trace.write of the CSV, read_view
-of it, and, where the tree has x3d_core/trace_npz.py, write_npz of Trace.view() and
+of it, and, where the tree has x3d_core's trace_npz, write_npz of Trace.view() and
 read_view of the .npz. The last column checks that the .npz reads as the CSV does.
 
     python benchmarks/trace_write.py [--before ba3d4dd] [--repeat 5]
@@ -29,13 +29,16 @@ BEFORE = "ba3d4dd"  # main before this round: the CSV writer formatting each num
 
 # run in the tree measured (cwd and PYTHONPATH): argv = scene, folder, repeat
 MEASURE = r"""
-import json, os, sys, time
+import importlib.util, json, os, sys, time, warnings
 import numpy as np
+# x3d_core's flat paths: a tree from before its wings has only those, and a later tree still
+# imports them (x3d_core/__init__.py), with the DeprecationWarning silenced here
+warnings.simplefilter("ignore", DeprecationWarning)
 from backends import base
-from x3d_core.evaluator import RunSettings, run
 from x3d_core.load import load
-from x3d_core.trace import read_view
+from x3d_core.evaluator import RunSettings, run
 from x3d_core.world import worlds
+from x3d_core.trace import read_view
 scene, folder, repeat = sys.argv[1], sys.argv[2], int(sys.argv[3])
 trace = run(worlds(load(scene)), base.load("mujoco"), RunSettings(duration=float(sys.argv[4]), dt=1 / 240,
                                                                   frame_rate=60))
@@ -53,7 +56,7 @@ def best(fn):
 csv, npz = os.path.join(folder, "t.csv"), os.path.join(folder, "t.npz")
 out = {"rows": sum(1 for _ in trace.events()), "csv_write": best(lambda: trace.write(csv)),
        "csv_read": best(lambda: read_view(csv))}
-if os.path.exists(os.path.join("x3d_core", "trace_npz.py")):  # this tree's own (x3d_core is a namespace package)
+if importlib.util.find_spec("x3d_core.trace_npz") is not None:  # this tree's own
     from x3d_core.trace_npz import write_npz
     out["npz_write"] = best(lambda: write_npz(trace.view(), npz))
     out["npz_read"] = best(lambda: read_view(npz))

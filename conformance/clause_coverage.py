@@ -24,8 +24,10 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass, field
 
-from x3d_core import atomic, editions, schema
-from x3d_core import fields as F
+from x3d_core.files import atomic
+from x3d_core.model import editions
+from x3d_core.model import schema
+from x3d_core.model import fields as F
 
 from conformance import case_bases, clause_statements, clause_text, coverage
 from conformance.cases import BY_NAME, CASES, ROOT
@@ -446,7 +448,7 @@ number and name as the text prints them (an id reads `37.4.10 RigidBody/12`); a 
 on the sentence whose colon introduces it. EXAMPLE and NOTE paragraphs are sentences too: being
 informative they ask nothing, so they are not observable unless a case holds a reading one of them
 fixes. Every row of a node signature (field, access, type, default, range, as
-`x3d_core/clause37.py` reads them; an id reads `RigidBody.mass`), and every row of Table 37.3, a
+`x3d_core/model/clause37.py` reads them; an id reads `RigidBody.mass`), and every row of Table 37.3, a
 level's prerequisite components taken as one. Headings and table titles are not statements: a
 heading names the subclause its statements are listed under (one that only heads further
 subclauses, such as 37.2.2, lists none), a title names a table (Tables 37.1 and 37.2 print no

@@ -5,7 +5,7 @@ What counts as a statement (the page's header says the same):
 - each prose sentence of a subclause, as conformance.clause_text cuts it (a numbered list goes on
   the sentence whose colon introduces it); EXAMPLE and NOTE paragraphs are sentences too: they
   are informative as ISO writes them, but one may still fix a reading a case holds to;
-- each row of a node signature (x3d_core.clause37): node, field, access, type, default, range;
+- each row of a node signature (x3d_core.model.clause37): node, field, access, type, default, range;
 - each row of Table 37.3, the support levels: a node's support at a level, and a level's
   prerequisite components taken together as one.
 Headings and table titles are not statements: a heading numbers and names the subclause its
@@ -25,7 +25,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from x3d_core import clause37
+from x3d_core.model import clause37
 
 from conformance import clause_text
 

@@ -4,7 +4,7 @@ them, their paragraphs, and the sentences of those.
 One cut serves both readers of the text: tests/test_spec_quotes.py, which holds each spec basis
 to whole sentences of its subclause, and conformance/clause_coverage.py, which accounts for every
 sentence; so a sentence a basis quotes is the very sentence the coverage page lists. The text
-ships with the project's shared folder (x3d_core.clause37.TEXT), not with x3drbp: read() gives
+ships with the project's shared folder (x3d_core.model.clause37.TEXT), not with x3drbp: read() gives
 None where it is absent, and the tests that need it skip.
 """
 
@@ -14,7 +14,7 @@ import os
 import re
 from dataclasses import dataclass
 
-from x3d_core.clause37 import TEXT
+from x3d_core.model.clause37 import TEXT
 
 # a heading line of the text: "37.4.1 BallJoint", " cube 37.2 Concepts"
 HEADING = re.compile(r"^[ \t]*(?:cube )?(37(?:\.\d+)+) (\S.*?)[ \t]*$", re.M)

@@ -29,8 +29,10 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
-from x3d_core import atomic, schema, uom
-from x3d_core.world import forced_outputs
+from x3d_core.files import atomic
+from x3d_core.model import schema
+from x3d_core.model import uom
+from x3d_core.semantics.world import forced_outputs
 
 from conformance.cases import BY_NAME, CASES, ROOT, closed_forms
 from conformance.cases.case import Case, Mutation
@@ -40,7 +42,7 @@ TABLE = os.path.join(ROOT, "docs", "field-coverage.md")
 Field = tuple[str, str]  # (node type, field name)
 
 # Fields a case is being written for (what it must show): a field, or with a third part a feature
-# (x3d_core/analysis.py); answered once a case exercises it or a mutation covers it.
+# (x3d_core/semantics/analysis.py); answered once a case exercises it or a mutation covers it.
 PENDING: dict[str, str] = {
     "RigidBody.fixed": "a fixed body's state: it stays where it is put, whatever acts on it",
     "CollisionCollection.slipFactors": "SLIP-1/SLIP-2 in appliedParameters apply slipFactors",

@@ -14,8 +14,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from x3d_core import schema
-from x3d_core.trace import TraceView
+from x3d_core.model import schema
+from x3d_core.traces.trace import TraceView
 
 def dt_label(dt: float) -> str:
     """A step as people write it: 1/240, else its %g."""
@@ -378,7 +378,7 @@ class Expected:
 
 POSITION, ORIENTATION = "position", "orientation"
 # the body outputs compared besides the pose: every RigidBody output a backend's run records
-# (x3d_core.evaluator), so every one a trace can share with it
+# (x3d_core.semantics.evaluator), so every one a trace can share with it
 LINEAR_VELOCITY, ANGULAR_VELOCITY = "linearVelocity", "angularVelocity"
 VELOCITIES = (LINEAR_VELOCITY, ANGULAR_VELOCITY)
 UNITS = {POSITION: "m", ORIENTATION: "rad", LINEAR_VELOCITY: "m/s", ANGULAR_VELOCITY: "rad/s"}  # of each kind

@@ -11,7 +11,7 @@ from collections.abc import Callable
 
 from conformance.results import RAN, BackendRun, Comparison, Crossing, Divergence, PairComparison
 
-from x3d_core.integration import lead
+from x3d_core.semantics.integration import lead
 
 from .text import energy_grew, escape, num, untemporary
 
@@ -50,7 +50,7 @@ def worst_joint(p: PairComparison, text: Callable[[str], str] = escape) -> str:
 
 def _integration(p: PairComparison, schemes: dict[str, str | None], dt: float) -> str | None:
     """Where the two backends step free motion by different schemes, what that alone parts
-    them by (x3d_core/integration.py): a reader should not take one's lag for a fault."""
+    them by (x3d_core/semantics/integration.py): a reader should not take one's lag for a fault."""
     sa, sb = schemes.get(p.a), schemes.get(p.b)
     if sa is None or sb is None or sa == sb:
         return None

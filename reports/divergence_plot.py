@@ -23,7 +23,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from conformance.results import ORIENTATION, POSITION, Comparison, Divergence, PairComparison, dt_label
-from x3d_core import atomic
+from x3d_core.files import atomic
 
 from .text import num, plotted
 
@@ -141,7 +141,7 @@ def figure(comparison: Comparison) -> Figure:
 
 
 def divergence_plot(comparison: Comparison, path: str) -> None:
-    """The figure as a PNG of SIZE at DPI, written atomically (x3d_core.atomic), without the
+    """The figure as a PNG of SIZE at DPI, written atomically (x3d_core.files.atomic), without the
     software tag matplotlib adds: the same comparison gives the same bytes."""
     png = io.BytesIO()
     figure(comparison).savefig(png, format="png", dpi=DPI, metadata={"Software": None})

@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
 from matplotlib.lines import Line2D  # noqa: E402
 
-from x3d_core import atomic  # noqa: E402
+from x3d_core.files import atomic  # noqa: E402
 
 from .sweep_tables import NO_RESULTS, measured, variation  # noqa: E402
 from .text import plotted  # noqa: E402

@@ -24,7 +24,7 @@ import urllib.parse
 import markdown as md
 
 from conformance.results import CONVENTIONS, PASS, UNSUPPORTED, Comparison
-from x3d_core import atomic
+from x3d_core.files import atomic
 
 from .advice_text import markdown as render_advice
 from .compare_text import render as render_comparison

@@ -27,12 +27,12 @@ import rerun as rr
 import rerun.blueprint as rrb
 
 from conformance.results import JOINT_OUTPUTS, ORIENTATION, POSITION, Divergence, PairComparison
-from x3d_core import atomic
-from x3d_core import rotation as R
-from x3d_core.collision import Geometry
-from x3d_core.trace import TraceView
-from x3d_core.model import Scene
-from x3d_core.world import STATIC, worlds
+from x3d_core.files import atomic
+from x3d_core.model.scene import Scene
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import Geometry
+from x3d_core.semantics.world import STATIC, worlds
+from x3d_core.traces.trace import TraceView
 
 from .rerun_shapes import marker, shape, xyzw
 
@@ -157,7 +157,7 @@ def write_recording(out: str, scene: Scene, runs: Sequence[tuple[str, TraceView]
                     pairs: Sequence[PairComparison] = ()) -> float:
     """Writes the recording of these runs (backend, parsed trace) and their comparisons to
     `out`, whole or not at all: rerun encodes it in memory (its memory sink: no file, no
-    writer thread), and the bytes go through x3d_core.atomic as every other output does. Not
+    writer thread), and the bytes go through x3d_core.files.atomic as every other output does. Not
     rr.save: its file sink writes in a thread of its own, and on a full disk it either kept
     the command waiting on a flush that never ended (deaf to SIGTERM, native code) or logged
     the error and returned, leaving a truncated .rrd under its final name. `out` a symbolic

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import rerun as rr
 
-from x3d_core.collision import Geometry
+from x3d_core.semantics.collision import Geometry
 
 CONE_SEGMENTS = 24
 MARKER_RADIUS = 0.02  # m: a body with no collidable is drawn as a point this big

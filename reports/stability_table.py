@@ -1,4 +1,4 @@
-"""The stability suite's results (stability.json, as conformance.cli.stability writes it)
+"""The stability suite's results (stability.json, as x3drbp.stability writes it)
 as markdown: a verdict per (case, dt, backend), then each case's drift figures, then a line for
 each run whose energy grew with nothing doing work on its scene, then why each run that did not
 hold gave way, linking its kept trace (a path relative to stability.md)."""

@@ -84,7 +84,7 @@ def markdown(doc: dict) -> str:
 
 
 def plot(name: str) -> str:
-    """A scene's plot, beside sweep.json (conformance/cli/sweep.py writes it)."""
+    """A scene's plot, beside sweep.json (x3drbp/sweep.py writes it)."""
     return f"sweep_{name}.png"
 
 

@@ -14,7 +14,7 @@ import urllib.parse
 from collections.abc import Callable
 
 from conformance.results import EnergyGrowth, Measure, grade
-from x3d_core.paths import printable
+from x3d_core.files.paths import printable
 
 _MARKDOWN = re.compile(r"([\\`*_\[\]#|])")  # code spans, emphasis, links and images, headings, table cells
 

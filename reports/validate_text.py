@@ -10,7 +10,7 @@ into an HTML page; a page would take escape() (reports/text.py), as the report's
 from __future__ import annotations
 
 from conformance.results import ORIENTATION, POSITION, RAN, UNITS, FrameStep, TraceComparison, Validation, dt_label
-from x3d_core.paths import printable
+from x3d_core.files.paths import printable
 
 from .compare_text import rms_max, worst_joint
 from .text import basis_cell, grade_cell, num

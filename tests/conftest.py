@@ -52,7 +52,7 @@ def scene_file(folder, body: str, name: str = "s") -> str:
 
 def loaded_scene(folder, body: str):
     """scene_file's scene, loaded, without errors."""
-    from x3d_core.load import load
+    from x3d_core.encodings.load import load
     scene = load(scene_file(folder, body))
     assert not scene.errors, [str(e) for e in scene.errors]
     return scene

@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.evaluator import RunSettings, run
-from x3d_core.load import load
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.evaluator import RunSettings, run
+from x3d_core.semantics.world import worlds
 
 DT = 1 / 240
 G = 9.81

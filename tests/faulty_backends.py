@@ -1,7 +1,7 @@
 """A child `x3drbp run` with deliberately faulty backends registered, for the tests that
 prove a crashing, hanging, raising or blowing-up engine costs one verdict, not the suite.
 
-Run as `python tests/faulty_backends.py -m conformance.cli run ...` (what children.run_child
+Run as `python tests/faulty_backends.py -m x3drbp run ...` (what children.run_child
 starts once sys.executable is a fake_child script calling this): backends named
 faulty-KIND wrap the first installed real backend and fail as KIND says at t >= 0.1 s;
 every other name loads as usual. Nothing of this is registered outside that child.
@@ -89,8 +89,8 @@ def register() -> None:
 if __name__ == "__main__":
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     argv = sys.argv[1:]
-    if argv[:2] == ["-m", "conformance.cli"]:
+    if argv[:2] == ["-m", "x3drbp"]:
         argv = argv[2:]
     register()
-    from conformance.cli import main
+    from x3drbp import main
     sys.exit(main(argv))

@@ -14,8 +14,8 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 from conftest import CASES, CORPUS, SCENES
-from x3d_core.load import load
-from x3d_core.model import LoadError
+from x3d_core.encodings.load import load
+from x3d_core.model.scene import LoadError
 
 SUFFIXES = (".x3d", ".x3dv", ".x3dj", ".wrl", ".json")
 SEED_BYTES = 200_000  # bigger seeds make slow mutants without finding more

@@ -48,7 +48,7 @@ def cpu_of(run_child) -> tuple[subprocess.CompletedProcess, float]:
 
 def x3drbp(*args: str, memory: int = MEMORY) -> subprocess.CompletedProcess:
     """`x3drbp ARGS` from the project root, limited as `run` says."""
-    return run([sys.executable, "-m", "conformance.cli", *args], memory=memory)
+    return run([sys.executable, "-m", "x3drbp", *args], memory=memory)
 
 
 def one_line(p: subprocess.CompletedProcess, status: int, pattern: str) -> str:
@@ -64,7 +64,7 @@ def one_line(p: subprocess.CompletedProcess, status: int, pattern: str) -> str:
 
 
 def leftovers(folder: str) -> list[str]:
-    """The temporary files of a write that did not finish (x3d_core.atomic's names)."""
+    """The temporary files of a write that did not finish (x3d_core.files.atomic's names)."""
     return [n for n in os.listdir(folder) if n.startswith(".x3drbp-") and n.endswith(".tmp")]
 
 

@@ -15,7 +15,7 @@ from conftest import ROOT, SCENES, case_scene, needs_ode
 from conformance.analyses import advice as A
 from conformance.analyses import sweep as S
 from conformance.analyses.sweep_metrics import Cost, Positions
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 
 TOL = 1e-3
 
@@ -279,7 +279,7 @@ def test_the_text_says_where_the_reference_favours_the_choice_or_cannot_resolve_
 ])
 def test_settings_past_a_run_s_bounds_are_bad_usage(args, says):
     # --timeout 1, one backend and one step: code that took the settings stops soon all the same
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "advise", case_scene("free_fall"), "--backends",
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "advise", case_scene("free_fall"), "--backends",
                         "pymunk", "--timeout", "1", "--dts", "1/60", *args, "-q"], cwd=ROOT, capture_output=True,
                        text=True, timeout=300)
     assert r.returncode == 2 and says in r.stderr and "Traceback" not in r.stderr, r.stderr

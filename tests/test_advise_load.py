@@ -19,7 +19,7 @@ INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
 
 def _recommended(tmp_path, scene: str, name: str) -> list:
     out = tmp_path / f"{name}.json"
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "advise", scene, "--backends", ",".join(INSTALLED),
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "advise", scene, "--backends", ",".join(INSTALLED),
                         "--dts", "1/60,1/240", "--duration", "1", "--window", "1", "-q", "--json", str(out)],
                        cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr

@@ -17,7 +17,7 @@ from conformance.analyses import advice as A
 from conformance.analyses import sweep as S
 from conformance.analyses.sweep_job import JobResult
 from conformance.analyses.sweep_metrics import Cost, Positions
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance.runner import cache
 
 TOL = 1e-3

@@ -1,4 +1,4 @@
-"""Output files are written whole or not at all (x3d_core.atomic), by every writer."""
+"""Output files are written whole or not at all (x3d_core.files.atomic), by every writer."""
 
 from __future__ import annotations
 
@@ -8,10 +8,10 @@ import re
 import pytest
 
 from conftest import ROOT
-from x3d_core import atomic
+from x3d_core.files import atomic
 
 # the one file opened for writing elsewhere: a log the report's child commands append to as they run
-LOGS = {os.path.join("conformance", "cli", "report.py")}
+LOGS = {os.path.join("x3drbp", "report.py")}
 
 
 def test_an_interrupted_write_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
@@ -68,9 +68,9 @@ def test_no_writer_opens_its_output_in_place():
     writing = re.compile(r"""open\([^)]*,\s*["'][wa]b?["']|\.savefig\(\s*path|write_text\(|write_bytes\("""
                          r"""|\.save\((?!tmp\b)""")
     found = []
-    for package in ("x3d_core", "conformance", "reports"):
+    for package in ("x3d_core", "conformance", "reports", "x3drbp"):
         for rel in _modules(package):
-            if rel == os.path.join("x3d_core", "atomic.py"):
+            if rel == os.path.join("x3d_core", "files", "atomic.py"):
                 continue
             with open(os.path.join(ROOT, rel), encoding="utf-8") as f:
                 for k, line in enumerate(f, 1):

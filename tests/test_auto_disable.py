@@ -1,4 +1,4 @@
-"""autoDisable (x3d_core/evaluator.py _AutoDisable), engine-free: a scripted simulation
+"""autoDisable (x3d_core/semantics/evaluator.py _AutoDisable), engine-free: a scripted simulation
 integrates free bodies and reports the contacts a test gives it, counting every read.
 
 The clause: "Once any one of these values is achieved, the body is considered as being at rest,
@@ -10,11 +10,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from x3d_core.collision import ContactPoints
-from x3d_core.evaluator import RunSettings, _AutoDisable, run
-from x3d_core.load import load
-from x3d_core.trace import TraceView
-from x3d_core.world import State, worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics.collision import ContactPoints
+from x3d_core.semantics.evaluator import RunSettings, _AutoDisable, run
+from x3d_core.semantics.world import State, worlds
+from x3d_core.traces.trace import TraceView
 
 from engine_run import scene_worlds
 

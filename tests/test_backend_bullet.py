@@ -17,8 +17,8 @@ from backends import base  # noqa: E402
 from backends.bullet import BACKEND  # noqa: E402
 from engine_run import (DT, G, TURNED_BODY, TURNED_ORIENTATION, last, pendulum, run_x3d, scene_worlds,  # noqa: E402
                         values)
-from x3d_core import rotation as R  # noqa: E402
-from x3d_core.engine import Unsupported  # noqa: E402
+from x3d_core.semantics import rotation as R  # noqa: E402
+from x3d_core.semantics.engine import Unsupported  # noqa: E402
 
 
 def simulate(tmp_path, body: str, *args, **kwargs):

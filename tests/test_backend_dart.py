@@ -19,8 +19,8 @@ from backends import base  # noqa: E402
 from backends.dart import BACKEND  # noqa: E402
 from engine_run import (DT, G, ODD_SCENE, assert_odd_body_reads_back, last, run_x3d, scene_worlds, times,  # noqa: E402
                         values)
-from x3d_core import rotation as R  # noqa: E402
-from x3d_core.engine import Unsupported  # noqa: E402
+from x3d_core.semantics import rotation as R  # noqa: E402
+from x3d_core.semantics.engine import Unsupported  # noqa: E402
 
 
 def simulate(tmp_path, body: str, *args, **kwargs):

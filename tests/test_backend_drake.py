@@ -15,7 +15,7 @@ pytest.importorskip("pydrake")
 from backends import base  # noqa: E402
 from backends.drake import ACCURACY, ACCURATE, BACKEND  # noqa: E402
 from engine_run import DT, G, ODD_SCENE, assert_odd_body_reads_back, run_x3d, scene_worlds  # noqa: E402
-from x3d_core.engine import Unsupported, target_accuracy  # noqa: E402
+from x3d_core.semantics.engine import Unsupported, target_accuracy  # noqa: E402
 
 
 def test_registered_under_its_name_after_the_others():

@@ -28,8 +28,8 @@ from backends import ode_lib  # noqa: E402
 from conformance.cases.closed_forms import ellipk  # noqa: E402
 from engine_run import (DT, G, ODD_BODY, ODD_SCENE, assert_odd_body_reads_back, last, run_x3d,  # noqa: E402
                         same_rotation, scene_worlds, times, values)
-from x3d_core import rotation as R  # noqa: E402
-from x3d_core.engine import Unsupported  # noqa: E402
+from x3d_core.semantics import rotation as R  # noqa: E402
+from x3d_core.semantics.engine import Unsupported  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 

@@ -20,8 +20,8 @@ from backends.physx import BACKEND  # noqa: E402
 from conformance.cases.closed_forms import ellipk  # noqa: E402
 from engine_run import (DT, G, TURNED_BODY, TURNED_ORIENTATION, last, pendulum, run_x3d, scene_worlds,  # noqa: E402
                         shape, values)
-from x3d_core import rotation as R  # noqa: E402
-from x3d_core.engine import Unsupported  # noqa: E402
+from x3d_core.semantics import rotation as R  # noqa: E402
+from x3d_core.semantics.engine import Unsupported  # noqa: E402
 
 F32 = 3e-5  # PhysX holds state in float32: 240 steps of rounding (measured 1.3e-5 m/s in free fall)
 

@@ -16,8 +16,8 @@ pytest.importorskip("pymunk")
 from backends import base  # noqa: E402
 from backends.pymunk import BACKEND  # noqa: E402
 from engine_run import DT, run_x3d, scene_worlds, shape, values  # noqa: E402
-from x3d_core.engine import Unsupported  # noqa: E402
-from x3d_core.evaluator import RunSettings, run  # noqa: E402
+from x3d_core.semantics.engine import Unsupported  # noqa: E402
+from x3d_core.semantics.evaluator import RunSettings, run  # noqa: E402
 
 
 simulate = functools.partial(run_x3d, backend=BACKEND)

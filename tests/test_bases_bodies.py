@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from x3d_core.trace import Row, TraceView, read_trace
+from x3d_core.traces.trace import Row, TraceView, read_trace
 
 from conformance import cases as C
 from conformance import results

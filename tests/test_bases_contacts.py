@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from x3d_core.trace import Row, TraceView, read_trace
+from x3d_core.traces.trace import Row, TraceView, read_trace
 
 import conformance.cases as C
 from conformance import results

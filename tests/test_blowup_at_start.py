@@ -15,7 +15,7 @@ import pytest
 from backends import base
 from conformance.results import BLEW_UP, CRASHED
 from conformance.runner.children import classify
-from x3d_core.trace import read_view
+from x3d_core.traces.trace import read_view
 
 from conftest import case_scene
 from limited import leftovers, one_line, x3drbp
@@ -55,14 +55,14 @@ def test_compare_gives_the_blow_up_as_its_reason(boom):
 
 
 TRACEBACK = """Traceback (most recent call last):
-  File "/x3drbp/x3d_core/evaluator.py", line 362, in _blew_up
+  File "/x3drbp/x3d_core/semantics/evaluator.py", line 362, in _blew_up
     raise BlewUp(f"blew up at t={t:g}: {self.world.bodies.names[row]}'s {what} is beyond "
-x3d_core.engine.BlewUp: blew up at t=0: Ball's position is beyond 1e+12 (SI units)
+x3d_core.semantics.engine.BlewUp: blew up at t=0: Ball's position is beyond 1e+12 (SI units)
 
 During handling of the above exception, another exception occurred:
 
 Traceback (most recent call last):
-  File "/x3drbp/x3d_core/trace.py", line 177, in view
+  File "/x3drbp/x3d_core/traces/trace.py", line 177, in view
     every[np.concatenate(([True], every[1:] != every[:-1]))], count)
     ~~~~~^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^
 IndexError: boolean index did not match indexed array along axis 0
@@ -72,14 +72,14 @@ FAULT = """Fatal Python error: Segmentation fault
 Current thread 0x00007f (most recent call first):
   File "/x3drbp/backends/ode.py", line 530 in step
     raise BlewUp("blew up in the step")
-  File "/x3drbp/x3d_core/evaluator.py", line 250 in run
+  File "/x3drbp/x3d_core/semantics/evaluator.py", line 250 in run
 """
 
 
 def test_a_childs_reason_is_never_a_line_of_source():
     """The error lines, not the frames and their source lines beneath a traceback's header."""
     out = classify(1, TRACEBACK)
-    assert (out.verdict, out.reason) == (BLEW_UP, f"x3d_core.engine.BlewUp: {SAID}")
+    assert (out.verdict, out.reason) == (BLEW_UP, f"x3d_core.semantics.engine.BlewUp: {SAID}")
     assert classify(1, TRACEBACK.replace("blew up", "went")).reason == (
         "uncaught exception: IndexError: boolean index did not match indexed array along axis 0")
     crashed = classify(-11, FAULT)

@@ -1,11 +1,11 @@
 """Inputs that would make loading unbounded are refused at once, in one line, exit 1.
 
 - PROTOs nested in PROTO bodies multiply: a 1 KB file whose PROTO Pk instantiates P(k-1)
-  twice, 30 deep, would expand to 2^31 nodes. x3d_core.build bounds what expansion copies
+  twice, 30 deep, would expand to 2^31 nodes. x3d_core.encodings.build bounds what expansion copies
   (MAX_EXPANDED_NODES nodes, MAX_EXPANDED_BYTES of array values) and stops at the instance
   that passes a bound; a modest PROTO scene still expands.
-- A named pipe would block a reader forever and /dev/zero never ends: x3d_core.load reads
-  through x3d_core.inputs.read_regular, which refuses what is not a regular file before a
+- A named pipe would block a reader forever and /dev/zero never ends: x3d_core.encodings.load reads
+  through x3d_core.files.inputs.read_regular, which refuses what is not a regular file before a
   byte is read, as a scene given to `check` or `run` and as an entry of a folder given to
   `check` (reported as one error line; the rest of the folder is still checked).
 
@@ -25,9 +25,9 @@ import pytest
 
 from limited import cpu_of
 
-from x3d_core import build
-from x3d_core.load import load
-from x3d_core.model import LoadError
+from x3d_core.encodings import build
+from x3d_core.encodings.load import load
+from x3d_core.model.scene import LoadError
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TIMEOUT_S = 300  # a hang guard only, far past a busy machine's slowest: the bound is CPU_S
@@ -99,7 +99,7 @@ def _limit_memory():
 def cli(*args: str, limit_memory: bool = False) -> tuple[subprocess.CompletedProcess, float]:
     """x3drbp ARGS and the CPU seconds it spent."""
     try:
-        return cpu_of(lambda: subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT,
+        return cpu_of(lambda: subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=ROOT,
                                              capture_output=True, text=True, errors="replace", timeout=TIMEOUT_S,
                                              env=ENV, preexec_fn=_limit_memory if limit_memory else None))
     except subprocess.TimeoutExpired:
@@ -250,7 +250,7 @@ def test_reading_a_small_file_allocates_its_size_not_the_limit(tmp_path):
     """read_regular asks for what fstat says (read(n) allocates n bytes up front: reading
     limit + 1 cost every load 200 MiB); a file that grows while read is still bounded."""
     import tracemalloc
-    from x3d_core.inputs import InputRefused, read_regular
+    from x3d_core.files.inputs import InputRefused, read_regular
     small = tmp_path / "small.x3d"
     small.write_bytes(b"<X3D/>" * 100)
     tracemalloc.start()

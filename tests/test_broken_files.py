@@ -79,7 +79,7 @@ def rel(name: str) -> str:
 
 
 def check(*args: str, **kwargs) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "conformance.cli", "check", *args], cwd=REPO,
+    return subprocess.run([sys.executable, "-m", "x3drbp", "check", *args], cwd=REPO,
                           capture_output=True, text=True, errors="replace", timeout=TIMEOUT_S, **kwargs)
 
 

@@ -18,7 +18,8 @@ import pytest
 from conformance import case_bases, clause_coverage, clause_statements, clause_text
 from conformance.cases import BY_NAME, CASES
 from conformance.results import SPEC
-from x3d_core import clause37, uom
+from x3d_core.model import clause37
+from x3d_core.model import uom
 
 pytestmark = pytest.mark.skipif(
     not (os.path.isfile(clause_text.TEXT) and os.path.isfile(uom.UOM)),

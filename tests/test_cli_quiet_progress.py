@@ -20,16 +20,16 @@ import pytest
 from backends import base
 from conftest import ROOT, SCENES
 from conformance import cases as C
-from conformance import cli
+import x3drbp as cli
 from conformance import results
 from conformance.analyses import stability as S
-from conformance.cli import main as cli_main
-from conformance.cli.run import LEAD, NAMED, approximation
+from x3drbp import main as cli_main
+from x3drbp.run import LEAD, NAMED, approximation
 from conformance.results import Settings
 from conformance.runner import children, verdicts
 from reports.text import link
-from x3d_core.analysis import Use
-from x3d_core.load import load
+from x3d_core.encodings.load import load
+from x3d_core.semantics.analysis import Use
 
 from fake_child import fake_python
 
@@ -75,7 +75,7 @@ def test_version_is_the_installed_distributions(capsys):
         cli_main(["--version"])
     assert e.value.code == 0
     assert capsys.readouterr().out == f"x3drbp {importlib.metadata.version('x3drbp')}\n"
-    done = subprocess.run([sys.executable, "-m", "conformance.cli", "--version"], cwd=ROOT, capture_output=True,
+    done = subprocess.run([sys.executable, "-m", "x3drbp", "--version"], cwd=ROOT, capture_output=True,
                           text=True, timeout=60)
     assert (done.returncode, done.stdout, done.stderr) == (0, f"x3drbp {importlib.metadata.version('x3drbp')}\n", "")
 

@@ -19,8 +19,8 @@ pytest.importorskip("pybullet")
 
 from backends.bullet import BACKEND  # noqa: E402
 from engine_run import DT, G, scene_worlds  # noqa: E402
-from x3d_core import rotation as R  # noqa: E402
-from x3d_core.collision import ContactPoints  # noqa: E402
+from x3d_core.semantics import rotation as R  # noqa: E402
+from x3d_core.semantics.collision import ContactPoints  # noqa: E402
 
 FLOOR = ("<Group><CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape containerField='shape'>"
          "<Box size='20 1 20'/></Shape></CollidableShape></Group>")

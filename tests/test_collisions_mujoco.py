@@ -18,7 +18,7 @@ pytest.importorskip("mujoco")
 import backends.mujoco as mj  # noqa: E402
 from backends.mujoco import BACKEND  # noqa: E402
 from engine_run import DT, G, scene_worlds  # noqa: E402
-from x3d_core.collision import friction_directions  # noqa: E402
+from x3d_core.semantics.collision import friction_directions  # noqa: E402
 
 FLOOR = "<CollidableShape DEF='Floor' translation='0 -0.5 0'><Shape><Box size='20 1 20'/></Shape></CollidableShape>"
 

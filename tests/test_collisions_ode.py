@@ -18,7 +18,7 @@ except ImportError as e:
     pytest.skip(f"ODE is not installed: {e}", allow_module_level=True)
 
 from engine_run import DT, scene_worlds, shape  # noqa: E402
-from x3d_core.evaluator import RunSettings, run  # noqa: E402
+from x3d_core.semantics.evaluator import RunSettings, run  # noqa: E402
 
 FLOOR = shape("<Box size='10 1 10'/>", "Floor", "translation='0 -0.5 0'")  # top face at y = 0
 

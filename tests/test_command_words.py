@@ -13,7 +13,7 @@ from conftest import ROOT, SCENES
 
 
 def _x3drbp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT, capture_output=True,
+    return subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=ROOT, capture_output=True,
                           text=True, timeout=300)
 
 
@@ -48,7 +48,7 @@ def test_a_list_option_that_names_nothing_is_bad_usage_not_the_default(tmp_path,
     """`--cases ,` ran every case (and `--backends ,` every backend), as if the option were not
     given, where `--dts ,` was already refused as a mistake."""
     from conformance.analyses import validation
-    from conformance.cli import main as cli_main
+    from x3drbp import main as cli_main
     from conformance.runner import verdicts
 
     def ran(*args, **kwargs):

@@ -12,13 +12,13 @@ import numpy as np
 import pytest
 
 from conformance.runner import children, probe
-from x3d_core.trace import TraceView
-from conformance.cli import main as cli_main
+from x3d_core.traces.trace import TraceView
+from x3drbp import main as cli_main
 from conformance.analyses.compare import compare_pair
 from conformance.results import Comparison, PairComparison
 from conftest import SCENES
 from reports.compare_text import render
-from x3d_core.trace import Row
+from x3d_core.traces.trace import Row
 
 PENDULUM = os.path.join(SCENES, "examples", "pendulum.x3d")
 TIMES = np.arange(0, 11) * 0.05  # 0 ... 0.5 s

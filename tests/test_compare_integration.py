@@ -11,14 +11,14 @@ import pytest
 
 from backends import base
 from conformance.analyses.compare import compare_all
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance.results import RAN, BackendRun, Comparison
 from conftest import case_scene
 from reports.compare_text import render
-from x3d_core.evaluator import RunSettings, run
-from x3d_core.load import load
-from x3d_core.trace import TraceView
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics.evaluator import RunSettings, run
+from x3d_core.semantics.world import worlds
+from x3d_core.traces.trace import TraceView
 
 H, G, Y0 = 1 / 240, 9.81, 10.0  # free_fall's step (the default), gravity and start height
 THRESHOLDS = {"position": 1e-3, "orientation": 1e-3}
@@ -152,7 +152,7 @@ def test_preferring_accuracy_changes_the_schemes_and_the_note_follows(tmp_path, 
 
 
 def test_a_scheme_s_lead_counts_its_substeps():
-    from x3d_core.integration import in_substeps, lead
+    from x3d_core.semantics.integration import in_substeps, lead
     assert lead(base.SEMI_IMPLICIT) == 0.5 and lead(base.POSITION_FIRST) == -0.5 and lead(base.RK4) == 0.0
     assert lead(in_substeps(base.SEMI_IMPLICIT, 4)) == 0.125 and lead(in_substeps(base.RK4, 2)) == 0.0
     assert lead("velocity Verlet") is None and lead("velocity Verlet in 4 substeps") is None

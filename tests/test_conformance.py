@@ -31,10 +31,10 @@ from conformance import results
 from conformance import expectations
 from conformance.results import Expected, Settings
 from conformance.runner import children, probe, verdicts
-from conformance.cli import main as cli_main
-from x3d_core.analysis import features
-from x3d_core.load import load
-from x3d_core.trace import Row, TraceView
+from x3drbp import main as cli_main
+from x3d_core.encodings.load import load
+from x3d_core.semantics.analysis import features
+from x3d_core.traces.trace import Row, TraceView
 
 from fake_child import fake_python
 
@@ -565,7 +565,7 @@ def test_erp_cfm_spring_expectation_passes_odes_spring():
 # no backend follows in every detail
 
 def _plane_space(n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    from x3d_core.collision import friction_directions
+    from x3d_core.semantics.collision import friction_directions
     t1, t2 = friction_directions(n)
     return t1[0], t2[0]
 

@@ -12,12 +12,12 @@ import pytest
 
 from backends import base
 from conftest import CASES, CORPUS, ROOT, SCENES
-from x3d_core.analysis import SCRIPT_DIRECT_OUTPUT, features, run_features, summarize
-from x3d_core.load import load
-from x3d_core.model_diff import differences
-from x3d_core.paths import scene_files
-from x3d_core.vrml_writer import write_vrml
-from x3d_core.xml_writer import write_xml
+from x3d_core.encodings.load import load
+from x3d_core.encodings.model_diff import differences
+from x3d_core.encodings.vrml_writer import write_vrml
+from x3d_core.encodings.xml_writer import write_xml
+from x3d_core.files.paths import scene_files
+from x3d_core.semantics.analysis import SCRIPT_DIRECT_OUTPUT, features, run_features, summarize
 
 # (bodies, joints by type): counted by hand from the files (double_hinge_joint and
 # motor_joint really hold a SliderJoint, a copy/paste in the originals)
@@ -77,7 +77,7 @@ def test_corpus_scene_loads_with_right_counts(name):
 
 @needs_corpus
 def test_check_command_exits_zero_on_the_corpus():
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "check", CORPUS], cwd=ROOT,
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "check", CORPUS], cwd=ROOT,
                        capture_output=True, text=True, timeout=120)
     assert r.returncode == 0, r.stdout + r.stderr
     assert f"{len(EXPECTED)} of {len(EXPECTED)} files ok" in r.stdout
@@ -114,7 +114,7 @@ def corpus_runs(tmp_path_factory):
     def one(pair):
         name, backend = pair
         out = folder / f"{name.replace('/', '_')}.{backend}.csv"
-        r = subprocess.run([sys.executable, "-m", "conformance.cli", "run", os.path.join(CORPUS, name),
+        r = subprocess.run([sys.executable, "-m", "x3drbp", "run", os.path.join(CORPUS, name),
                             "--backend", backend, "--duration", str(RUN_SECONDS), "--trace", str(out)],
                            cwd=ROOT, capture_output=True, text=True, timeout=300)
         last = max(float(line.split(",", 1)[0]) for line in out.read_text().splitlines()[1:]) if out.exists() else None
@@ -167,7 +167,7 @@ def _script(tmp_path, script: str, route: str = "", body: str = BODY) -> str:
 
 
 def _x3drbp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT, capture_output=True, text=True,
+    return subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=ROOT, capture_output=True, text=True,
                           timeout=120)
 
 

@@ -8,7 +8,7 @@ import json
 
 import pytest
 
-from x3d_core.load import load
+from x3d_core.encodings.load import load
 
 XML = """<?xml version='1.0' encoding='UTF-8'?>
 <X3D profile='Full' version='4.0'><head/><Scene>

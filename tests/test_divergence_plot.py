@@ -30,7 +30,7 @@ def compared(tmp_path_factory) -> str:
     if not all(importlib.util.find_spec(m) for m in ("mujoco", "pybullet")):
         pytest.skip("needs mujoco and pybullet")
     out = str(tmp_path_factory.mktemp("compare") / "pendulum.json")
-    done = subprocess.run([sys.executable, "-m", "conformance.cli", "compare", PENDULUM, "--backends",
+    done = subprocess.run([sys.executable, "-m", "x3drbp", "compare", PENDULUM, "--backends",
                            "mujoco,bullet", "--duration", "0.5", "--json", out], cwd=ROOT, capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 0, done.stderr

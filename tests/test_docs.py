@@ -96,7 +96,7 @@ def test_the_home_page_is_the_readme_not_a_copy():
 
 
 def test_every_command_has_its_reference_page_linked_from_the_readme():
-    from conformance.cli import COMMANDS
+    from x3drbp import COMMANDS
     readme = _read("README.md")
     for command in COMMANDS:
         page = f"docs/commands/{command}.md"
@@ -121,15 +121,15 @@ def _options(parser: argparse.ArgumentParser) -> set[str]:
 
 def _commands() -> argparse._SubParsersAction:
     """Every command's parser, as `x3drbp` builds them."""
-    from conformance.cli import COMMANDS
+    from x3drbp import COMMANDS
     sub = argparse.ArgumentParser(prog="x3drbp").add_subparsers()
     for module in set(COMMANDS.values()):
-        importlib.import_module(f"conformance.cli.{module}").add_command(sub)
+        importlib.import_module(f"x3drbp.{module}").add_command(sub)
     return sub
 
 
 def test_every_option_of_a_command_is_on_its_page():
-    from conformance.cli import COMMANDS
+    from x3drbp import COMMANDS
     sub = _commands()
     for command in COMMANDS:
         page = _read(f"docs/commands/{command}.md")

@@ -1,5 +1,5 @@
 """A file's X3D version selects the edition of clause 37's node types: 3.x the clause's own
-signatures (x3d_core/clause37_nodes.py, generated from the text), 4.x the UOM's. The model keys
+signatures (x3d_core/model/clause37_nodes.py, generated from the text), 4.x the UOM's. The model keys
 each field by its X3D 4.0 name and keeps the file's spelling for writers and diagnostics; a
 name of the other edition is one warning line, and the field is read as it names."""
 
@@ -15,15 +15,17 @@ import pytest
 
 from backends import base
 from conftest import ROOT, SHARED, needs_ode
-from x3d_core import clause37, clause37_nodes, editions
-from x3d_core import fields as F
-from x3d_core.analysis import Use, run_uses
-from x3d_core.load import load
-from x3d_core.model_diff import differences
-from x3d_core.schema import Types, node_type
-from x3d_core.vrml_writer import write_vrml
-from x3d_core.world import worlds
-from x3d_core.xml_writer import write_xml
+from x3d_core.encodings.load import load
+from x3d_core.encodings.model_diff import differences
+from x3d_core.encodings.vrml_writer import write_vrml
+from x3d_core.encodings.xml_writer import write_xml
+from x3d_core.model import clause37
+from x3d_core.model import clause37_nodes
+from x3d_core.model import editions
+from x3d_core.model import fields as F
+from x3d_core.model.schema import Types, node_type
+from x3d_core.semantics.analysis import Use, run_uses
+from x3d_core.semantics.world import worlds
 
 TEXT = os.path.join(SHARED, "reference", "clause37-rigid-body-physics.txt")
 BODIES = "<RigidBody DEF='A' fixed='true'/><RigidBody DEF='B' position='0 -1 0'/>"
@@ -54,10 +56,10 @@ def hinge2(fields: str) -> str:
 # -- the table ---------------------------------------------------------------------------
 
 def test_the_committed_table_is_what_the_text_yields(text):
-    """x3d_core/clause37_nodes.py is the generator's output for the text (stale after either
-    changes: regenerate with python -m x3d_core.clause37)."""
+    """x3d_core/model/clause37_nodes.py is the generator's output for the text (stale after either
+    changes: regenerate with python -m x3d_core.model.clause37)."""
     with open(clause37_nodes.__file__, encoding="utf-8") as f:
-        assert f.read() == clause37.generate(text), "x3d_core/clause37_nodes.py is stale: run python -m x3d_core.clause37"
+        assert f.read() == clause37.generate(text), "x3d_core/model/clause37_nodes.py is stale: run python -m x3d_core.model.clause37"
 
 
 def test_the_text_gives_fourteen_nodes_and_three_abstract_types(text):
@@ -104,7 +106,7 @@ def test_every_field_of_the_text_is_one_x3d4_field():
 def test_every_slip_decision_is_in_the_docs():
     with open(os.path.join(ROOT, "docs", "spec-loose-ends.md"), encoding="utf-8") as f:
         docs = f.read()
-    assert "x3d_core/editions.py" in docs
+    assert "x3d_core/model/editions.py" in docs
     for slip in editions.SLIPS:
         assert f"`{slip.where}`" in docs, slip.where
 
@@ -176,7 +178,7 @@ def test_a_3_3_file_using_stopBounce1_runs_on_ode(tmp_path):
     pytest.importorskip("backends.ode", reason="ODE is not installed")
     path = xml(tmp_path, "3.3", hinge2(V3_HINGE2))
     out = tmp_path / "t.csv"
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "run", path, "--backend", "ode", "--duration", "0.25",
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "run", path, "--backend", "ode", "--duration", "0.25",
                         "--trace", str(out)], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert r.returncode == 0 and out.exists(), r.stderr
     assert "0.25,B,position," in out.read_text()

@@ -19,13 +19,13 @@ from conformance import results
 from conformance.analyses import energy
 from conformance.analyses.motion import Model, Motion
 from conformance.analyses.stability import StabilityResult
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance.results import RAN, BackendRun, Comparison, EnergyGrowth, Settings
 from conformance.runner import children, verdicts
 from reports.compare_text import render
 from reports.stability_table import markdown
-from x3d_core.load import load
-from x3d_core.trace import Row, TraceView, read_view
+from x3d_core.encodings.load import load
+from x3d_core.traces.trace import Row, TraceView, read_view
 
 INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
 G = 9.8

@@ -13,7 +13,7 @@ from conftest import ROOT, SCENES
 from conformance import results
 from conformance.runner import children, probe, verdicts
 from conformance.results import Settings
-from x3d_core.trace import read_trace
+from x3d_core.traces.trace import read_trace
 
 from fake_child import fake_python
 from faulty_backends import FAULT_AT

@@ -34,7 +34,7 @@ def needs(module: str, backend: str):
 
 
 def run(path: str, backend: str, trace: str) -> tuple[int, list[str]]:
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "run", path, "--backend", backend,
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "run", path, "--backend", backend,
                         "--duration", "0.5", "--trace", trace], cwd=ROOT, capture_output=True, text=True, timeout=120)
     lines = [ln for ln in r.stderr.splitlines() if ln.strip() and "pybullet build time" not in ln]
     assert not any("Traceback" in ln or "Warning" in ln or "WARNING" in ln for ln in lines), r.stderr
@@ -84,8 +84,8 @@ def test_bullet_under_its_turn_limit_follows_the_closed_form(tmp_path):
     rc, lines = run(scene(tmp_path, collection="gravity='0 0 0'", ball="angularVelocity='0 -150 0'"), "bullet",
                     str(out))
     assert rc == 0, lines
-    from x3d_core import rotation as R
-    from x3d_core.trace import TraceView, read_trace
+    from x3d_core.semantics import rotation as R
+    from x3d_core.traces.trace import TraceView, read_trace
     times, rotations = TraceView(read_trace(str(out))).series("Ball", "orientation")
     q = R.from_axis_angle(rotations[-1])
     expected = R.from_axis_angle([0.0, -1.0, 0.0, 150 * times[-1]])
@@ -138,7 +138,7 @@ def test_an_ode_abort_is_a_blow_up_with_the_frames_before_it(tmp_path):
     needs("ctypes", "ode")
     blew_up(scene(tmp_path, ball="torques='0 1e308 0'"), "ode", tmp_path / "o.csv",
             "blew up by t=0.0166667: ODE internal error")
-    from x3d_core.trace import read_trace
+    from x3d_core.traces.trace import read_trace
     assert {row.time for row in read_trace(str(tmp_path / "o.csv"))} == {0.0}
 
 

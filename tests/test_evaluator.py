@@ -10,12 +10,12 @@ import os
 import numpy as np
 import pytest
 
-from x3d_core import rotation as R
-from x3d_core.evaluator import RunSettings
-from x3d_core.joint_outputs import JointOutputs
-from x3d_core.load import load
-from x3d_core.trace import Trace, read_trace
-from x3d_core.world import STATIC, State, World, node_names, worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.evaluator import RunSettings
+from x3d_core.semantics.joint_outputs import JointOutputs
+from x3d_core.semantics.world import STATIC, State, World, node_names, worlds
+from x3d_core.traces.trace import Trace, read_trace
 
 
 def scene(tmp_path, body: str, name: str = "s.x3d"):
@@ -153,7 +153,7 @@ class _FakeEngine:
     name = "fake"
 
     def build(self, world, dt):
-        from x3d_core.collision import ContactPoints
+        from x3d_core.semantics.collision import ContactPoints
 
         class Sim:
             def step(self, n=1):
@@ -181,7 +181,7 @@ _SENSED_BALL = """
 
 
 def test_collision_sensor_rows_name_bodies_collidables_and_parameters(tmp_path):
-    from x3d_core.evaluator import run
+    from x3d_core.semantics.evaluator import run
     s = scene(tmp_path, _SENSED_BALL.format(
         collection="""bounce='0.4' appliedParameters='"BOUNCE" "FRICTION_COEFFICIENT_2"'"""
                    " frictionCoefficients='0.3 0.6'"))
@@ -203,7 +203,7 @@ def test_collision_sensor_rows_name_bodies_collidables_and_parameters(tmp_path):
 def test_sensor_contacts_carry_the_collections_values_that_it_does_not_apply(tmp_path):
     """37.4.4: a Contact carries the collection's parameters, applied or not, and its
     appliedParameters; frictionCoefficients 0 0 both ways is no friction: frictionDirection 0 0 0."""
-    from x3d_core.evaluator import run
+    from x3d_core.semantics.evaluator import run
     s = scene(tmp_path, _SENSED_BALL.format(collection="""bounce='0.5' surfaceSpeed='0.3 -0.7' slipFactors='0.01 0.02'
       appliedParameters='"FRICTION_COEFFICIENT_2"'"""))
     (w,) = worlds(s)
@@ -273,7 +273,7 @@ def _routed_contacts_scene(tmp_path, own_collider: str, route: bool):
 
 
 def test_contacts_routed_from_a_sensor_collide_with_its_collider(tmp_path):
-    from x3d_core.analysis import run_features
+    from x3d_core.semantics.analysis import run_features
     s = _routed_contacts_scene(tmp_path, "", route=True)
     (w,) = worlds(s)
     assert w.collisions.collider.def_name == "Watched"  # the sensor's collection, with its parameters
@@ -285,7 +285,7 @@ def test_contacts_routed_from_a_sensor_collide_with_its_collider(tmp_path):
 
 
 def test_without_the_route_or_from_another_collider_nothing_new_collides(tmp_path):
-    from x3d_core.analysis import run_features
+    from x3d_core.semantics.analysis import run_features
     s = _routed_contacts_scene(tmp_path, "", route=False)
     (w,) = worlds(s)
     assert w.collisions is None  # the sensor's collection acts on nothing: it is only watched
@@ -299,8 +299,8 @@ def test_without_the_route_or_from_another_collider_nothing_new_collides(tmp_pat
 
 
 def test_a_table_of_records_becomes_rows_per_record_then_field(tmp_path):
-    from x3d_core import fields as F
-    from x3d_core.trace import Column
+    from x3d_core.model import fields as F
+    from x3d_core.traces.trace import Column
     t = Trace()
     t.add_table(0.5, "S", "contacts", 2, [Column("depth", F.FIELD_TYPES["SFFloat"], np.array([0.25, 1e-17])),
                                           Column("body1", None, np.array(["A", "NULL"], dtype=object)),
@@ -356,7 +356,7 @@ def test_slider_force_pushes_body1_along_the_axis_it_carries_and_turns_neither(t
     from 1 0 0 to 0 1 0) on body1, -F on body2, and the decoupling torque that puts the two
     forces on one line: the pair gets no net force and no net torque, though their centres of
     mass (body1's off its origin) are not on the axis."""
-    from x3d_core.evaluator import run
+    from x3d_core.semantics.evaluator import run
     s = scene(tmp_path, """
 <RigidBodyCollection gravity='0 0 0'>
   <RigidBody DEF='Block' position='0 0 1' centerOfMass='0.3 0 0'/><RigidBody DEF='Carriage'/>
@@ -409,8 +409,8 @@ def test_an_unsound_state_stops_the_run_at_its_frame_however_the_engine_read_it(
     """The soundness check is one reduction over a state read whole (its unit quaternions within the
     bound) and over the three bounded fields plus the orientation's finiteness otherwise: either
     way a NaN, an infinity or a value past STATE_BOUND anywhere stops the run at that frame."""
-    from x3d_core.engine import BlewUp
-    from x3d_core.evaluator import run
+    from x3d_core.semantics.engine import BlewUp
+    from x3d_core.semantics.evaluator import run
     s = scene(tmp_path, "<RigidBodyCollection><RigidBody DEF='A'/><RigidBody DEF='B' position='0 1 0'/>"
                         "</RigidBodyCollection>")
     with pytest.raises(BlewUp, match=re.escape(f"blew up at t=0.1: {said}")):

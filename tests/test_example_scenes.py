@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from conftest import ROOT, SCENES
-from x3d_core.evaluator import RunSettings, run
-from x3d_core.load import load
-from x3d_core.model import Node
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.model.scene import Node
+from x3d_core.semantics.evaluator import RunSettings, run
+from x3d_core.semantics.world import worlds
 
 sys.path.insert(0, os.path.join(ROOT, "benchmarks"))
 import car  # noqa: E402  (the benchmark's scene, beside the tests' path)

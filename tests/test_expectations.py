@@ -11,8 +11,8 @@ import pytest
 from backends import base
 from conformance import cases as C
 from conformance import expectations as E
-from conformance.cli import main as cli_main
-from conformance.cli.expectations import MATRIX, write_matrix
+from x3drbp import main as cli_main
+from x3drbp.expectations import MATRIX, write_matrix
 from conformance.results import CONVENTIONS, FAIL, PASS, UNSUPPORTED, Expected, Measure, Result, accuracy, spec
 from reports.expectations_table import BEGIN, END, markdown, replace_section
 

@@ -1,4 +1,4 @@
-"""Every backend's declared table speaks x3d_core.analysis's feature names, and nothing else:
+"""Every backend's declared table speaks x3d_core.semantics.analysis's feature names, and nothing else:
 a misspelt name would leave the real feature undeclared, and so refused."""
 
 from __future__ import annotations
@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 
 from backends import base
-from x3d_core.applied import CANONICAL
-from x3d_core.schema import node_type
+from x3d_core.model.schema import node_type
+from x3d_core.semantics.applied import CANONICAL
 
 # names analysis derives beyond TYPE and TYPE.field
 DERIVED = {"inertia.offDiagonal", "limits"}

@@ -10,7 +10,7 @@ import os
 import pytest
 
 from conformance import coverage
-from x3d_core import uom
+from x3d_core.model import uom
 
 pytestmark = pytest.mark.skipif(not os.path.exists(uom.UOM), reason=(
     f"the X3D Unified Object Model is not at {uom.UOM} (it ships with the project's shared folder): "

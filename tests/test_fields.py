@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from x3d_core import fields as F
-from x3d_core.fields import FIELD_TYPES as T
+from x3d_core.model import fields as F
+from x3d_core.model.fields import FIELD_TYPES as T
 
 # (type, XML text, ClassicVRML tokens, JSON value, expected value)
 CASES = [
@@ -59,7 +59,7 @@ def test_written_text_reads_back_exactly(tname, xml, vrml, js, expected):
     t = T[tname]
     assert same(F.parse_xml(t, F.format_xml(t, expected)), expected)
     text = F.format_vrml(t, expected)
-    from x3d_core.schema import _TOKEN
+    from x3d_core.model.schema import _TOKEN
     assert same(F.parse_vrml(t, _TOKEN.findall(text)), expected)
 
 

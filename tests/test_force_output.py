@@ -10,10 +10,10 @@ import os
 
 import pytest
 
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conftest import SCENES, needs_ode
-from x3d_core.load import load
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics.world import worlds
 
 PENDULUM = os.path.join(SCENES, "examples", "pendulum.x3d")
 HINGE_OUTPUTS = ("angle", "angleRate", "body1AnchorPoint", "body2AnchorPoint")

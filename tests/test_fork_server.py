@@ -1,4 +1,4 @@
-"""The warm fork server (conformance/runner/fork_server.py, conformance/cli/run_server.py):
+"""The warm fork server (conformance/runner/fork_server.py, x3drbp/run_server.py):
 a run it forks is the same run a fresh `x3drbp run` is, byte for byte, and as isolated: its
 own session, its crash or hang one verdict, nothing left behind; a server that dies or an
 environment that changes costs a new server, never a run. Processes are found through /proc."""
@@ -49,7 +49,7 @@ def _the_run(within: float = 30.0) -> int:
     while time.monotonic() < deadline:
         server = fork_server._server
         kids = [p for p, proc in table().items() if server is not None and proc.ppid == server.proc.pid
-                and proc.state != "Z" and b"conformance.cli run" in _cmdline(p)]
+                and proc.state != "Z" and b"x3drbp run" in _cmdline(p)]
         if kids:
             return kids[0]
         time.sleep(0.02)

@@ -15,9 +15,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from conftest import ROOT
-from x3d_core.load import load
-from x3d_core.model import LoadError
-from x3d_core.vrml_loader import MAX_TOKENS
+from x3d_core.encodings.load import load
+from x3d_core.encodings.vrml_loader import MAX_TOKENS
+from x3d_core.model.scene import LoadError
 
 import fuzzing as Z
 

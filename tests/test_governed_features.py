@@ -1,5 +1,5 @@
 """A backend refuses only what it cannot honour: by the value a scene gives a field, and only
-where what the field governs exists (x3d_core/analysis.py, run_uses; backends/base.py, judged).
+where what the field governs exists (x3d_core/semantics/analysis.py, run_uses; backends/base.py, judged).
 Each class has a scene the backend now runs and a counter-scene whose refusal stays, naming
 field and value."""
 
@@ -9,15 +9,15 @@ import numpy as np
 import pytest
 
 from backends import base
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance.results import UNSUPPORTED, Expected
 from engine_run import G, shape
 from reports.expectations_table import markdown
-from x3d_core.analysis import Use, run_features, run_uses
-from x3d_core.load import load
-from x3d_core.schema import node_type
-from x3d_core.trace import read_trace
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.model.schema import node_type
+from x3d_core.semantics.analysis import Use, run_features, run_uses
+from x3d_core.semantics.world import worlds
+from x3d_core.traces.trace import read_trace
 
 CFM = "RigidBodyCollection.constantForceMix"
 MIN_BOUNCE = "CollisionCollection.minBounceSpeed"

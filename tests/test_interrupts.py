@@ -23,7 +23,7 @@ from conftest import ROOT, case_scene
 from conformance import results
 from conformance.analyses import sweep as S
 from conformance.analyses.sweep_job import JobResult
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance.runner import children, probe
 
 from fake_child import fake_python
@@ -36,10 +36,10 @@ pytestmark = pytest.mark.skipif(not os.path.isdir("/proc/self"), reason="finds p
 STOPPED_S = 120
 BACKEND = "mujoco"  # a dependency, installed wherever the project is
 # the command with sys.executable (what children start) replaced by the script argv[1] names
-DRIVER = "import sys; sys.executable = sys.argv.pop(1); from conformance.cli import main; sys.exit(main(sys.argv[1:]))"
+DRIVER = "import sys; sys.executable = sys.argv.pop(1); from x3drbp import main; sys.exit(main(sys.argv[1:]))"
 # an `x3drbp run` that ignores SIGTERM and has started a process of its own: only SIGKILL to its group ends both
 STUBBORN = f"""case "$*" in
-  *"conformance.cli run"*) trap '' TERM; sleep 300 & sleep 300; wait ;;
+  *"x3drbp run"*) trap '' TERM; sleep 300 & sleep 300; wait ;;
   *) exec "{sys.executable}" "$@" ;;
 esac
 """
@@ -75,7 +75,7 @@ def _argv(pid: int) -> list[str]:
 
 def _is_run(pid: int) -> bool:
     argv = " ".join(_argv(pid)).split()  # a fork server's run has its command line as one title
-    return any(a == "conformance.cli" and b == "run" for a, b in zip(argv, argv[1:]))
+    return any(a == "x3drbp" and b == "run" for a, b in zip(argv, argv[1:]))
 
 
 def _wait_for_runs(parent: subprocess.Popen, count: int = 1, within: float = 60) -> dict[int, int]:
@@ -129,7 +129,7 @@ def _assert_none_left(procs: dict[int, int], within: float = 3.0) -> None:
 
 
 def _start(command: str, *args: str, script: str | None = None, tmp_path=None) -> subprocess.Popen:
-    prefix = ["-c", DRIVER, fake_python(tmp_path, script)] if script else ["-m", "conformance.cli"]
+    prefix = ["-c", DRIVER, fake_python(tmp_path, script)] if script else ["-m", "x3drbp"]
     parent = subprocess.Popen([sys.executable, *prefix, command, *args], cwd=ROOT, stdin=subprocess.DEVNULL,
                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
     _started.append(parent.pid)

@@ -14,9 +14,9 @@ import pytest
 
 from backends import base
 from conftest import ROOT
-from x3d_core import rotation as R
-from x3d_core.load import load
-from x3d_core.world import undirected, worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.world import undirected, worlds
 
 INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
 HEAD = ("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Immersive' version='{version}'><head>"
@@ -36,7 +36,7 @@ def scene(tmp_path, joint: str, version: str = "4.0") -> str:
 @pytest.mark.parametrize("backend", INSTALLED)
 def test_every_backend_refuses_a_zero_hinge_axis_with_one_message(tmp_path, backend):
     path = scene(tmp_path, "<SingleAxisHingeJoint DEF='Pivot' axis='0 0 0'>BODIES</SingleAxisHingeJoint>")
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "run", path, "--backend", backend, "-q",
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "run", path, "--backend", backend, "-q",
                         "--trace", str(tmp_path / "t.csv")], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert r.returncode == 3, r.stderr
     lines = [ln for ln in r.stderr.splitlines() if "unsupported by" in ln]
@@ -104,7 +104,7 @@ def test_every_backend_runs_an_axis_of_extreme_length_as_the_unit_axis(tmp_path,
         hinge = f"<SingleAxisHingeJoint DEF='Pivot' axis='{axis}'>BODIES</SingleAxisHingeJoint>"
         path = scene(tmp_path / str(k), hinge)
         trace = tmp_path / str(k) / "t.csv"
-        r = subprocess.run([sys.executable, "-m", "conformance.cli", "run", path, "--backend", backend, "-q",
+        r = subprocess.run([sys.executable, "-m", "x3drbp", "run", path, "--backend", backend, "-q",
                             "--duration", "0.05", "--trace", str(trace)], cwd=ROOT, capture_output=True, text=True,
                            timeout=120)
         assert r.returncode == 0, r.stderr
@@ -119,7 +119,7 @@ def test_a_refusal_quotes_the_axis_given(tmp_path):
 
 
 def _check(path: str) -> str:
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "check", path], cwd=ROOT, capture_output=True,
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "check", path], cwd=ROOT, capture_output=True,
                        text=True, timeout=120)
     assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
     return r.stdout + r.stderr

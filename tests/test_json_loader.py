@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from x3d_core.build import RawValue
-from x3d_core.load import load
-from x3d_core.model import LoadError, Node, Scene
+from x3d_core.encodings.build import RawValue
+from x3d_core.encodings.load import load
+from x3d_core.model.scene import LoadError, Node, Scene
 
 PENDULUM_XML = """<?xml version="1.0" encoding="UTF-8"?>
 <X3D profile="Immersive" version="4.0">

@@ -21,10 +21,10 @@ import pytest
 
 from conftest import PEAK_KIB, ROOT
 
-from conformance.cli import main
-from x3d_core.load import load
-from x3d_core.model import LoadError
-from x3d_core.line_index import LineIndex
+from x3drbp import main
+from x3d_core.encodings.line_index import LineIndex
+from x3d_core.encodings.load import load
+from x3d_core.model.scene import LoadError
 
 RBP_X3D = ("<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='4.0'><head>"
            "<component name='RigidBodyPhysics' level='2'/>{head}</head><Scene>{body}</Scene></X3D>\n")
@@ -61,7 +61,7 @@ def _peak_growth(path: str, prelude: str = "") -> int:
     """Bytes by which loading PATH raises a fresh interpreter's peak RSS (file already read)."""
     code = f"""
 import gc, json, sys
-from x3d_core.load import load
+from x3d_core.encodings.load import load
 data = open(sys.argv[1], 'rb').read()
 {prelude}
 before = {PEAK_KIB}
@@ -126,7 +126,7 @@ def test_a_long_string_costs_its_bytes_not_a_regex_stack(tmp_path, head, name, t
 
 
 def test_a_file_past_the_size_bound_is_refused_before_a_byte_is_read(tmp_path):
-    from x3d_core.load import MAX_BYTES
+    from x3d_core.encodings.load import MAX_BYTES
     path = tmp_path / "huge.x3d"
     with open(path, "wb") as f:  # sparse: no disk is written
         f.write(b"<X3D>")
@@ -199,7 +199,7 @@ class _Counting:
 def test_many_bad_attributes_of_one_element_each_get_their_column(tmp_path, monkeypatch):
     # one start tag of 3000 attributes, each a diagnostic: the tag is read once, not once a
     # diagnostic (20,000 such attributes took 35 s, 70 s when each re-read the whole tag)
-    from x3d_core import xml_loader
+    from x3d_core.encodings import xml_loader
     ends, attributes = _Counting(xml_loader._START_TAG), _Counting(xml_loader._ATTRIBUTE)
     monkeypatch.setattr(xml_loader, "_START_TAG", ends)
     monkeypatch.setattr(xml_loader, "_ATTRIBUTE", attributes)
@@ -368,7 +368,7 @@ def test_cli_reports_unit_overflow_in_one_line_without_warnings(tmp_path):
     if RUN_BACKEND:
         commands.append(["run", path, "--backend", RUN_BACKEND, "--trace", str(tmp_path / "t.csv")])
     for cmd in commands:
-        out = subprocess.run([sys.executable, "-c", "import sys; from conformance.cli import main; "
+        out = subprocess.run([sys.executable, "-c", "import sys; from x3drbp import main; "
                               "sys.exit(main(sys.argv[1:]))", *cmd], cwd=ROOT, capture_output=True, text=True,
                              timeout=120)
         assert out.returncode == 1, out
@@ -416,7 +416,7 @@ def test_check_of_an_inertia_that_overflows_says_so_in_one_line_without_warnings
     path = tmp_path / "big.x3d"
     path.write_text("<X3D profile='Full' version='4.0'><Scene><RigidBodyCollection>"
                     f"<RigidBody DEF='A' position='0 1 0' {attrs}>{model}</RigidBody></RigidBodyCollection></Scene></X3D>")
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "check", str(path)], cwd=ROOT,
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "check", str(path)], cwd=ROOT,
                        capture_output=True, text=True, timeout=120)
     text = r.stdout + r.stderr
     assert "Warning" not in text and "Traceback" not in text, text

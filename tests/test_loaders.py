@@ -7,13 +7,13 @@ import math
 import numpy as np
 import pytest
 
-from x3d_core.analysis import features
-from x3d_core.applied import applied
-from x3d_core.evaluator import RunSettings, run
-from x3d_core.load import load
-from x3d_core.model import LoadError
-from x3d_core.model_diff import differences
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.encodings.model_diff import differences
+from x3d_core.model.scene import LoadError
+from x3d_core.semantics.analysis import features
+from x3d_core.semantics.applied import applied
+from x3d_core.semantics.evaluator import RunSettings, run
+from x3d_core.semantics.world import worlds
 from conftest import needs_ode
 
 XML_HEAD = "<?xml version='1.0' encoding='UTF-8'?>\n<X3D profile='Full' version='{v}'>\n"

@@ -15,11 +15,11 @@ import pstats
 import pytest
 
 from backends import base
-from x3d_core.analysis import run_uses
-from x3d_core.evaluator import RunSettings, run
-from x3d_core.load import load
-from x3d_core.outcome import outcome_warnings
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics.analysis import run_uses
+from x3d_core.semantics.evaluator import RunSettings, run
+from x3d_core.semantics.outcome import outcome_warnings
+from x3d_core.semantics.world import worlds
 
 ENGINES = [n for n in ("ode", "bullet", "mujoco", "dart") if not isinstance(base.available().get(n, "absent"), str)]
 

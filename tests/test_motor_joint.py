@@ -18,12 +18,12 @@ import pytest
 
 from backends import base
 from conftest import ROOT
-from x3d_core import rotation as R
-from x3d_core.evaluator import RunSettings, run
-from x3d_core.joint_outputs import JointOutputs
-from x3d_core.load import load
-from x3d_core.trace import TraceView, read_trace
-from x3d_core.world import State, undirected, worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.evaluator import RunSettings, run
+from x3d_core.semantics.joint_outputs import JointOutputs
+from x3d_core.semantics.world import State, undirected, worlds
+from x3d_core.traces.trace import TraceView, read_trace
 
 INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
 EXACT = 1e-14  # a few roundings of products of order-1 numbers
@@ -174,7 +174,7 @@ def test_every_backend_runs_a_3_3_motor_joint_at_its_defaults(tmp_path, backend)
                     "inertia='0.2 0 0 0 0.2 0 0 0 0.2'/><MotorJoint axis1Torque='2'><RigidBody USE='Bob' "
                     "containerField='body1'/></MotorJoint></RigidBodyCollection></Scene></X3D>\n")
     trace = tmp_path / "t.csv"
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "run", str(path), "--backend", backend, "-q",
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "run", str(path), "--backend", backend, "-q",
                         "--duration", "0.25", "--trace", str(trace)], cwd=ROOT, capture_output=True, text=True,
                        timeout=120)
     assert r.returncode == 0, r.stderr

@@ -9,9 +9,9 @@ import subprocess
 import sys
 
 from conftest import ROOT, case_scene
-from conformance.cli import main as cli_main
-from conformance.cli import options
-from conformance.cli import report as R
+from x3drbp import main as cli_main
+from x3drbp import options
+from x3drbp import report as R
 
 FORGED = "x.x3d: ok (xml, X3D 4.0, 0 warnings)"
 
@@ -26,7 +26,7 @@ def test_a_file_name_with_a_newline_cannot_forge_a_line_of_check(tmp_path):
     good = tmp_path / f"{FORGED}\nevil.x3d"
     shutil.copy(case_scene("free_fall"), good)
     (tmp_path / f"b\n{FORGED}\nc.x3d").write_text("<X3D><Scene><Broken")
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "check", str(tmp_path)], cwd=ROOT,
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "check", str(tmp_path)], cwd=ROOT,
                        capture_output=True, text=True, timeout=120)
     lines = r.stdout.splitlines()
     assert not any(ln.startswith(FORGED) for ln in lines), lines

@@ -81,7 +81,7 @@ def test_no_scene_fetches_anything(tmp_path, server):
     for name, text in scenes(url, str(pipe)).items():
         (folder / name).write_text(text)
     try:
-        r = subprocess.run([sys.executable, "-m", "conformance.cli", "check", str(folder)], cwd=ROOT,
+        r = subprocess.run([sys.executable, "-m", "x3drbp", "check", str(folder)], cwd=ROOT,
                            capture_output=True, text=True, timeout=60)
     except subprocess.TimeoutExpired:
         pytest.fail("x3drbp check hung: it opened the file outside the scenes' folder")

@@ -1,4 +1,4 @@
-""".npz traces (x3d_core/trace_npz.py) are unpacked only as far as their zip directory and
+""".npz traces (x3d_core/traces/trace_npz.py) are unpacked only as far as their zip directory and
 .npy headers allow, checked before a byte of an array is read: a 2 MB zip bomb once
 unpacked to 2.1 GB over 38 s (the 1 GiB cap was on the file, not on its arrays), a shape
 of 10^15 was a MemoryError traceback, complex and NaN times were taken for times. Each is
@@ -14,9 +14,9 @@ import zlib
 import numpy as np
 import pytest
 
-from x3d_core.trace import Trace
-from x3d_core.trace_npz import MAX_DIRECTORY, arrays, read_npz
-from x3d_core.trace_view import TRACE_LIMIT
+from x3d_core.traces.trace import Trace
+from x3d_core.traces.trace_npz import MAX_DIRECTORY, arrays, read_npz
+from x3d_core.traces.trace_view import TRACE_LIMIT
 
 from conftest import case_scene
 from limited import one_line, x3drbp

@@ -5,7 +5,7 @@ float() reads `1_000` as 1000, Arabic-Indic `١٠` as 10, full-width `１` and m
 encoding's loader and every trace reader took those silently. A number is now an optional
 sign, ASCII digits with an optional point, an optional exponent; values are separated by
 space, tab, CR, LF and commas only; anything else is one line naming file, line, field and
-the text (at most x3d_core.paths.QUOTE_LIMIT characters of it). A trace's lines may end in a
+the text (at most x3d_core.files.paths.QUOTE_LIMIT characters of it). A trace's lines may end in a
 lone CR, and a UTF-8 BOM before its header is read as nothing.
 """
 
@@ -18,10 +18,10 @@ import numpy as np
 import pytest
 
 from conformance.analyses.trace_check import check_trace
-from x3d_core import fields as F
-from x3d_core.load import load
-from x3d_core.model import LoadError
-from x3d_core.trace import Trace, read_trace, read_view
+from x3d_core.encodings.load import load
+from x3d_core.model import fields as F
+from x3d_core.model.scene import LoadError
+from x3d_core.traces.trace import Trace, read_trace, read_view
 
 from conftest import case_scene
 from limited import one_line, x3drbp
@@ -76,7 +76,7 @@ def test_only_ascii_blanks_and_commas_separate_values(tmp_path, blank):
     assert F.parse_xml(mfint, "1,2\t3\r\n4").tolist() == [1, 2, 3, 4]
 
 
-# X3D's float, as 19776-2 Annex A writes it, independently of x3d_core.fields
+# X3D's float, as 19776-2 Annex A writes it, independently of x3d_core.model.fields
 ANNEX_A = re.compile(r"[+-]?(([0-9]+(\.)?)|([0-9]*\.[0-9]+))([eE][+-]?[0-9]+)?")
 
 
@@ -117,7 +117,7 @@ def test_header_numbers_take_the_grammar_too(tmp_path, head, said):
 
 def test_a_quoted_value_is_bounded(tmp_path):
     """A value of 100,000 characters that is not a number is quoted in its first QUOTE_LIMIT."""
-    from x3d_core.paths import QUOTE_LIMIT
+    from x3d_core.files.paths import QUOTE_LIMIT
     errors = _errors(tmp_path, "s.x3d", XML.format(attr=f"mass='{'x' * 100_000}'", key="0 1"))
     assert len(errors) == 1 and len(errors[0]) < len(str(tmp_path)) + QUOTE_LIMIT + 200, errors[0][:400]
     assert f"'{'x' * QUOTE_LIMIT}'... (100,000 characters) is not a number" in errors[0]

@@ -27,8 +27,8 @@ import time
 import pytest
 
 from conftest import PEAK_KIB, ROOT, SCENES
-from x3d_core import atomic
-from x3d_core.trace import HEADER, Trace, read_trace
+from x3d_core.files import atomic
+from x3d_core.traces.trace import HEADER, Trace, read_trace
 
 PENDULUM = os.path.join(SCENES, "examples", "pendulum.x3d")
 CRADLE = os.path.join(ROOT, "conformance", "cases", "newtons_cradle", "newtons_cradle.x3d")
@@ -41,7 +41,7 @@ def x3drbp(*args: str, umask: int | None = None, timeout: float = 120, **kw) -> 
         if umask is not None:
             os.umask(umask)
     kw.setdefault("stdout", subprocess.PIPE)
-    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT, stderr=subprocess.PIPE,
+    return subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=ROOT, stderr=subprocess.PIPE,
                           text=True, timeout=timeout, preexec_fn=child, **kw)
 
 
@@ -94,7 +94,7 @@ def test_an_output_that_cannot_be_written_is_said_before_any_run(args, tmp_path,
     """compare, advise and run said it after every run (compare's --json left written where its
     --rerun was refused); sweep and conformance said "File exists" of an --out that is a file.
     Before any run: not even the backends are probed, the first thing each of them asks."""
-    from conformance.cli import main as cli_main
+    from x3drbp import main as cli_main
     from conformance.runner import probe
 
     def probed(*_args, **_kwargs):
@@ -213,7 +213,7 @@ def test_a_killed_writer_leaves_the_old_file_and_its_temporary_is_cleaned_by_the
     out.write_text("old\n")
     script = textwrap.dedent(f"""
         import os, sys, time
-        from x3d_core import atomic
+        from x3d_core.files import atomic
         def chunks():
             yield b"half of the new"
             print("writing", flush=True)
@@ -246,8 +246,8 @@ def test_a_killed_writer_leaves_the_old_file_and_its_temporary_is_cleaned_by_the
 def test_a_recording_gets_the_usual_mode_and_cleans_a_killed_recordings_temporary(tmp_path):
     pytest.importorskip("rerun")
     from reports.rerun_recording import write_recording
-    from x3d_core.load import load
-    from x3d_core.trace import TraceView
+    from x3d_core.encodings.load import load
+    from x3d_core.traces.trace import TraceView
 
     trace = tmp_path / "t.csv"
     assert x3drbp(*RUN, "--trace", str(trace)).returncode == 0
@@ -321,10 +321,10 @@ def write_long_trace(src: str, out: str, rows: int) -> None:
 MEASURE = f"""
 import sys, time
 import numpy as np
-from x3d_core.load import load
+from x3d_core.encodings.load import load
 from conformance.analyses.trace_check import check_trace
 from conformance.analyses import validation
-from x3d_core.trace import TraceView
+from x3d_core.traces.trace import TraceView
 scene = load(sys.argv[1])
 started = time.process_time()
 view, problems = check_trace(sys.argv[2], scene)
@@ -390,8 +390,8 @@ def test_the_checked_view_is_the_view_of_the_rows(tmp_path, scene, backend, monk
     # bulk (chunks of plain rows) and row by row (text rows, a quoted value) read alike
     import numpy as np
     from conformance.analyses import trace_check
-    from x3d_core import trace as T
-    from x3d_core.load import load
+    from x3d_core.traces import trace as T
+    from x3d_core.encodings.load import load
 
     pytest.importorskip({"bullet": "pybullet"}.get(backend, backend))
     path = tmp_path / "t.csv"
@@ -413,8 +413,8 @@ def test_the_checked_view_is_the_view_of_the_rows(tmp_path, scene, backend, monk
 
 def test_a_problem_deep_in_a_long_trace_is_found_at_its_line(tmp_path, monkeypatch):
     from conformance.analyses import trace_check
-    from x3d_core import trace as T
-    from x3d_core.load import load
+    from x3d_core.traces import trace as T
+    from x3d_core.encodings.load import load
 
     path = tmp_path / "t.csv"
     assert x3drbp("run", CRADLE, "--backend", "pymunk", "--duration", "2", "--trace", str(path)).returncode == 0

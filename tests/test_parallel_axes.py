@@ -1,6 +1,6 @@
 """A DoubleAxisHingeJoint whose axis1 and axis2 are parallel has one line where the joint "has two
 independent axes" (37.4.8 DoubleAxisHingeJoint): every backend refuses it with one message
-naming the joint and both axes, exit 3 (x3d_core.world.parallel, evaluator.run), where ODE
+naming the joint and both axes, exit 3 (x3d_core.semantics.world.parallel, evaluator.run), where ODE
 refused it, MuJoCo's and DART's models were singular (MuJoCo non-finite in the first frame of a
 driven hinge2, DART warning at every step) and Bullet ran it."""
 
@@ -14,8 +14,8 @@ import pytest
 from backends import base
 from conftest import ROOT
 from test_joint_axes import INSTALLED, scene
-from x3d_core.load import load
-from x3d_core.world import parallel, worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics.world import parallel, worlds
 
 HINGE2 = "<DoubleAxisHingeJoint DEF='H' axis1='0 1 0'>BODIES</DoubleAxisHingeJoint>"  # axis2: 4.0's default 0 1 0
 NAMED = "DoubleAxisHingeJoint H: axis1 = 0 1 0 and axis2 = 0 1 0 are parallel"
@@ -24,7 +24,7 @@ NAMED = "DoubleAxisHingeJoint H: axis1 = 0 1 0 and axis2 = 0 1 0 are parallel"
 @pytest.mark.parametrize("backend", INSTALLED)
 def test_every_backend_refuses_a_hinge2_of_parallel_axes_with_one_message(tmp_path, backend):
     path = scene(tmp_path, HINGE2)
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "run", path, "--backend", backend, "-q",
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "run", path, "--backend", backend, "-q",
                         "--trace", str(tmp_path / "t.csv")], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert r.returncode == 3, r.stderr
     lines = [ln for ln in r.stderr.splitlines() if "unsupported by" in ln]

@@ -1,4 +1,4 @@
-"""x3d_core.planar: planar worlds and each reason a world is not."""
+"""x3d_core.semantics.planar: planar worlds and each reason a world is not."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from engine_run import scene_worlds
-from x3d_core.planar import NotPlanar, analyse
+from x3d_core.semantics.planar import NotPlanar, analyse
 
 BOX = "<CollidableShape DEF='{n}' {x}><Shape containerField='shape'><{g}/></Shape></CollidableShape>"
 

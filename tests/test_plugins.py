@@ -69,7 +69,7 @@ def fresh_registry():
 
 
 def cli(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT, capture_output=True,
+    return subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=ROOT, capture_output=True,
                           text=True, timeout=120, stdin=subprocess.DEVNULL)
 
 
@@ -278,7 +278,7 @@ def test_outputs_go_where_the_command_was_run_whatever_directory_a_plug_in_moves
             {"wander": "x3drbp_wander:BACKEND"})
     on_path(monkeypatch, site, ROOT)
     (here / "fall.x3d").write_bytes(open(C.BY_NAME["free_fall"].path, "rb").read())
-    ran = subprocess.run([sys.executable, "-m", "conformance.cli", "run", "fall.x3d", "--backend", "wander",
+    ran = subprocess.run([sys.executable, "-m", "x3drbp", "run", "fall.x3d", "--backend", "wander",
                           "--trace", "t.csv", "--timing", "timing.json", "--rerun", "r.rrd"],
                          cwd=here, capture_output=True, text=True, timeout=120, stdin=subprocess.DEVNULL)
     assert ran.returncode == 0, ran.stderr

@@ -1,5 +1,5 @@
 """Every data file a command or the pytest plugin reads goes through the checks a scene does
-(x3d_core.inputs: a regular file of bounded size; x3d_core.documents: nesting past what a
+(x3d_core.files.inputs: a regular file of bounded size; x3d_core.files.documents: nesting past what a
 parser recurses into said at its line): advise's --verdicts, the pins of `expectations --pins DIR` and
 --x3drbp-expectations DIR (a folder that is missing is an error, not "no pins"), and
 expectations' --matrix page. Each is refused in one line naming the file (and line), in bounded memory and CPU.
@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from x3d_core import documents
+from x3d_core.files import documents
 
 from conftest import case_scene
 from limited import fed, leftovers, one_line, run, x3drbp
@@ -92,7 +92,7 @@ def test_expectations_refuses_a_pin_file_that_is_a_pipe(tmp_path):
 def test_expectations_refuses_a_matrix_page_that_does_not_read(tmp_path):
     """--matrix is read to regenerate its table, as any input: a folder, or text that is not
     UTF-8, is one line naming it (and the line), not an OSError or UnicodeDecodeError."""
-    from conformance.cli.expectations import write_matrix
+    from x3drbp.expectations import write_matrix
     with pytest.raises(ValueError, match=f"^{tmp_path}: a folder, not a regular file$"):
         write_matrix(str(tmp_path))
     latin = tmp_path / "conformance-matrix.md"
@@ -127,7 +127,7 @@ def test_the_plugin_refuses_a_pin_file_that_is_a_pipe(tmp_path):
 def test_expectations_refuses_a_matrix_page_before_any_run(tmp_path, monkeypatch, capsys):
     """A --matrix page that does not read was said after every case had run and the pins had
     been rewritten: now at once, nothing run, nothing written."""
-    from conformance.cli import main as cli_main
+    from x3drbp import main as cli_main
     from conformance.runner import verdicts
 
     def ran(*args, **kwargs):

@@ -10,10 +10,10 @@ import sys
 import pytest
 
 from conftest import ROOT, needs_ode
-from x3d_core.load import load
-from x3d_core.model import LoadError
-from x3d_core.trace import read_trace
-from x3d_core.world import node_names
+from x3d_core.encodings.load import load
+from x3d_core.model.scene import LoadError
+from x3d_core.semantics.world import node_names
+from x3d_core.traces.trace import read_trace
 
 XML = """<?xml version="1.0" encoding="UTF-8"?>
 <X3D profile='Full' version='4.0'>
@@ -31,7 +31,7 @@ def _write(tmp_path, name: str, text: str) -> str:
 
 
 def x3drbp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT, capture_output=True,
+    return subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
 
 

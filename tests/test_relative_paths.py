@@ -16,8 +16,8 @@ import pytest
 from backends import base
 from conftest import ROOT, SCENES
 from conformance.analyses import advice as A
-from conformance.cli import main
-from conformance.cli import report as R
+from x3drbp import main
+from x3drbp import report as R
 
 PAIR = [n for n in ("bullet", "pymunk", "mujoco", "ode", "dart") if not isinstance(base.available().get(n, "x"), str)][:2]
 needs_two = pytest.mark.skipif(len(PAIR) < 2, reason="advice and comparison need two installed backends")
@@ -27,7 +27,7 @@ SMALL = ["--dts", "1/60", "--duration", "0.5", "--window", "0.5", "--repeats", "
 
 def _x3drbp(cwd: str, *args: str) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": ROOT}
-    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=cwd, env=env,
+    return subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=cwd, env=env,
                           capture_output=True, text=True, timeout=300)
 
 

@@ -14,7 +14,7 @@ import pytest
 
 from backends import base
 from conftest import ROOT, SCENES, case_scene
-from conformance.cli import report as R
+from x3drbp import report as R
 from conformance.results import dt_label
 from reports.report_page import dead_links, report_markdown
 
@@ -46,7 +46,7 @@ def test_features_set_declarations_against_the_cases_verdicts():
 
 
 def test_a_step_log_is_written_as_the_step_runs_and_keeps_what_a_failed_step_said(tmp_path):
-    """Logs are the one output written in place (not through x3d_core.atomic): to be read
+    """Logs are the one output written in place (not through x3d_core.files.atomic): to be read
     while a step runs, and to say why a step that dies half-way died."""
     log = tmp_path / "sweep.log"
     seen = []
@@ -141,7 +141,7 @@ def test_the_command_runs_every_step_into_one_page(tmp_path, monkeypatch, capsys
                 ("stability", [["stability", *chosen, "--cases", "four_bar_linkage", "--dts", "1/60", "--out",
                                 os.path.join(out_dir, "stability")]])]
     monkeypatch.setattr(R, "_steps", small)
-    from conformance.cli import main
+    from x3drbp import main
     assert main(["report", "--out", out, "--backends", pair, "--scenes", str(yours)]) == 1  # a scene left out
     err = capsys.readouterr().err
     assert "links to" not in err  # the command found no dead link
@@ -175,7 +175,7 @@ def test_a_step_s_bar_goes_to_the_terminal_and_its_text_to_the_log(tmp_path):
     import argparse
     import io
     from concurrent.futures import ThreadPoolExecutor
-    from conformance.cli import options
+    from x3drbp import options
     from conformance.runner import children
     log, terminal = tmp_path / "step.log", io.StringIO()
 
@@ -205,12 +205,12 @@ def test_a_link_to_a_missing_file_is_found(tmp_path):
 
 
 def test_bad_usage_is_exit_2_without_a_traceback(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "conformance.cli", "report", "--backends", "nope", "--out",
+    r = subprocess.run([sys.executable, "-m", "x3drbp", "report", "--backends", "nope", "--out",
                         str(tmp_path)], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert r.returncode == 2 and "unknown backend(s) nope" in r.stderr and "Traceback" not in r.stderr
     (tmp_path / "empty").mkdir()
     for scenes, said in ((tmp_path / "missing.x3d", "no such file or folder"), (tmp_path / "empty", "no X3D files")):
-        r = subprocess.run([sys.executable, "-m", "conformance.cli", "report", "--scenes", str(scenes), "--out",
+        r = subprocess.run([sys.executable, "-m", "x3drbp", "report", "--scenes", str(scenes), "--out",
                             str(tmp_path / "out")], cwd=ROOT, capture_output=True, text=True, timeout=120)
         assert r.returncode == 2 and said in r.stderr and "Traceback" not in r.stderr
         assert not (tmp_path / "out" / "logs").exists()  # refused before any step

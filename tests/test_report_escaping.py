@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from backends import base
-from conformance.cli import report as R
+from x3drbp import report as R
 from conformance.results import BackendRun, Comparison, Crossing, Divergence, JointDifference, PairComparison
 from reports import compare_text, validate_text
 from reports.report_page import EXTENSIONS, dead_links, report_markdown
@@ -187,7 +187,7 @@ def report_dir(tmp_path_factory):
                 ("sweep", [["sweep", *chosen, "--scenes", scenes[0], "--dts", "1/60", "--iterations", "10",
                             "--accuracy", "false", "--repeats", "1", "-q", "--out", os.path.join(out_dir, "sweep")]])]
 
-    from conformance.cli import main
+    from x3drbp import main
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(R, "_steps", small)
         main(["report", "--out", out, "--backends", "bullet,mujoco,ode", "--scenes", str(yours), "-q"])

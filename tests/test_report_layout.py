@@ -266,7 +266,7 @@ def test_a_long_name_may_break_where_its_parts_meet_and_nowhere_else():
 def test_the_conformance_matrix_says_what_a_backend_is_limited_to():
     """Where the page learns that pymunk is planar-only: the backend declares it
     (backends.base.Backend.scope), the probe reads it, matrix.json carries it."""
-    from conformance.cli.conformance import to_json
+    from x3drbp.conformance import to_json
     from conformance.runner import probe
     info = probe.backend_table(120, ["pymunk", "bullet"])
     usable = {n: i for n, i in info.items() if i.usable}

@@ -12,7 +12,7 @@ import pyarrow as pa
 import pytest
 from rerun.chunk import RrdReader
 
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conftest import SCENES
 from reports.report_page import _comparisons, comparisons
 from reports.rerun_recording import TIMELINE
@@ -79,9 +79,9 @@ def test_run_recording_has_one_backend_and_no_divergence(tmp_path):
 
 def test_a_failed_recording_keeps_the_previous_file_and_leaves_no_partial_one(tmp_path, monkeypatch):
     from reports.rerun_recording import write_recording
-    from x3d_core import atomic
-    from x3d_core.load import load
-    from x3d_core.trace import TraceView, read_trace
+    from x3d_core.files import atomic
+    from x3d_core.encodings.load import load
+    from x3d_core.traces.trace import TraceView, read_trace
 
     trace = tmp_path / "t.csv"
     assert cli_main(["run", CRADLE, "--backend", "mujoco", "--duration", "0.25", "--trace", str(trace)]) == 0

@@ -12,8 +12,8 @@ import pytest
 
 from conftest import ROOT
 from conformance import results
-from conformance.cli import main
-from conformance.cli import report as R
+from x3drbp import main
+from x3drbp import report as R
 from conformance.results import Settings
 from conformance.runner import cache, children, probe
 
@@ -240,14 +240,14 @@ def test_past_its_limit_the_least_recently_used_entries_go(tmp_path):
 
 
 def _same(a, b) -> bool:
-    from x3d_core.trace_npz import arrays
+    from x3d_core.traces.trace_npz import arrays
     x, y = arrays(a), arrays(b)
     return x.keys() == y.keys() and all(np.array_equal(x[k], y[k]) for k in x)
 
 
 def test_a_csv_trace_read_again_is_the_view_its_parse_gave(tmp_path, cached, bullet, monkeypatch):
     """Stability's CSV traces are read back from their kept .npz: the very arrays the parse gives."""
-    from x3d_core import trace
+    from x3d_core.traces import trace
     csv = str(tmp_path / "t.csv")
     assert children.run_child(PENDULUM, bullet, SHORT, csv) == children.Outcome(None)
     parsed, parses = trace.read_view(csv), []

@@ -9,14 +9,14 @@ import sys
 import pytest
 
 from conftest import ROOT, SCENES
-from x3d_core.trace import read_trace
+from x3d_core.traces.trace import read_trace
 
 PENDULUM = os.path.join(SCENES, "examples", "pendulum.x3d")
 pytest.importorskip("mujoco")
 
 
 def x3drbp(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT, capture_output=True,
+    return subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
 
 

@@ -11,17 +11,17 @@ import sys
 import pytest
 
 from conftest import ROOT, SCENES
-from x3d_core.evaluator import MAX_SOLVER_ITERATIONS, RunSettings, too_much_solving
-from x3d_core.load import load
-from x3d_core.trace import read_trace
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics.evaluator import MAX_SOLVER_ITERATIONS, RunSettings, too_much_solving
+from x3d_core.semantics.world import worlds
+from x3d_core.traces.trace import read_trace
 
 PENDULUM = os.path.join(SCENES, "examples", "pendulum.x3d")
 FAULTY = os.path.join(ROOT, "tests", "faulty_backends.py")
 pytest.importorskip("mujoco")
 
 
-def x3drbp(*args: str, script: tuple[str, ...] = ("-m", "conformance.cli")) -> subprocess.CompletedProcess:
+def x3drbp(*args: str, script: tuple[str, ...] = ("-m", "x3drbp")) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, *script, *args], cwd=ROOT, capture_output=True, text=True, timeout=60)
 
 
@@ -83,7 +83,7 @@ def test_timeout_ends_an_engine_call_that_never_returns(tmp_path, fault):
     in: x3drbp() gives up after 60 s, so returning at all is the check."""
     out = tmp_path / "t.csv"
     r = x3drbp("run", PENDULUM, "--backend", f"faulty-{fault}", "--timeout", "0.5", "--trace", str(out),
-               script=(FAULTY, "-m", "conformance.cli"))
+               script=(FAULTY, "-m", "x3drbp"))
     assert r.returncode == 1
     assert last_line(r.stderr).endswith("passed its time limit of 0.5 s inside one engine call (no trace written)")
     assert not out.exists()
@@ -93,7 +93,7 @@ def test_a_watched_run_that_crashes_reads_as_a_crash(tmp_path):
     """Under --timeout the command waits for the run it forked: the run's segfault is the
     command's own death by SIGSEGV, as without the watchdog (the runners' `crashed`)."""
     r = x3drbp("run", PENDULUM, "--backend", "faulty-segv", "--timeout", "60", "--trace", str(tmp_path / "t.csv"),
-               script=(FAULTY, "-m", "conformance.cli"))
+               script=(FAULTY, "-m", "x3drbp"))
     assert r.returncode == -signal.SIGSEGV
     assert not (tmp_path / "t.csv").exists()
 

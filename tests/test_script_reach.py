@@ -8,9 +8,9 @@ import json
 
 import pytest
 
-from x3d_core.analysis import SCRIPT_DIRECT_OUTPUT, features, script_reach
-from x3d_core.load import load
-from x3d_core.outcome import outcome_warnings
+from x3d_core.encodings.load import load
+from x3d_core.semantics.analysis import SCRIPT_DIRECT_OUTPUT, features, script_reach
+from x3d_core.semantics.outcome import outcome_warnings
 
 XML = """<?xml version='1.0' encoding='UTF-8'?>
 <X3D profile='Full' version='4.0'><head/><Scene>

@@ -23,7 +23,7 @@ from conformance import clause_text
 from conformance.cases import CASES
 from conformance.clause_text import STOP, quoted
 from conformance.results import EDITION, SPEC, Basis
-from x3d_core import schema
+from x3d_core.model import schema
 
 # the subclauses of clause 37 (number, name) as its text heads them: 37.2's concepts, 37.3's
 # abstract types (the text prints 37.3.1 twice, the second for X3DNBodyCollisionSpaceNode) and

@@ -13,12 +13,12 @@ import pytest
 from conformance import results
 from conformance.runner import children, probe
 from conformance.analyses import stability as S
-from x3d_core.trace import TraceView
-from conformance.cli import main as cli_main
-from x3d_core.analysis import features
-from x3d_core.load import load
-from x3d_core.trace import Row
-from x3d_core.world import worlds
+from x3d_core.traces.trace import TraceView
+from x3drbp import main as cli_main
+from x3d_core.encodings.load import load
+from x3d_core.semantics.analysis import features
+from x3d_core.semantics.world import worlds
+from x3d_core.traces.trace import Row
 
 from fake_child import fake_python
 

@@ -1,4 +1,4 @@
-"""X3D 4.0 nodes x3drbp types from the UOM's table (x3d_core/standard_nodes.py): each goes
+"""X3D 4.0 nodes x3drbp types from the UOM's table (x3d_core/model/standard_nodes.py): each goes
 to its default containerField in every encoding, its fields are typed and checked, and the
 writers write it back."""
 
@@ -9,11 +9,11 @@ from typing import Callable
 
 import pytest
 
-from x3d_core.load import load
-from x3d_core.model import Scene
-from x3d_core.model_diff import differences
-from x3d_core.vrml_writer import write_vrml
-from x3d_core.xml_writer import write_xml
+from x3d_core.encodings.load import load
+from x3d_core.encodings.model_diff import differences
+from x3d_core.encodings.vrml_writer import write_vrml
+from x3d_core.encodings.xml_writer import write_xml
+from x3d_core.model.scene import Scene
 
 # Capsule is no X3D 4.0 node (the UOM has none): it stays untyped, so XML names its field.
 SCENE_XML = """<?xml version="1.0" encoding="UTF-8"?>

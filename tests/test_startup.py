@@ -9,13 +9,13 @@ import sys
 
 from conftest import ROOT, needs_ode
 
-from conformance.cli import COMMANDS
+from x3drbp import COMMANDS
 
 PROBE = """
 import json, sys
-from conformance.cli import main
+from x3drbp import main
 code = main(sys.argv[1:])
-print(json.dumps([code, sorted(m for m in sys.modules if m.startswith("conformance.cli.")),
+print(json.dumps([code, sorted(m for m in sys.modules if m.startswith("x3drbp.")),
                   sorted(m for m in ("glfw", "matplotlib", "rerun", "dask", "tqdm") if m in sys.modules)]))
 """
 
@@ -27,16 +27,16 @@ def _imports(*argv: str) -> tuple[int, list[str], list[str]]:
 
 def test_a_command_imports_its_own_module_and_no_other_command_s():
     code, modules, heavy = _imports("backends")  # loads every engine, runs nothing
-    commands = {f"conformance.cli.{m}" for m in COMMANDS.values()}
-    assert code == 0 and [m for m in modules if m in commands] == ["conformance.cli.run"]
+    commands = {f"x3drbp.{m}" for m in COMMANDS.values()}
+    assert code == 0 and [m for m in modules if m in commands] == ["x3drbp.run"]
     assert heavy == []  # mujoco without its GL context; no plotting, recording, cluster or bars
 
 
 def test_help_still_lists_every_command():
-    done = subprocess.run([sys.executable, "-m", "conformance.cli", "--help"], cwd=ROOT, capture_output=True,
+    done = subprocess.run([sys.executable, "-m", "x3drbp", "--help"], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
     assert done.returncode == 0 and all(name in done.stdout for name in COMMANDS)
-    done = subprocess.run([sys.executable, "-m", "conformance.cli", "nope"], cwd=ROOT, capture_output=True,
+    done = subprocess.run([sys.executable, "-m", "x3drbp", "nope"], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
     assert done.returncode == 2 and "invalid choice: 'nope'" in done.stderr and "Traceback" not in done.stderr
 
@@ -45,21 +45,21 @@ def test_help_still_lists_every_command():
 def test_a_run_reads_no_entry_points_and_its_help_still_names_every_backend(tmp_path):
     """Reading the registry (every package's entry points and metadata) is for --help and plug-ins:
     a run on x3drbp's own backend does without it."""
-    probe = ("import json, sys\nfrom conformance.cli import main\ncode = main(sys.argv[1:])\n"
+    probe = ("import json, sys\nfrom x3drbp import main\ncode = main(sys.argv[1:])\n"
              "print(json.dumps([code, 'importlib.metadata' in sys.modules]))\n")
     done = subprocess.run([sys.executable, "-c", probe, "run", "scenes/examples/pendulum.x3d", "--backend", "ode",
                            "--duration", repr(1 / 240), "--trace", str(tmp_path / "t.csv"), "-q"],
                           cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert json.loads(done.stdout.strip().splitlines()[-1]) == [0, False]
     from backends import base
-    done = subprocess.run([sys.executable, "-m", "conformance.cli", "run", "--help"], cwd=ROOT, capture_output=True,
+    done = subprocess.run([sys.executable, "-m", "x3drbp", "run", "--help"], cwd=ROOT, capture_output=True,
                           text=True, timeout=120)
     assert done.returncode == 0 and f"one of {', '.join(base.engines())}" in " ".join(done.stdout.split())
 
 
 BLAS = """
 import os, sys
-import conformance.cli
+import x3drbp
 print(os.environ.get("OPENBLAS_NUM_THREADS"), "numpy" in sys.modules)
 """
 

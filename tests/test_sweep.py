@@ -12,10 +12,10 @@ from conftest import case_scene
 
 from conformance import results
 from conformance.analyses import sweep as S
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance.analyses.sweep_job import with_collection_fields
 from conformance.analyses.sweep_metrics import Cost, Positions, comparison_interval, pareto, window_error
-from x3d_core.load import load
+from x3d_core.encodings.load import load
 
 BACKEND = "mujoco"  # a dependency, installed wherever the project is
 

@@ -1,5 +1,5 @@
-"""A trace's two forms: the CSV (x3d_core/trace.py), written as the csv module writes the
-trace's rows, and the .npz (x3d_core/trace_npz.py), what read_view makes of that CSV, array
+"""A trace's two forms: the CSV (x3d_core/traces/trace.py), written as the csv module writes the
+trace's rows, and the .npz (x3d_core/traces/trace_npz.py), what read_view makes of that CSV, array
 for array.
 
 Each run's trace is written both ways from one simulation and read back: the .npz must give
@@ -21,13 +21,13 @@ import pytest
 
 from conftest import ROOT, case_scene
 from backends import base
-from x3d_core import fields as F
-from x3d_core.engine import Unsupported
-from x3d_core.evaluator import RunSettings, run
-from x3d_core.load import load
-from x3d_core.trace import read_view
-from x3d_core.trace_npz import FORMAT, arrays, read_npz, write_npz
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.model import fields as F
+from x3d_core.semantics.engine import Unsupported
+from x3d_core.semantics.evaluator import RunSettings, run
+from x3d_core.semantics.world import worlds
+from x3d_core.traces.trace import read_view
+from x3d_core.traces.trace_npz import FORMAT, arrays, read_npz, write_npz
 
 INSTALLED = [n for n, b in base.available().items() if not isinstance(b, str)]
 SCENES = [case_scene("sensor_geometry"), case_scene("routed_contacts"), case_scene("hinge_limits"),
@@ -90,7 +90,7 @@ def test_the_csv_is_what_the_csv_module_writes_of_the_rows(backend):
 
 def test_bulk_float_rows_are_format_xmls(tmp_path):
     """Whole numbers lose their .0 (also the last of a row, and -0.0), others keep every digit."""
-    from x3d_core.trace import _float_rows
+    from x3d_core.traces.trace import _float_rows
     rows = np.array([[1.0, -0.0, 2.5], [10.0, 1e-05, 100.0], [np.inf, -np.nan, 0.1]])
     assert _float_rows(rows) == [F.format_xml(F.FIELD_TYPES["SFVec3f"], r) for r in rows.tolist()]
     assert _float_rows(np.array([3.0, 0.25])) == ["3", "0.25"]
@@ -109,7 +109,7 @@ def test_run_writes_npz_by_its_name(tmp_path):
     """`x3drbp run --trace OUT.npz`: the same rows as `--trace OUT.csv`, in arrays."""
     scene = os.path.join(ROOT, "scenes", "examples", "pendulum.x3d")
     for name in ("t.csv", "t.npz"):
-        subprocess.run([sys.executable, "-m", "conformance.cli", "run", scene, "--backend", INSTALLED[0],
+        subprocess.run([sys.executable, "-m", "x3drbp", "run", scene, "--backend", INSTALLED[0],
                         "--duration", "1", "--trace", str(tmp_path / name), "-q"], cwd=ROOT, check=True)
     assert zipfile.is_zipfile(tmp_path / "t.npz")
     assert_same(read_view(str(tmp_path / "t.npz")), read_view(str(tmp_path / "t.csv")))

@@ -9,11 +9,11 @@ import pytest
 from lxml import etree
 
 from conftest import UOM
-from x3d_core import fields as F
-from x3d_core import standard_nodes
-from x3d_core.schema import NODE_TYPES, definition, node_type, standard_names
-from x3d_core.uom import STATEMENTS, field_type, generate, interface_fields, parents
-from x3d_core.uom import default as uom_default
+from x3d_core.model import fields as F
+from x3d_core.model import standard_nodes
+from x3d_core.model.schema import NODE_TYPES, definition, node_type, standard_names
+from x3d_core.model.uom import STATEMENTS, field_type, generate, interface_fields, parents
+from x3d_core.model.uom import default as uom_default
 
 RBP = ["RigidBodyCollection", "RigidBody", "BallJoint", "SingleAxisHingeJoint", "DoubleAxisHingeJoint",
        "SliderJoint", "UniversalJoint", "MotorJoint", "CollisionCollection", "CollisionSpace", "CollisionSensor",
@@ -97,10 +97,10 @@ def test_component_has_fourteen_concrete_and_three_abstract_types():
 
 
 def test_standard_nodes_table_is_what_the_uom_gives(uom):
-    """x3d_core/standard_nodes.py is the generator's output for this UOM and node_defs.py
-    (stale after either changes: regenerate with python -m x3d_core.uom)."""
+    """x3d_core/model/standard_nodes.py is the generator's output for this UOM and node_defs.py
+    (stale after either changes: regenerate with python -m x3d_core.model.uom)."""
     with open(standard_nodes.__file__, encoding="utf-8") as f:
-        assert f.read() == generate(uom), "x3d_core/standard_nodes.py is stale: run python -m x3d_core.uom"
+        assert f.read() == generate(uom), "x3d_core/model/standard_nodes.py is stale: run python -m x3d_core.model.uom"
 
 
 def test_every_x3d4_type_derives_as_the_uom_says(uom):

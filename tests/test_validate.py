@@ -8,7 +8,7 @@ import os
 
 import pytest
 
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conftest import SCENES, case_scene, needs_ode
 
 FREE_FALL = case_scene("free_fall")

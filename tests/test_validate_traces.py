@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from backends import base
-from x3d_core.trace import Trace
-from x3d_core.trace_npz import arrays, write_npz
+from x3d_core.traces.trace import Trace
+from x3d_core.traces.trace_npz import arrays, write_npz
 
 from conftest import case_scene
 from limited import one_line, x3drbp

@@ -1,4 +1,4 @@
-"""Warnings that say what a scene will really do (x3d_core/outcome.py): each from `x3drbp check`
+"""Warnings that say what a scene will really do (x3d_core/semantics/outcome.py): each from `x3drbp check`
 with its file, line and node, repeated once by `x3drbp run` and `x3drbp compare`, and a
 counter-scene where it must not appear; a scene with nothing to simulate stops run and compare
 with exit 1 and no trace. Every scene is written here."""
@@ -8,10 +8,10 @@ from __future__ import annotations
 import pytest
 
 from backends import base
-from conformance.cli import main as cli_main
-from x3d_core.load import load
-from x3d_core.trace import read_trace
-from x3d_core.world import STATIC, worlds
+from x3drbp import main as cli_main
+from x3d_core.encodings.load import load
+from x3d_core.semantics.world import STATIC, worlds
+from x3d_core.traces.trace import read_trace
 
 USABLE = [n for n in ("ode", "mujoco", "bullet", "dart") if not isinstance(base.available().get(n, "absent"), str)]
 pytestmark = pytest.mark.skipif(not USABLE, reason="no backend to run on")

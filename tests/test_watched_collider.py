@@ -11,8 +11,8 @@ import pytest
 from backends import base
 from conftest import loaded_scene
 from engine_run import run_x3d, scene_worlds, shape
-from x3d_core.analysis import WATCHED_ONLY, features, run_features
-from x3d_core.world import STATIC, State, worlds
+from x3d_core.semantics.analysis import WATCHED_ONLY, features, run_features
+from x3d_core.semantics.world import STATIC, State, worlds
 
 BALL = shape("<Sphere radius='0.1'/>", "BallShape")
 GATE = shape("<Box size='4 0.5 4'/>", "GateShape", "translation='0 0.75 0'")  # y 0.5 to 1.0

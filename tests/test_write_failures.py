@@ -22,7 +22,7 @@ import time
 import pytest
 
 from conftest import ROOT, SCENES
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance import cases as C
 from conformance.results import ERROR, PASS
 from conformance.runner import children, verdicts
@@ -41,7 +41,7 @@ def x3drbp(*args: str, fsize: int | None = None, **kw) -> subprocess.CompletedPr
         if fsize is not None:
             signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # inherited across exec, as ignored signals are
             resource.setrlimit(resource.RLIMIT_FSIZE, (fsize, fsize))
-    return subprocess.run([sys.executable, "-m", "conformance.cli", *args], cwd=ROOT, stdout=subprocess.PIPE,
+    return subprocess.run([sys.executable, "-m", "x3drbp", *args], cwd=ROOT, stdout=subprocess.PIPE,
                           stderr=subprocess.PIPE, text=True, timeout=GUARD_S, preexec_fn=child, **kw)
 
 
@@ -70,7 +70,7 @@ def test_a_signal_stops_compare_while_its_recording_waits_on_a_write(tmp_path):
     reader = os.open(fifo, os.O_RDWR | os.O_NONBLOCK)  # a reader that never reads, so the writer's open passes
     try:
         fcntl.fcntl(reader, fcntl.F_SETPIPE_SZ, 4096)  # the least, so that any recording fills it
-        p = subprocess.Popen([sys.executable, "-m", "conformance.cli", "compare", PENDULUM, "--backends",
+        p = subprocess.Popen([sys.executable, "-m", "x3drbp", "compare", PENDULUM, "--backends",
                               "pymunk,mujoco", *RUN, "--rerun", str(fifo)], cwd=ROOT, stdout=subprocess.DEVNULL,
                              stderr=subprocess.PIPE, text=True)
         buffered = bytearray(4)

@@ -17,10 +17,10 @@ from conformance.browsers.x_ite.judge import run_cases
 from conformance.cases import select
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import CLOCK, GRAVITY, ballistic
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance.results import Measure, Settings
 from conftest import case_scene, scene_file
-from x3d_core.trace import read_trace
+from x3d_core.traces.trace import read_trace
 
 pytestmark = [pytest.mark.x_ite,
               pytest.mark.skipif(x_ite.unavailable() is not None, reason=f"X_ITE: {x_ite.unavailable()}")]

@@ -11,15 +11,15 @@ import textwrap
 import pytest
 
 from conformance.browsers.x_ite import harness as x_ite
-from conformance.cli import main as cli_main
+from x3drbp import main as cli_main
 from conformance.cases import CASES
 from conformance.browsers.x_ite.judge import probe_fields
 from conformance.browsers.x_ite.variants import CONTACT, MASS, needs, ready, without, without_nodes
 from conftest import case_scene
 from reports.report_page import report_markdown
 from reports.x_ite_text import render
-from x3d_core.load import load
-from x3d_core.trace import read_trace
+from x3d_core.encodings.load import load
+from x3d_core.traces.trace import read_trace
 
 CASE = {c.name: c for c in CASES}
 

@@ -56,8 +56,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from x3d_core.analysis import run_features
-from x3d_core.model import Scene
+from x3d_core.model.scene import Scene
+from x3d_core.semantics.analysis import run_features
 
 from conformance import cases as C
 from conformance.results import FAIL, PASS, dt_label
@@ -124,7 +124,7 @@ class Judged:
 _JUDGED = """
 import json, sys
 from backends import base
-from x3d_core.load import load
+from x3d_core.encodings.load import load
 scenes = {p: load(p) for p in sys.argv[2:]}
 out = {p: {n: [[str(u), u.feature, d.support.value, d.note] for u, d in base.judged(base.load(n), s)]
            for n in sys.argv[1].split(",")} for p, s in scenes.items()}

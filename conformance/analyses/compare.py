@@ -1,6 +1,6 @@
 """How far two runs of one scene part: body poses, velocities and joint outputs, frame by frame.
 
-The metrics work on traces already parsed (x3d_core.trace.TraceView: one array per (node, field)),
+The metrics work on traces already parsed (x3d_core.traces.trace.TraceView: one array per (node, field)),
 in bulk over (frames, bodies) arrays. Two runs are compared at the frame times both
 recorded (the same settings give the same frames) and on the bodies and joint outputs
 both traces hold; what only one holds is listed, not an error.
@@ -41,8 +41,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 
-from x3d_core import rotation as R
-from x3d_core.trace import TraceView
+from x3d_core.semantics import rotation as R
+from x3d_core.traces.trace import TraceView
 
 from conformance.results import (ANGULAR_VELOCITY, JOINT_OUTPUTS, LINEAR_VELOCITY, ORIENTATION, POSITION, UNITS,
                                  VELOCITIES, BackendRun, Crossing, Divergence, JointDifference, PairComparison)

@@ -16,7 +16,7 @@ import tempfile
 import time
 from collections.abc import Mapping, Sequence
 
-from x3d_core.trace import TraceView, read_view
+from x3d_core.traces.trace import TraceView, read_view
 
 from conformance import results
 from conformance.results import RAN, BackendRun, Settings

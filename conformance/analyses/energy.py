@@ -9,7 +9,7 @@ gravity, joints, contacts and damping act on its bodies. Gravity is conservative
 work; a contact (bounce at most 1), friction and damping only take energy away. So the energy
 E = kinetic + potential (potential from the gravity each body feels: its collection's, none where
 useGlobalGravity is FALSE) may not rise: where a run's does, its engine made it. The rule is
-conservative: it reads the features a run uses (x3d_core.analysis.run_features) and claims that
+conservative: it reads the features a run uses (x3d_core.semantics.analysis.run_features) and claims that
 nothing does work only where none of those that may do work is among them.
 
 A rise is growth past its bound: 10% of the energy the motion can exchange, and at least the
@@ -29,11 +29,11 @@ import functools
 
 import numpy as np
 
-from x3d_core.analysis import SCRIPT_DIRECT_OUTPUT, run_features
-from x3d_core.load import load
-from x3d_core.model import Scene
-from x3d_core.trace import TraceView
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.model.scene import Scene
+from x3d_core.semantics.analysis import SCRIPT_DIRECT_OUTPUT, run_features
+from x3d_core.semantics.world import worlds
+from x3d_core.traces.trace import TraceView
 
 from conformance.analyses.motion import Model, Motion
 from conformance.results import EnergyGrowth

@@ -9,10 +9,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.load import load
-from x3d_core.trace import TraceView
-from x3d_core.world import worlds
+from x3d_core.encodings.load import load
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.world import worlds
+from x3d_core.traces.trace import TraceView
 
 
 @dataclass

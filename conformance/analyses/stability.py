@@ -50,8 +50,8 @@ from typing import ClassVar, Protocol
 
 import numpy as np
 
-from x3d_core import atomic
-from x3d_core.trace import TraceView
+from x3d_core.files import atomic
+from x3d_core.traces.trace import TraceView
 
 from conformance import results
 from conformance.runner import cache, children, verdicts

@@ -26,7 +26,7 @@ Error, against one reference per scene, common to every backend:
      small, but only where the tighter run then steps finer than its target asks, so its error
      is at most what the target gives (7e-13 m there, rounding). The mode is
      picked per world inside the backend, so the child says whether every world was
-     error-controlled (x3d_core.engine.target_accuracy, in `run --timing`'s file): a run
+     error-controlled (x3d_core.semantics.engine.target_accuracy, in `run --timing`'s file): a run
      Drake stepped in discrete mode is never taken for this reference.
   2. Else, the fine run (what stood for every scene before): every backend runs the scene at
      a step REFINEMENT times finer than the finest swept, with the most iterations swept and
@@ -94,9 +94,9 @@ import os
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, replace
 
-from x3d_core.analysis import run_features
-from x3d_core.load import load
-from x3d_core.model import Scene
+from x3d_core.encodings.load import load
+from x3d_core.model.scene import Scene
+from x3d_core.semantics.analysis import run_features
 
 from conformance import cases as C
 from conformance import results

@@ -16,11 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from x3d_core import atomic
-from x3d_core.load import load
-from x3d_core.model import LoadError
-from x3d_core.trace import TraceView, read_view
-from x3d_core.xml_writer import write_xml
+from x3d_core.encodings.load import load
+from x3d_core.encodings.xml_writer import write_xml
+from x3d_core.files import atomic
+from x3d_core.model.scene import LoadError
+from x3d_core.traces.trace import TraceView, read_view
 
 from conformance import cases as C
 from conformance import results

@@ -6,21 +6,21 @@ physics', so it is reported with its line and stops the validation (exit 2). Che
 
 - the header `time,node,field,value` (a UTF-8 BOM before it read as nothing; lines may end
   in LF, CRLF or a lone CR), and four columns on every row;
-- time: a finite number in X3D's grammar (x3d_core.fields.number: float() read `1_0` as 10),
+- time: a finite number in X3D's grammar (x3d_core.model.fields.number: float() read `1_0` as 10),
   never less than the row before's, the first 0 (within
   START_TOLERANCE: the initial state is a frame);
-- node: a name of the scene (its DEF, else x3drbp's TYPE_k: x3d_core.world.node_names);
+- node: a name of the scene (its DEF, else x3drbp's TYPE_k: x3d_core.semantics.world.node_names);
 - field: an output of that node's type (outputOnly or inputOutput), or `F[i]` / `F[i].SUB`
   for an MFNode output F (a CollisionSensor's intersections[i], contacts[i].depth), SUB a
   field of the node type F holds;
-- value: reads as the field's type in X3D XML attribute encoding (x3d_core.fields), a node
+- value: reads as the field's type in X3D XML attribute encoding (x3d_core.model.fields), a node
   name of the scene for SFNode values, rotations with an axis of length 1 within
   AXIS_TOLERANCE;
 - every RigidBody of an enabled collection has its position, orientation, linearVelocity
   and angularVelocity rows (what comparisons and expectations read).
 
-The file is read through x3d_core.inputs (a named pipe or a device is refused at once, a
-file over x3d_core.trace.TRACE_LIMIT too) a chunk at a time, into arrays (a TraceView): a
+The file is read through x3d_core.files.inputs (a named pipe or a device is refused at once, a
+file over x3d_core.traces.trace.TRACE_LIMIT too) a chunk at a time, into arrays (a TraceView): a
 chunk of plain rows (no quotes, SF number fields written with single spaces) is checked in
 bulk, one output at a time; any chunk where that finds something, or cannot decide, is
 checked again row by row, which says what is wrong and where. So a trace of 10^7 rows
@@ -28,7 +28,7 @@ holds its numbers, not an object per row, and its problems read as they always d
 MAX_PROBLEMS problems the reading stops.
 
 x3drbp's own .npz (a name ending .npz, as read_view tells the forms apart) is read by
-x3d_core.trace_npz, which bounds what it unpacks and refuses times that are not finite; the
+x3d_core.traces.trace_npz, which bounds what it unpacks and refuses times that are not finite; the
 same checks then run on each output's arrays, a problem naming the output (the file has no
 lines), and its times each never decrease.
 """
@@ -47,15 +47,15 @@ from operator import itemgetter
 
 import numpy as np
 
-from x3d_core import fields as F
-from x3d_core import schema
-from x3d_core.model import Scene
-from x3d_core.inputs import InputRefused, open_regular
-from x3d_core.paths import quoted
-from x3d_core.trace import (HEADER, TRACE_LIMIT, TraceView, ViewBuilder, chunks, header_problem, line_reader,
+from x3d_core.files.inputs import InputRefused, open_regular
+from x3d_core.files.paths import quoted
+from x3d_core.model import fields as F
+from x3d_core.model import schema
+from x3d_core.model.scene import Scene
+from x3d_core.traces.trace import (HEADER, TRACE_LIMIT, TraceView, ViewBuilder, chunks, header_problem, line_reader,
                             read_header)
-from x3d_core.trace_npz import NotTrace, read_npz
-from x3d_core.world import node_names, worlds
+from x3d_core.semantics.world import node_names, worlds
+from x3d_core.traces.trace_npz import NotTrace, read_npz
 
 # |axis| - 1: a browser writing single-precision floats with 6 digits is within 1e-6;
 # 1e-3 still turns a 1 m body's end by under a millimetre

@@ -27,7 +27,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from x3d_core.trace import Row, TraceView
+from x3d_core.traces.trace import Row, TraceView
 
 from conformance import results
 from conformance.runner import verdicts

@@ -7,7 +7,7 @@ import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
-from x3d_core.trace import TraceView
+from x3d_core.traces.trace import TraceView
 
 from conformance.results import Measure, Settings
 
@@ -59,7 +59,7 @@ class Case:
     # dt (the fitted order) shows convergence; None where the check is exact or an invariant
     convergence: str | None = None
     expected_order: float | None = None  # what semi-implicit Euler gives, for the reader
-    # the feature names (x3d_core.analysis) the case exercises with non-default values: the
+    # the feature names (x3d_core.semantics.analysis) the case exercises with non-default values: the
     # case would fail if a backend ignored them
     exercises: tuple[str, ...] = field(default_factory=tuple)
     # Mutations, or (old, new) pairs for scene edits: at least one per case

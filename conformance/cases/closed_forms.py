@@ -8,7 +8,7 @@ scene's leading comment states the same numbers.
 Conventions of the argument (the reference integrator is semi-implicit Euler, which
 Bullet, DART, ODE and MuJoCo's default all use):
 - State at a frame ending at time t is the world after n = floor(t/dt) steps
-  (x3d_core.evaluator); closed forms are evaluated at the physics time n*dt.
+  (x3d_core.semantics.evaluator); closed forms are evaluated at the physics time n*dt.
 - Velocities under a constant acceleration are exact for every one-step scheme; what is
   left is rounding. ROUNDING = 1e-9 (relative to the quantity's scale) covers it with
   room to spare: at most ~500 steps of float64 arithmetic on O(10) numbers make ~1e-13.
@@ -48,17 +48,17 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core import fields as F
-from x3d_core import rotation as R
-from x3d_core.applied import canonical
-from x3d_core.trace import TraceView
+from x3d_core.model import fields as F
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.applied import canonical
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Expectation
 from conformance.results import Basis, Measure, Settings, accuracy, convention, spec
 
 ROUNDING = 1e-9
 ROUNDING_ANGLE = 1e-7  # rad
-STEP_SLACK = 1e-9  # as x3d_core.evaluator: a frame within 1e-9 step of a step boundary is on it
+STEP_SLACK = 1e-9  # as x3d_core.semantics.evaluator: a frame within 1e-9 step of a step boundary is on it
 G = 9.81  # the non-default gravity the scenes use
 G_DEFAULT = 9.8
 # the spec's sentences more than one case enforces (clause 37's text, conformance.results.EDITION)
@@ -407,7 +407,7 @@ def omega(tr: TraceView, body: str) -> np.ndarray:
 
 
 # -- collisions ---------------------------------------------------------------------------
-# x3d_core/collision.py states what x3drbp reads: ODE's contacts. The argument below follows
+# x3d_core/semantics/collision.py states what x3drbp reads: ODE's contacts. The argument below follows
 # ODE's contact step, which the other engines approximate (each declares how):
 # - a contact exists on a step that STARTS with the geometries overlapping, and is solved in that
 #   step together with gravity (the step's velocity is the contact's unknown): a body meets a
@@ -510,7 +510,7 @@ def sensor_contacts(tr: TraceView, sensor: str, values: Sequence[str] = (),
 def applied_names(text: object) -> set[str | None] | None:
     """The names a Contact's appliedParameters row holds (an MFString as the trace writes it,
     '"A" "B"'), each in X3D 4.0's spelling, so that either spelling and any order read alike
-    (x3d_core.applied); None in the set for a value that names nothing; None for no row, or a row
+    (x3d_core.semantics.applied); None in the set for a value that names nothing; None for no row, or a row
     the view read as numbers."""
     if not isinstance(text, str):
         return None

@@ -26,8 +26,8 @@ import json
 import os
 from collections.abc import Iterable, Mapping
 
-from x3d_core.documents import read_toml
-from x3d_core.inputs import InputRefused, require_folder
+from x3d_core.files.documents import read_toml
+from x3d_core.files.inputs import InputRefused, require_folder
 
 from conformance.results import CONVENTIONS, FAIL, PASS, UNSUPPORTED, VERDICTS, Expected, Result
 
@@ -55,7 +55,7 @@ _KEYS = ("verdict", "failing", "reason", "why", "over_bound")
 
 def load(backend: str, folder: str | None = None) -> dict[str, Expected]:
     """The pinned non-passes of one backend (a folder without its file: every case must pass);
-    ValueError naming the file and line (x3d_core.documents.BadDocument) where it is malformed,
+    ValueError naming the file and line (x3d_core.files.documents.BadDocument) where it is malformed,
     or the folder where it is none."""
     if folder is not None:
         try:

@@ -17,11 +17,12 @@ import os
 import sys
 
 from conformance import cases as C
-from conformance.cli import options
 from conformance.runner import children
 
 from conformance.mutants import report, score, site
 from conformance.mutants.table import CONTROLS, MUTANTS
+
+from x3drbp import options
 
 
 def parser() -> argparse.ArgumentParser:

@@ -17,11 +17,11 @@ from typing import Any
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core import world as W
-from x3d_core.collision import ContactPoints, Geometry, _shapes
-from x3d_core.engine import Simulation
-from x3d_core.world import Joint, State, World
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics import world as W
+from x3d_core.semantics.collision import ContactPoints, Geometry, _shapes
+from x3d_core.semantics.engine import Simulation
+from x3d_core.semantics.world import Joint, State, World
 
 WorldEdit = Callable[[World], None]
 

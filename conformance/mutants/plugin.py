@@ -12,8 +12,8 @@ import functools
 from typing import Any
 
 from backends import base
-from x3d_core.engine import Simulation
-from x3d_core.world import World
+from x3d_core.semantics.engine import Simulation
+from x3d_core.semantics.world import World
 
 from conformance.mutants.table import BY_NAME, Mutant
 

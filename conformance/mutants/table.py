@@ -19,11 +19,11 @@ from typing import Any
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.collision import Collisions, Geometry, _geometry
-from x3d_core.engine import Simulation
-from x3d_core.model import Node
-from x3d_core.world import STATIC, Joint, World
+from x3d_core.model.scene import Node
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import Collisions, Geometry, _geometry
+from x3d_core.semantics.engine import Simulation
+from x3d_core.semantics.world import STATIC, Joint, World
 
 from conformance.mutants.edits import (BodyFrameLoads, BodyFrameSpin, FlippedNormals, LateState, Relay, WorldEdit,
                                        every_body_collides, geometries, hold, joints, params, reset)

@@ -32,7 +32,7 @@ by the CSV's bytes (read_view: stability parses a 6 MB trace of its 50-link chai
 Where: $X3DRBP_CACHE, else $XDG_CACHE_HOME/x3drbp/runs (~/.cache/x3drbp/runs); removing the
 folder clears it. X3DRBP_CACHE=off, or a command's --no-cache (report passes it to its steps),
 runs every run afresh and keeps none. A backend from outside this project (a plug-in: its code
-is not in the key) is never cached. Each entry is one file, written whole (x3d_core/atomic.py):
+is not in the key) is never cached. Each entry is one file, written whole (x3d_core/files/atomic.py):
 two commands sharing the folder never read half an entry, and the later of two writers of one
 key wins. An entry that does not read back whole (cut short, edited, of another format) is a
 miss and is written again; a folder that cannot be written costs the runs their reuse, never a
@@ -54,9 +54,10 @@ import zlib
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
-from x3d_core import atomic, trace
-from x3d_core.trace_npz import read_npz, write_npz
-from x3d_core.trace_view import TraceView
+from x3d_core.files import atomic
+from x3d_core.traces import trace
+from x3d_core.traces.trace_npz import read_npz, write_npz
+from x3d_core.traces.trace_view import TraceView
 
 from conformance.results import BLEW_UP, TIMED_OUT, UNSUPPORTED
 
@@ -318,7 +319,7 @@ def question(script: str, args: Sequence[str]) -> Entry | None:
 
 
 def read_view(path: str) -> TraceView:
-    """x3d_core.trace.read_view(path), a CSV trace's view kept as .npz under the CSV's bytes (and
+    """x3d_core.traces.trace.read_view(path), a CSV trace's view kept as .npz under the CSV's bytes (and
     x3drbp's source): stability reads a kept run's CSV again each report, 0.5 s of parsing for
     each 6 MB of the 50-link chain, where the .npz reads back in milliseconds."""
     where = folder()

@@ -45,7 +45,7 @@ from conformance.runner import cache, fork_server
 from conformance.runner.fork_server import GRACE, WarmChild, kill_group
 
 DEFAULT_TIMEOUT = 60.0
-EXIT_UNSUPPORTED = 3  # conformance.cli.run
+EXIT_UNSUPPORTED = 3  # x3drbp.run
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SIGNALS = (signal.SIGINT, signal.SIGTERM)
 SLICE = 0.2  # s: the longest a wait on a child goes without running the handler of a signal (_communicate)
@@ -212,7 +212,7 @@ def call(cmd: Sequence[str], timeout: float, stdout: bool = True,
          warm: fork_server.Server | None = None, backend: str = "") -> Ended:
     """`cmd` from the project root in a session of its own, its stderr (and stdout, unless
     `stdout` is False) captured, its group ended (_end) past `timeout` s or when an exception
-    leaves this call. With `warm`, cmd (`python -m conformance.cli ARGS`, stdout not captured)
+    leaves this call. With `warm`, cmd (`python -m x3drbp ARGS`, stdout not captured)
     is forked by that fork server, which has imported `backend` if a run of it ended well.
     OSError when it cannot start (fork_server.Gone where the server could not take it);
     Interrupted when this process was interrupted."""
@@ -346,7 +346,7 @@ def run_child(scene: str, backend: str, settings: Settings, trace: str,
     killed after `timeout` seconds. Its notes go to the command's Notes (notes_shown), never
     into the verdict's reason."""
     notes = _notes
-    cmd = [sys.executable, "-m", "conformance.cli", "run", scene, "--backend", backend, *settings.args(),
+    cmd = [sys.executable, "-m", "x3drbp", "run", scene, "--backend", backend, *settings.args(),
            "--trace", trace, *(notes.flag() if notes is not None else ("-q",)), *extra]
     with cache.claimed(cmd[3:], backend, ROOT) as kept:  # None: not cached (conformance/runner/cache.py says when)
         reused = kept.reused(timeout) if kept is not None else None

@@ -1,6 +1,6 @@
 """A warm fork server for the `x3drbp run` children a command starts by the hundred.
 
-A fresh `python -m conformance.cli run` spends about 0.45 s importing numpy, lxml, x3d_core and
+A fresh `python -m x3drbp run` spends about 0.45 s importing numpy, lxml, x3d_core and
 its engine before its first step; a sweep starts 300 of them. The server imports all that
 once (engines the first time a run of theirs ends well, so that one whose import crashes
 crashes a run, not the server) and forks one child per run. Each run stays a process of
@@ -20,7 +20,7 @@ its own, so a crash or a hang is still one verdict:
   in flight end as Gone and are run again in fresh children, and the next run starts a new
   server; none comes back as "timed out" for the server's silence.
 
-This module is the command's side (conformance/cli/run_server.py is the server's), used by
+This module is the command's side (x3drbp/run_server.py is the server's), used by
 children.run_child where the server can serve: on Linux (pidfd), when the children would
 run this very interpreter (a test that points sys.executable at a stand-in gets fresh
 children), and unless X3DRBP_FORK_SERVER=0. A server that cannot start, or dies, is
@@ -249,7 +249,7 @@ def _start(env: dict[str, str], root: str, live: set) -> Server | None:
     """A server ready to fork runs (its process in `live`), or None (it could not start within READY_WAIT s)."""
     folder = tempfile.mkdtemp(prefix="x3drbp-fork-")
     try:
-        proc = subprocess.Popen([sys.executable, "-m", "conformance.cli.run_server", os.path.join(folder, "socket")],
+        proc = subprocess.Popen([sys.executable, "-m", "x3drbp.run_server", os.path.join(folder, "socket")],
                                 cwd=root,
                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
                                 start_new_session=True)

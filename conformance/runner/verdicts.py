@@ -1,6 +1,6 @@
 """Runs conformance cases on backends, each run in its own process, and gives verdicts.
 
-Each (case, backend) runs `python -m conformance.cli run SCENE --backend NAME ... --trace TMP`
+Each (case, backend) runs `python -m x3drbp run SCENE --backend NAME ... --trace TMP`
 in a child process with a time limit, so that an engine's segfault or endless loop is a
 verdict, not a lost suite. The expectation is evaluated here, in the parent, on the trace
 the child wrote. Verdicts:
@@ -34,8 +34,8 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import TypeVar
 
-from x3d_core import atomic
-from x3d_core.trace import TraceView, read_view
+from x3d_core.files import atomic
+from x3d_core.traces.trace import TraceView, read_view
 
 from conformance.cases.case import Case
 from conformance.results import ERROR, Convergence, Result, Settings, judge

@@ -17,10 +17,10 @@ from __future__ import annotations
 import numpy as np
 
 from backends.base import BODIES, NOT_YET, Backend, Declared, Support, approximate, native
-from x3d_core import rotation as R
-from x3d_core.collision import ContactPoints
-from x3d_core.engine import Unsupported
-from x3d_core.world import JOINT_TYPES, State, World
+from x3d_core.semantics import rotation as R
+from x3d_core.semantics.collision import ContactPoints
+from x3d_core.semantics.engine import Unsupported
+from x3d_core.semantics.world import JOINT_TYPES, State, World
 
 NO_JOINTS = "this engine integrates free bodies only: it builds no joints"
 NO_CONTACTS = "this engine detects no collisions"

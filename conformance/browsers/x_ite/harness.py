@@ -22,9 +22,9 @@ import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from x3d_core import atomic
-from x3d_core.model import Scene
-from x3d_core.world import node_names, worlds
+from x3d_core.files import atomic
+from x3d_core.model.scene import Scene
+from x3d_core.semantics.world import node_names, worlds
 
 from conformance.runner import children
 

@@ -41,7 +41,8 @@ gets wrong, each measured by the suite's ordinary checks (`x3drbp validate`'s, u
   so that a clock that lags fails the clock's sentence once and never a field's.
 
 For every case where X_ITE's trace and a backend's part, a rerun recording shows X_ITE
-beside every backend with the divergence series (reports/rerun_recording.py).
+beside every backend with the divergence series, written by the recorder the caller passes
+(the command line's: reports/rerun_recording.py; the suite renders nothing itself).
 """
 
 from __future__ import annotations
@@ -54,22 +55,27 @@ import numpy as np
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 
-from x3d_core import atomic, schema
-from x3d_core.load import load
-from x3d_core.trace import TraceView, read_trace
-from x3d_core.world import node_names, worlds
+from x3d_core.encodings.load import load
+from x3d_core.files import atomic
+from x3d_core.model import schema
+from x3d_core.model.scene import Scene
+from x3d_core.semantics.world import node_names, worlds
+from x3d_core.traces.trace import TraceView, read_trace
 
 from conformance import results
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import CLOCK
 from conformance.analyses.trace_check import check_trace
 from conformance.analyses.validation import check_case, compare_with_backends
-from conformance.results import TraceComparison, Validation
+from conformance.results import PairComparison, Validation
 from conformance.browsers.x_ite.harness import NotRecordable, Recording, outputs, reachable_rate, record, step
 from conformance.browsers.x_ite.variants import ADDED, CONTACT, SENSOR, needs, ready, without, without_nodes
 
 RIGHT, CONVENTIONS, IGNORES, WRONG, ERROR = "right", "conventions", "ignores", "wrong", "error"
 NAME = "x_ite"  # X_ITE's name beside the backends' in comparisons and recordings
+# Writes the recording of a case where X_ITE and a backend part, and gives its path: from the
+# case's name, its scene, each run's trace by name (X_ITE's first) and the pairs compared
+Recorder = Callable[[str, Scene, list[tuple[str, TraceView]], list[PairComparison]], str]
 
 
 @dataclass
@@ -220,7 +226,7 @@ def _prepare(case: Case, folder: str) -> _Case:
 
 
 def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, results.BackendInfo],
-           thresholds: Mapping[str, float], timeout: float, recordings: str | None,
+           thresholds: Mapping[str, float], timeout: float, recorder: Recorder | None,
            clocks: Mapping[ClockKey, ClockReading]) -> None:
     case = c.case
     wall = sum(r.wall_s or 0.0 for r in c.runs)
@@ -253,17 +259,9 @@ def _judge(c: _Case, backends: Sequence[str], info: Mapping[str, results.Backend
     detail = result.accuracy_text() if verdict == RIGHT else result.meaning()  # a right case's grade
     c.verdict = CaseVerdict(case.name, verdict, detail, dt, agreeing=v.agreeing(), wall_s=wall, messages=messages, validation=v.to_json())
     parted = [b for b in comparisons[0].pairs if comparisons[0].verdict(b) != "agrees"]
-    if recordings is not None and parted:
-        c.verdict.recording = _record_divergence(case, views[0], comparisons[0], recordings)
-
-
-def _record_divergence(case: Case, theirs: TraceView, comparison: TraceComparison, folder: str) -> str:
-    from reports.rerun_recording import write_recording  # rerun is imported when a recording is written
-    os.makedirs(folder, exist_ok=True)
-    out = os.path.join(folder, f"{case.name}.rrd")
-    runs = [(NAME, theirs), *comparison.views.items()]
-    write_recording(out, load(case.path), runs, list(comparison.pairs.values()))
-    return out
+    if recorder is not None and parted:
+        c.verdict.recording = recorder(case.name, load(case.path), [(NAME, views[0]), *comparisons[0].views.items()],
+                                       list(comparisons[0].pairs.values()))
 
 
 def _probe(cases: Sequence[_Case], timeout_per_run: float) -> None:
@@ -409,7 +407,7 @@ def _blow_up_probes(c: _Case) -> list[Recording]:
 
 
 def run_cases(cases: Sequence[Case], folder: str, backends: Sequence[str], info: Mapping[str, results.BackendInfo],
-              thresholds: Mapping[str, float], timeout: float, recordings: str | None,
+              thresholds: Mapping[str, float], timeout: float, recorder: Recorder | None,
               progress: Callable[[str], None] = lambda _: None) -> tuple[list[CaseVerdict], list[ClockReading]]:
     """Every case through X_ITE in one browser, judged, and its clock at each frame rate;
     traces and probe scenes in `folder`."""
@@ -427,7 +425,7 @@ def run_cases(cases: Sequence[Case], folder: str, backends: Sequence[str], info:
     clocks = {key: read_clock(key, r) for key, r in clock_runs.items()}
     for c in prepared:
         if c.verdict is None:
-            _judge(c, backends, info, thresholds, timeout, recordings, clocks)
+            _judge(c, backends, info, thresholds, timeout, recorder, clocks)
         c.verdict.frame_rates = [r.frame_rate for r in c.runs]
     started = time.perf_counter()
     _probe(prepared, timeout)

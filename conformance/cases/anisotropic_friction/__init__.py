@@ -22,7 +22,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core.trace import TraceView
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
 from conformance.cases.closed_forms import FRICTION, FRICTION_DIRECTIONS, G, friction_fit, honoured

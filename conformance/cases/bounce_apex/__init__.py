@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from x3d_core.trace import TraceView
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import BOUNCE, CFM_DEFAULT, ROUNDING, G, honoured, max_norm, physics_time

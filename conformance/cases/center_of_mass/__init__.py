@@ -12,8 +12,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.trace import TraceView
+from x3d_core.semantics import rotation as R
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
 from conformance.cases.closed_forms import G, ROUNDING, ROUNDING_ANGLE, honoured, max_norm, physics_time

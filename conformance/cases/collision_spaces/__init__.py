@@ -13,7 +13,7 @@ ball passing through a corner of a Sphere's or a Cylinder's bounding box, clear 
 (spec; in such a space this fixes what 37.4.3 leaves implementation-dependent for a Shape without a bounding box,
 which cylinder_cone_shape checks outside one as a convention). FALSE allows the bounds and does not require them:
 the ball past Knob keeping its velocity (the geometry tested, as x3drbp and every engine here do whatever the field
-says: x3d_core/collision.py) is a convention, a ball stopped at Knob's bounding box conforms too."""
+says: x3d_core/semantics/collision.py) is a convention, a ball stopped at Knob's bounding box conforms too."""
 
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core.trace import TraceView
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
 from conformance.cases.closed_forms import ROUNDING, falls, honoured, max_norm, rests
@@ -48,7 +48,7 @@ GEOMETRY = spec("37.4.6 CollisionSpace: The useGeometry field indicates whether 
                 "check for collisions down to the level of geometry or only make approximations using the bounds of "
                 "the geometry.")
 BOUNDS_ALLOWED = convention(
-    "a CollisionSpace with useGeometry FALSE still tests its shapes' geometry (x3drbp's reading, x3d_core/collision.py, "
+    "a CollisionSpace with useGeometry FALSE still tests its shapes' geometry (x3drbp's reading, x3d_core/semantics/collision.py, "
     "and every engine here, whatever the field says); FALSE lets the collision code 'only make approximations using "
     "the bounds of the geometry', so a ball stopped at Knob's bounding box conforms too")
 BASES = {"InSpace": SPACES, "OnNested": NESTED, "Gap": TRAVERSE, "OffNested": NESTED_OFF}

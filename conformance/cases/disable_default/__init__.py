@@ -7,7 +7,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core.trace import TraceView
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, honoured, max_norm, physics_time

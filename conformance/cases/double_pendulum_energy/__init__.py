@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.trace import TraceView
+from x3d_core.semantics import rotation as R
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, G, honoured, max_norm, steps

@@ -19,7 +19,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core.trace import TraceView
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
 from conformance.results import Measure, Settings, convention
@@ -33,7 +33,7 @@ FIXED_STEP = convention("a fixed physics step independent of the frame rate: at 
 
 def expect(traces: Sequence[TraceView], settings: Sequence[Settings]) -> list[Measure]:
     """Tolerance 0: both runs have taken the same floor(1.0/dt) = 240 steps of a deterministic
-    engine when t = 1.0 s, and frames only read state (x3d_core.evaluator's contract). Any
+    engine when t = 1.0 s, and frames only read state (x3d_core.semantics.evaluator's contract). Any
     difference, even in the last digit (traces keep every digit), is frame-dependent physics."""
     t_end = 1.0
     a, b = traces[0].at(t_end), traces[1].at(t_end)

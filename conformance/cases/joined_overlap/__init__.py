@@ -1,7 +1,7 @@
 """joined_overlap: bodies joined by a joint do not collide, though their collidables overlap.
 
 Clause 37 says nothing of joined bodies and collisions, so the case holds runs to a convention:
-x3drbp's rule (x3d_core/collision.py), ODE's usual one (a near callback that skips
+x3drbp's rule (x3d_core/semantics/collision.py), ODE's usual one (a near callback that skips
 dAreConnected pairs) and X_ITE's (Bullet's disableCollisionsBetweenLinkedBodies). Each bar turns
 through the cube it is hinged in; the hinge carries no load, so a bar that does not collide
 with its cube keeps turning at its start rate.
@@ -19,8 +19,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.trace import TraceView
+from x3d_core.semantics import rotation as R
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case, Mutation
 from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, infinitesimal_lag, max_norm, physics_time

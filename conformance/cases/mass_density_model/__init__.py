@@ -2,7 +2,7 @@
 
 The clause says the model's geometry is "used to calculate the mass density"; x3drbp reads it
 as a uniform solid of that shape carrying the body's mass, its inertia about its own centroid
-taking the place of the inertia field (x3d_core/world.py, _inertia). A torque about a
+taking the place of the inertia field (x3d_core/semantics/world.py, _inertia). A torque about a
 principal axis through the centre of mass then gives alpha = tau / I, which the inertia field's
 default (the identity) would not."""
 
@@ -12,8 +12,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.trace import TraceView
+from x3d_core.semantics import rotation as R
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ROUNDING, ROUNDING_ANGLE, honoured, max_norm, physics_time

@@ -8,8 +8,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from x3d_core import rotation as R
-from x3d_core.trace import TraceView
+from x3d_core.semantics import rotation as R
+from x3d_core.traces.trace import TraceView
 
 from conformance.cases.case import Case
 from conformance.cases.closed_forms import ERROR_CORRECTION, ROUNDING, ROUNDING_ANGLE, honoured, max_norm
