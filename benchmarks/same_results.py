@@ -3,8 +3,8 @@ result (a restructuring, a speed-up): the conformance suite's traces, its matrix
 from both trees in one run.
 
 Each side, this tree and REV's (its files from git archive), runs with the run cache off:
-- `x3drbp conformance --out SIDE/conformance`: every case on every backend, its traces and
-  matrix.json;
+- `x3drbp conformance --keep-traces --out SIDE/conformance`: every case on every backend, its
+  traces and matrix.json;
 - `x3drbp expectations --pins SIDE/pins --matrix SIDE/conformance-matrix.md`, on copies of the
   tree's own pins (conformance/expectations) and matrix page (docs/conformance-matrix.md): the
   pins as that tree's code writes them.
@@ -42,7 +42,7 @@ def _side(tree: str, out: str, chosen: list[str]) -> None:
     shutil.copytree(os.path.join(tree, PINS), os.path.join(out, "pins"),
                     ignore=shutil.ignore_patterns("*.py", "__pycache__"))
     shutil.copy(os.path.join(tree, PAGE), os.path.join(out, "conformance-matrix.md"))
-    for argv in (["conformance", "-q", "--out", os.path.join(out, "conformance")],
+    for argv in (["conformance", "-q", "--keep-traces", "--out", os.path.join(out, "conformance")],
                  ["expectations", "--pins", os.path.join(out, "pins"),
                   "--matrix", os.path.join(out, "conformance-matrix.md")]):
         done = subprocess.run([*command_line(tree), *argv, *chosen], cwd=tree, env=env, capture_output=True,
