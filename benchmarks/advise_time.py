@@ -22,7 +22,8 @@ imports, the backends' probe and declarations, the judgement, the runs at every 
 those timed again, the reference runs, the text), with advise's own defaults unless options
 are passed on; --repeat times, each after the one before has ended: its wall time, and its
 CPU time (user + system of it and every child it waited for: what another load on the machine
-barely moves), with the load average before it. Each run starts with an empty run cache
+barely moves), their ratio (the parallelism: how busy it kept the cores), with the load average
+before it. Each run starts with an empty run cache
 (X3DRBP_CACHE, a fresh folder: conformance/runner/cache.py), as on a fresh machine, and with
 Python's bytecode compiled beforehand (benchmarks/measure.py: compiled_env).
 
@@ -202,24 +203,25 @@ def main(argv: list[str] | None = None) -> int:
                     return 1
                 runs[side].append((load, wall, cpu))
                 last[side] = out.stdout
-                print(f"run {k + 1}, {side}: {wall:.1f} s wall, {cpu:.1f} s CPU (load average {load:.2f} before)",
-                      flush=True)
+                print(f"run {k + 1}, {side}: {wall:.1f} s wall, {cpu:.1f} s CPU, parallelism {cpu / wall:.2f} "
+                      f"(load average {load:.2f} before)", flush=True)
         if args.keep:
             os.makedirs(args.keep, exist_ok=True)
             shutil.copy(scene, args.keep)
             with open(os.path.join(args.keep, "advise.txt"), "w", encoding="utf-8") as f:
                 f.write(last["this tree"])
     print()
-    print("| scene | side | runs | median wall s | spread (s) | median CPU s | spread (s) | target (s) | within | CPUs "
-          "| load average before each run | load average (1, 5, 15 min) after |")
-    print("|---|---|---:|---:|---|---:|---|---:|---|---:|---|---|")
+    print("| scene | side | runs | median wall s | spread (s) | median CPU s | spread (s) | parallelism | target (s) "
+          "| within | CPUs | load average before each run | load average (1, 5, 15 min) after |")
+    print("|---|---|---:|---:|---|---:|---|---:|---:|---|---:|---|---|")
     after = ", ".join(f"{x:.2f}" for x in os.getloadavg())
     medians = {}
     for side, rows in runs.items():
         loads, walls, cpus = (list(col) for col in zip(*rows))
         medians[side] = statistics.median(walls), statistics.median(cpus)
         print(f"| {args.scene} | {side} | {len(rows)} | {medians[side][0]:.1f} | {_spread(walls)} | "
-              f"{medians[side][1]:.1f} | {_spread(cpus)} | {target:g} | {'yes' if medians[side][0] <= target else 'NO'} "
+              f"{medians[side][1]:.1f} | {_spread(cpus)} | {statistics.median(c / w for c, w in zip(cpus, walls)):.2f} "
+              f"| {target:g} | {'yes' if medians[side][0] <= target else 'NO'} "
               f"| {os.cpu_count()} | {', '.join(f'{x:.2f}' for x in loads)} | {after} |")
     if args.against:
         (w, c), (w0, c0) = medians["this tree"], medians[args.against]

@@ -6,26 +6,28 @@ other, in colours that repeat, could not be read.
 
 Reads a conformance.results.Comparison (or its JSON, through Comparison.from_json); runs
 nothing. matplotlib is imported here alone (its Agg canvas, no display and no pyplot state),
-so only a command that asks for a plot pays for it. The same comparison gives the same bytes:
-the PNG carries no software version or date.
+when a plot is drawn, so only a command that draws one pays for it. The same comparison gives
+the same bytes: the PNG carries no software version or date, only its key (plot_key.py), and
+it is not drawn again where the PNG there holds the same key.
 """
 
 from __future__ import annotations
 
 import io
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
-from matplotlib.axes import Axes
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
-from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
 
 from conformance.results import ORIENTATION, POSITION, Comparison, Divergence, PairComparison, dt_label
 from x3d_core.files import atomic
 
+from . import plot_key
 from .text import num, plotted
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 # a log axis has no 0: divergences this far below the smaller threshold (rounding, or none) are drawn
 # there, at the panel's foot; what matters, when a pair passes a threshold and how far, keeps the room
@@ -90,6 +92,11 @@ def figure(comparison: Comparison) -> Figure:
     the top row names the columns; the legend (the two quantities, the thresholds, the floor)
     in the empty corner below. With no pair, a figure that says so (log axes of nothing are
     matplotlib's error)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
     c = comparison
     names = backends(c)
     n = len(names)
@@ -140,9 +147,26 @@ def figure(comparison: Comparison) -> Figure:
     return fig
 
 
+def key(c: Comparison) -> str:
+    """The digest of all that figure() draws of a comparison (plot_key.py): the scene's name,
+    step, frame rate, duration and thresholds, and each pair's backends, times, per-frame
+    maxima and first crossings; not the rest of it (the runs, the per-body series)."""
+    data: list = [[os.path.basename(c.scene), c.dt, c.frame_rate, c.duration, c.thresholds]]
+    for p in c.pairs:
+        data.append([p.a, p.b, *[None if d.first_over is None else d.first_over.time
+                                 for d in (p.position, p.orientation)]])
+        data += [np.asarray(p.times, dtype=np.float64), np.asarray(p.position.frame_max, dtype=np.float64),
+                 np.asarray(p.orientation.frame_max, dtype=np.float64)]
+    return plot_key.digest(data, (__name__, num.__module__, dt_label.__module__))
+
+
 def divergence_plot(comparison: Comparison, path: str) -> None:
     """The figure as a PNG of SIZE at DPI, written atomically (x3d_core.files.atomic), without the
-    software tag matplotlib adds: the same comparison gives the same bytes."""
+    software tag matplotlib adds: the same comparison gives the same bytes. Not drawn again
+    where the PNG at path holds the same key (plot_key.py: what it draws is unchanged)."""
+    drawn_from = key(comparison)
+    if plot_key.drawn(path, drawn_from):
+        return
     png = io.BytesIO()
-    figure(comparison).savefig(png, format="png", dpi=DPI, metadata={"Software": None})
+    figure(comparison).savefig(png, format="png", dpi=DPI, metadata=plot_key.metadata(drawn_from))
     atomic.write_bytes(path, png.getvalue())

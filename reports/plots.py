@@ -5,16 +5,11 @@ from __future__ import annotations
 import io
 import textwrap
 
-import matplotlib
+from x3d_core.files import atomic
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
-from matplotlib.lines import Line2D  # noqa: E402
-
-from x3d_core.files import atomic  # noqa: E402
-
-from .sweep_tables import NO_RESULTS, measured, variation  # noqa: E402
-from .text import plotted  # noqa: E402
+from . import plot_key
+from .sweep_tables import NO_RESULTS, measured, variation
+from .text import plotted
 
 _MARKERS = "os^Dv<>p*h"
 # shown beside its front's table on a 1400 px page (about 560 px there) and at its own size below
@@ -31,9 +26,15 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     a common reference's uncertainty as a dotted line (errors below it tie). Points without
     an error (refused, crashed...) are not drawn; errors of exactly 0 are drawn at a tenth of
     the smallest nonzero one, and the title says so. A scene with no point to draw gets a
-    plot that says so (log axes of nothing are matplotlib's error)."""
+    plot that says so (log axes of nothing are matplotlib's error). Not drawn again where the
+    PNG at path holds the same key (plot_key.py: the scene's entry, its points and the backends
+    unchanged)."""
     info = next(s for s in doc["scenes"] if s["name"] == scene)
     points = measured([p for p in doc["points"] if p["scene"] == scene])
+    key = plot_key.digest([info, points, list(doc["backends"])], (__name__, variation.__module__, plotted.__module__))
+    if plot_key.drawn(path, key):
+        return
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=SIZE)
     method = info.get("reference_method")
     title = f"{scene}: {info['reference']}" + (f" ({info['reference_backend']}, {method})" if method else "")
@@ -46,9 +47,18 @@ def sweep_plot(doc: dict, scene: str, path: str) -> None:
     ax.set_title(textwrap.fill(plotted(title), TITLE_WIDTH), fontsize=9)
     fig.tight_layout()
     png = io.BytesIO()
-    fig.savefig(png, format="png", dpi=DPI)
+    fig.savefig(png, format="png", dpi=DPI, metadata=plot_key.metadata(key))
     atomic.write_bytes(path, png.getvalue())
     plt.close(fig)
+
+
+def pyplot():
+    """matplotlib's pyplot on its Agg backend (no display needed), imported when a plot is drawn:
+    a sweep whose plots are all unchanged (plot_key.py) does not pay for the import (0.7 s)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
 
 
 def _draw(ax, doc: dict, points: list[dict], unit: str, uncertainty: float | None) -> str:
@@ -56,6 +66,7 @@ def _draw(ax, doc: dict, points: list[dict], unit: str, uncertainty: float | Non
     the title adds (the floor that errors of 0 are drawn at). The legend is the code, not a line
     per variation (28 of them ran off a 600 px picture): a colour per backend, a marker per
     iterations value, dashed where preferAccuracy is TRUE."""
+    from matplotlib.lines import Line2D
     nonzero = [p["error"] for p in points if p["error"] > 0]
     floor = min(nonzero) / 10 if nonzero else 1e-16
     iterations = list(dict.fromkeys(variation(p).split(" | ")[0] for p in sorted(points, key=_its)))

@@ -54,6 +54,16 @@ def reference(scene: dict) -> str:
     return f"{escape(scene['reference_said'])}; {escape(scene['quantity'])}"
 
 
+def timing(doc: dict) -> str:
+    """How often the points were timed (conformance/analyses/sweep_timing.py), in words."""
+    repeats = doc["settings"].get("repeats", 1)
+    again = sum(1 for p in doc["points"] if p.get("timed", repeats) > 1)
+    if repeats == 1:
+        return "each point timed once"
+    return (f"each point timed once, and {repeats} times in all where its speed could change a front "
+            f"({again} of {len(doc['points'])})")
+
+
 def markdown(doc: dict) -> str:
     s = doc["settings"]
     lines = ["# x3drbp sweep", "",
@@ -61,7 +71,7 @@ def markdown(doc: dict) -> str:
              f"Error: {doc['measured']['error']}. Self-consistency: {doc['measured']['self_error']}.", "",
              f"Steps {', '.join(p for p in dict.fromkeys(q['dt_label'] for q in doc['points'])) or '-'}; "
              f"iterations {', '.join(map(str, s['iterations']))}; preferAccuracy {s['accuracy']}; "
-             f"{s.get('repeats', 1)} timed repeats per point; "
+             f"{timing(doc)}; "
              f"fine step at the finest step / {s['reference_refinement']}, window {s['window']:g} s. "
              f"{len(doc['points'])} runs in {doc['wall_s']:g} s.", "",
              "Backends: " + "; ".join(

@@ -115,7 +115,7 @@ def _poses(job, offset: float) -> Positions:
 def _fake_runs(discrete: bool, ran: list):
     """An executor of sweep jobs that records them and returns made-up runs: Drake error-controlled
     (its target 1e-11 with preferAccuracy TRUE, else 1e-9) unless `discrete`."""
-    def execute(jobs, scheduler, workers, progress, expected=None):
+    def execute(jobs, scheduler, workers, progress, expected=None, *_):
         ran.append(list(jobs))
         out = []
         for job in jobs:
@@ -174,7 +174,7 @@ def test_time_again_adds_timings_of_another_run(monkeypatch, tmp_path):
     sweep = S.run_sweep([target], PLANS, dts, [], [], repeats=1, controlled=True, reference_as_fine=True)
     seen: list = []
 
-    def again(jobs, scheduler, workers, progress, expected=None):
+    def again(jobs, scheduler, workers, progress, expected=None, *_):
         seen.append((list(jobs), list(expected), cache.folder()))
         return [JobResult("measured", step_s=(0.03, 0.05)[:jobs[0].repeats], simulation_s=0.1,
                           cpu_s=(0.02, 0.05)[:jobs[0].repeats]) for _ in jobs]

@@ -211,6 +211,29 @@ esac
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals and shell scripts")
+def test_cases_of_one_scene_share_its_run_and_the_finer_step_runs_first(tmp_path, monkeypatch):
+    """The two spinning-wheel cases watch two wheels of one scene: it runs once a backend and step
+    (it ran twice, 44 s of Drake's runs), judged by each case's monitors; the finer step first."""
+    if REFERENCE is None:
+        pytest.skip("no backend is installed")
+    log = tmp_path / "runs.log"
+    monkeypatch.setattr(children.sys, "executable", fake_python(tmp_path, f"""echo "$*" >> '{log}'
+exec {sys.executable} "$@"
+"""))
+    finite, plain = S.BY_NAME["spinning_wheel_finite"], S.BY_NAME["spinning_wheel_plain"]
+    got = S.run_suite([finite, plain], [REFERENCE], [1 / 60, 1 / 240], workers=1)
+    runs = log.read_text().splitlines()
+    assert [float(r.split(" --dt ")[1].split()[0]) for r in runs] == [1 / 240, 1 / 60]
+    assert all("spinning_wheels.x3d" in r for r in runs)
+    assert [(r.case, r.dt) for r in got] == [(c.name, dt) for c in (finite, plain) for dt in (1 / 60, 1 / 240)]
+    for f, p in zip(got[:2], got[2:]):  # one run, judged by each case's monitors (its wheel's energy, momentum)
+        if f.verdict in (S.SURVIVED, S.ENERGY, S.MOMENTUM):
+            assert len(f.figures) == len(p.figures) == 3 and f.figures != p.figures
+        else:  # what ended the run ended it for both
+            assert (p.verdict, p.reason, p.at) == (f.verdict, f.reason, f.at) and f.reason
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals and shell scripts")
 @pytest.mark.parametrize("script,verdict,at", [
     ("sleep 30\n", results.TIMED_OUT, None),
     ("echo 's.x3d: fake: blew up by t=0.35: MuJoCo found a huge acceleration' >&2; exit 1\n", results.BLEW_UP, 0.35),

@@ -146,6 +146,7 @@ def test_sweep_command_writes_json_markdown_and_plot(tmp_path):
     assert all(p["wall_low"] <= p["wall_per_sim_s"] <= p["wall_high"] for p in points)
     assert all(0 < p["cpu_low"] <= p["cpu_per_sim_s"] <= p["cpu_high"] for p in points)
     assert doc["settings"]["repeats"] == S.REPEATS
+    assert [p["timed"] for p in points] == [S.REPEATS] * 2  # both head the front: the table states their speeds
     # semi-implicit Euler's position error is first order: a quarter of the step, a quarter of the error
     assert points[1]["error"] / points[0]["error"] == pytest.approx(0.25, rel=0.05)
     assert points[1]["pareto_scene"] or points[0]["pareto_scene"]

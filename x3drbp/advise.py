@@ -32,6 +32,7 @@ import datetime
 import sys
 import time
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 
 from reports.advice_text import render
 from x3d_core.files import atomic
@@ -116,27 +117,35 @@ def cmd_advise(args: argparse.Namespace) -> int:
             scenes[path] = loaded[0]
     if not scenes:
         return status
-    try:
-        for path in scenes:  # the steps' common frames, each scene's reference run within a run's bounds
-            targets([path], dts, args.window, args.duration, scenes)
+    with probe.remembered(), ThreadPoolExecutor(1) as beside:  # the probe asked once, for all that follows
+        try:
+            for path in scenes:  # the steps' common frames, each scene's reference run within a run's bounds
+                targets([path], dts, args.window, args.duration, scenes)
+            usable = [n for n, i in probe.backend_table(args.timeout, options.names(args.backends)).items()
+                      if i.usable]
+        except ValueError as e:
+            return _usage(str(e))
+        try:
+            verdict, unpinned = _verdict(matrix, usable), None
+        except ValueError as e:  # a pin file that does not parse: its path and entry
+            verdict, unpinned = None, e
+        started = time.perf_counter()
+        # the judgement's child beside the declarations' (each imports every engine: a second apiece),
+        # asked of every usable backend: those whose declarations cannot be read leave none planned
+        judging = beside.submit(A.judge, list(scenes), usable, verdict, args.timeout) if usable and verdict else None
         planned = plans("advise", args.backends, args.timeout)
-    except ValueError as e:
-        return _usage(str(e))
-    if not planned:
-        return EXIT_SCENE
-    started = time.perf_counter()
-    try:
-        verdict = _verdict(matrix, list(planned))
-    except ValueError as e:  # a pin file that does not parse: its path and entry
-        print(f"x3drbp advise: {e}", file=sys.stderr)
-        return EXIT_FAILED
-    judged, why = A.judge(list(scenes), list(planned), verdict, args.timeout)
-    if judged is None:
-        print(f"x3drbp advise: the scenes could not be judged: {why}", file=sys.stderr)
-        return EXIT_FAILED
-    progress = options.progress(args)
-    advice = A.advise(list(scenes), scenes, planned, judged, dts, args.duration, args.window, args.budget,
-                      args.tolerance, args.timeout, args.workers, progress, args.repeats)
+        if not planned:
+            return EXIT_SCENE
+        if unpinned is not None:
+            print(f"x3drbp advise: {unpinned}", file=sys.stderr)
+            return EXIT_FAILED
+        judged, why = judging.result()
+        if judged is None:
+            print(f"x3drbp advise: the scenes could not be judged: {why}", file=sys.stderr)
+            return EXIT_FAILED
+        progress = options.progress(args)
+        advice = A.advise(list(scenes), scenes, planned, judged, dts, args.duration, args.window, args.budget,
+                          args.tolerance, args.timeout, args.workers, progress, args.repeats)
     doc = {"generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
            "settings": {"dts": dts, "duration": args.duration, "window": args.window, "budget": args.budget,
                         "tolerance": args.tolerance, "repeats": args.repeats, "verdicts": args.verdicts or "pinned"},

@@ -4,7 +4,8 @@
                      [--timeout S] [--jobs N] [-q | -v]
 
 Writes DIR/stability.json and DIR/stability.md (DIR defaults to out/stability) and prints the
-markdown. Each (case, backend, dt) runs in its own child process under the time limit; its
+markdown. Each (case, backend, dt) runs in its own child process under the time limit (cases
+of one scene and duration judge one run: the two spinning wheels; finest step first); its
 verdict is survived (stopped, for the impact), what gave way first and when (energy grew past
 bound, momentum drifted past bound, joint drifted past bound, drifted past bound, tunnelled,
 blew up), or unsupported, crashed, timed out, error; and a line for each run whose mechanical

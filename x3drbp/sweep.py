@@ -16,10 +16,13 @@ stderr say "no results"); 1 where the scheduler cannot be reached, or a scene fi
 load or has nothing to simulate (each error one line, before any run; nothing written); 2 on
 bad usage; 130 or 143 when interrupted by SIGINT or SIGTERM (every run stopped).
 
-The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, the
-seven backends: 384 points, each timed 3 times in its child, 28 fine-step runs and Drake's 4
-error-controlled reference runs) took 205 s on 2 cores when it held 288 points (163 s with
---repeats 1); a long sweep names more:
+Each point is timed once, and the points whose speed could change the fronts (the fronts'
+points, and those a single timing's margin could move a mark with: conformance/analyses/
+sweep_timing.py) --repeats times in all, their speed the median; sweep.json's `timed` says how
+many. The default scope (4 scenes, 4 steps, iterations 10 and 50, preferAccuracy both ways, the
+seven backends: 384 points, 28 fine-step runs and Drake's 4 error-controlled reference runs)
+took 205 s on 2 cores when it held 288 points, each timed 3 times (163 s with --repeats 1); a
+long sweep names more:
     x3drbp sweep --dts 1/60,1/120,1/240,1/500,1/1000,1/2000,1/4000,1/8000 \\
                  --iterations 5,10,20,50,100 --scenes pendulum_period,projectile,torque_free,...
 """
@@ -40,6 +43,7 @@ from conformance import cases as C
 from conformance.runner import children, probe
 from conformance.analyses import distribute
 from conformance.analyses import sweep as S
+from conformance.analyses import sweep_timing as timing
 
 from x3drbp import options
 
@@ -117,7 +121,8 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], planned: dict[str, S.Backend
     return {
         "generated": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "measured": {"speed": "cpu_per_sim_s: the child's CPU time in the engine's steps (x3drbp run --timing) "
-                              "over the simulated seconds, the median of the repeats (cpu_low and cpu_high: their "
+                              "over the simulated seconds, the median of its timings (`timed` of them: one, or "
+                              "--repeats where the speed could change the fronts; cpu_low and cpu_high: their "
                               "spread), what ranks, as load does not reorder it; wall_per_sim_s (wall_low, "
                               "wall_high): the same steps' wall time; not start-up, loading, the model build, "
                               "per-frame reads or trace writing (simulation_per_sim_s: the whole simulation's "
@@ -143,7 +148,7 @@ def to_json(sweep: S.Sweep, chosen: list[S.Target], planned: dict[str, S.Backend
         "fine_runs": [_reference_run(scene, job, res, check) for (scene, _), (job, res, check) in sweep.fine.items()],
         "error_controlled_runs": [_reference_run(scene, job, res, check)
                                   for scene, (job, res, check) in sweep.controlled.items()],
-        "points": [p.to_json() for p in sweep.points],
+        "points": [{**p.to_json(), "timed": n} for p, n in zip(sweep.points, timing.timed(sweep))],
         "wall_s": round(wall_s, 1),
     }
 
@@ -187,7 +192,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     started = time.perf_counter()
     try:
         sweep = S.run_sweep(chosen, planned, dts, iterations, ACCURACY[args.accuracy], args.timeout, scheduler,
-                            args.workers, progress=options.progress(args), repeats=args.repeats)
+                            args.workers, progress=options.progress(args), repeats=1)
+        timing.settle(sweep, args.repeats, scheduler, args.workers, options.progress(args))
     except distribute.Unreachable as e:
         print(f"x3drbp sweep: {e}", file=sys.stderr)
         return EXIT_UNREACHABLE
@@ -228,7 +234,8 @@ def add_command(sub) -> None:
     p.add_argument("--window", type=options.positive, default=S.DEFAULT_WINDOW, metavar="S",
                    help=f"seconds compared with the reference (default {S.DEFAULT_WINDOW:g})")
     p.add_argument("--repeats", type=options.repeats, default=S.REPEATS, metavar="N",
-                   help=f"timed runs of each point, for the median speed and its spread (default {S.REPEATS})")
+                   help=f"timed runs of each point whose speed could change the fronts, for the median speed and its "
+                        f"spread (default {S.REPEATS}; the others are timed once)")
     p.add_argument("--out", default=os.path.join("out", "sweep"), metavar="DIR",
                    help="folder for sweep.json, sweep.md and the plots (default out/sweep)")
     p.add_argument("--scheduler", metavar="ADDRESS",

@@ -10,8 +10,10 @@ error-controlled run where it is the reference), and how long each run stays wit
 1 mrad of each other backend's run at the same step. Each run is timed once, and the runs whose
 speed could change the advice (unsettled()) `repeats` times in all, their speed the median,
 until no such run is left: the 3 repeats of a 5 s Drake run far from any tie and from the
-budget are not paid for. The recommendation is a rule, stated here and in
-docs/commands/advise.md, not a score:
+budget are not paid for. A run whose first timing is near the budget (near_budget) has its
+further timings started as soon as it ends, beside the other runs (sweep.Pool); they count only
+where unsettled() picks it, so the advice is the same as where they wait for every first timing.
+The recommendation is a rule, stated here and in docs/commands/advise.md, not a score:
 
 1. Out: a backend that refuses a feature the scene uses, and every run that did not end
    well (blew up, crashed, timed out). Set aside: a backend that fails (violates the spec
@@ -417,44 +419,60 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
            tolerance: float = DEFAULT_TOLERANCE, timeout: float = children.DEFAULT_TIMEOUT,
            workers: int | None = None, progress: bool = False, repeats: int = S.REPEATS) -> list[Advice]:
     """Advice for each scene (loaded, with something to simulate), in the order given: each run
-    timed once, then those whose speed could change the advice (unsettled) `repeats` times in all."""
+    timed once, then those whose speed could change the advice (unsettled) `repeats` times in all.
+    The runs go to one pool. Where its first timing is near the budget (near_budget) a run's
+    further timings start as it ends, beside the other runs, rather than once they have all
+    ended (a speculation: they count only where unsettled() picks the run, as though started
+    then, and are dropped where it does not and they have not ended)."""
     out = []
     controlled = S.drake_usable(plans, timeout)  # Drake's error-controlled reference wherever it can run
-    for path in paths:
-        able = {b: p for b, p in plans.items() if not judged[path][b].refused}  # a refusal needs no run
-        (target,) = S.targets([path], dts, window, duration, scenes)
-        swept = (S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, 1, controlled,
-                             reference_as_fine=True) if able else None)
-        options = [] if swept is None else [
-            Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cost, wall=p.wall,
-                   timed=len(res.cpu_s)) for p, (_, res) in zip(swept.points, swept.runs)]
-        if swept is not None:
-            for o in options:
-                mine = swept.positions.get((target.name, o.backend, o.dt))
-                for other in able:
-                    theirs = swept.positions.get((target.name, other, o.dt))
-                    if other != o.backend and mine is not None and theirs is not None:
-                        try:
-                            o.parts[other] = parting(mine, theirs)
-                        except ValueError:  # no body or frame in common: nothing to say of when they part
-                            continue
-        reference = swept.references[target.name] if swept is not None else "no backend can run the scene"
-        if isinstance(reference, S.Reference):
-            reference = reference.without({b: f"which fails {', '.join(cs)}" for b in able
-                                           if (cs := _outdone(b, list(able), judged[path]))})
-        ref_error = reference.error if isinstance(reference, S.Reference) else 0.0
-        again: set[int] = set()
-        while swept is not None and repeats > 1:
-            picked = [k for k in unsettled(options, judged[path], budget, tolerance, ref_error) if k not in again]
-            if not picked:
-                break
-            S.time_again(swept, picked, repeats - 1, None, workers, progress)
-            again.update(picked)
-            for k in picked:
-                p, (_, res) = swept.points[k], swept.runs[k]
-                options[k].cost, options[k].wall, options[k].timed = p.cost, p.wall, len(res.cpu_s)
-        choice = choose(options, judged[path], budget, tolerance, ref_error)
-        if not able:
-            choice.rule = choice.said = NONE_CAN
-        out.append(Advice(path, kind(scenes[path]), reference, judged[path], options, choice))
+    with S.pool(workers) as pool:
+        for path in paths:
+            able = {b: p for b, p in plans.items() if not judged[path][b].refused}  # a refusal needs no run
+            (target,) = S.targets([path], dts, window, duration, scenes)
+            ahead = (repeats - 1, lambda cost: near_budget(cost, budget)) if repeats > 1 else None
+            swept = (S.run_sweep([target], able, dts, (), (), timeout, None, workers, progress, 1, controlled,
+                                 reference_as_fine=True, pool=pool, again=ahead) if able else None)
+            options = [] if swept is None else [
+                Option(p.backend, p.dt, p.verdict, p.reason, p.error, p.self_error, p.cost, wall=p.wall,
+                       timed=len(res.cpu_s)) for p, (_, res) in zip(swept.points, swept.runs)]
+            if swept is not None:
+                for o in options:
+                    mine = swept.positions.get((target.name, o.backend, o.dt))
+                    for other in able:
+                        theirs = swept.positions.get((target.name, other, o.dt))
+                        if other != o.backend and mine is not None and theirs is not None:
+                            try:
+                                o.parts[other] = parting(mine, theirs)
+                            except ValueError:  # no body or frame in common: nothing to say of when they part
+                                continue
+            reference = swept.references[target.name] if swept is not None else "no backend can run the scene"
+            if isinstance(reference, S.Reference):
+                reference = reference.without({b: f"which fails {', '.join(cs)}" for b in able
+                                               if (cs := _outdone(b, list(able), judged[path]))})
+            ref_error = reference.error if isinstance(reference, S.Reference) else 0.0
+            again: set[int] = set()
+            while swept is not None and repeats > 1:
+                picked = [k for k in unsettled(options, judged[path], budget, tolerance, ref_error) if k not in again]
+                if not picked:
+                    break
+                S.time_again(swept, picked, repeats - 1, None, workers, progress, pool)
+                again.update(picked)
+                for k in picked:
+                    p, (_, res) = swept.points[k], swept.runs[k]
+                    options[k].cost, options[k].wall, options[k].timed = p.cost, p.wall, len(res.cpu_s)
+            for _, future in swept.ahead.values() if swept is not None else ():
+                pool.drop(future)  # started ahead and not picked: not waited for
+            choice = choose(options, judged[path], budget, tolerance, ref_error)
+            if not able:
+                choice.rule = choice.said = NONE_CAN
+            out.append(Advice(path, kind(scenes[path]), reference, judged[path], options, choice))
     return out
+
+
+def near_budget(cost: Cost, budget: float) -> bool:
+    """Whether a run's first timing lies where one timing more may put it across the budget
+    (unsettled()'s factor either way): a run likely to be timed again (where it is accurate
+    enough, whether it fits decides the advice), so advise starts its further timings at once."""
+    f = SPEED_NOISE if cost.median < SPEED_RESOLUTION else 1 + SPEED_RELATIVE
+    return budget / f <= cost.median <= budget * f

@@ -89,10 +89,16 @@ preferAccuracy unsupported runs the scene's own value (it would refuse another).
 
 from __future__ import annotations
 
+import functools
+import heapq
+import itertools
 import math
 import os
-from collections.abc import Mapping, Sequence
-from dataclasses import asdict, dataclass, replace
+import threading
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
+from contextlib import contextmanager
+from dataclasses import asdict, dataclass, field, replace
 
 from x3d_core.encodings.load import load
 from x3d_core.model.scene import Scene
@@ -407,18 +413,26 @@ class Sweep:
     units: dict[str, str]  # scene -> the error's unit
     positions: dict[tuple[str, str, float], Positions]  # (scene, backend, dt) -> a run's poses (no variation asked)
     runs: list[tuple[Job, JobResult]]  # each point's job and what it gave, in the points' order (time_again)
+    # point index -> its further timings started as soon as its run ended (run_sweep's `again`): how many, and
+    # the run giving them, which time_again takes where it asks as many, and drops (Pool.drop) where not
+    ahead: dict[int, tuple[int, Future]] = field(default_factory=dict)
 
 
 def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequence[float],
               iterations: Sequence[int], accuracy: Sequence[bool], timeout: float = children.DEFAULT_TIMEOUT,
               scheduler: str | None = None, workers: int | None = None, progress: bool = False,
-              repeats: int = REPEATS, controlled: bool | None = None, reference_as_fine: bool = False) -> Sweep:
-    """Every target on every planned backend at every step and variation, on the executor, and
-    each target without a closed form's reference runs: every backend's fine run and, where
-    `controlled` (None: wherever the drake backend is usable, compared or not), Drake's
-    error-controlled one. Empty iterations or accuracy: the scene's own. reference_as_fine
+              repeats: int = REPEATS, controlled: bool | None = None, reference_as_fine: bool = False,
+              pool: Pool | None = None, again: tuple[int, Callable[[Cost], bool]] | None = None) -> Sweep:
+    """Every target on every planned backend at every step and variation, on the executor (or
+    `pool`), and each target without a closed form's reference runs: every backend's fine run
+    and, where `controlled` (None: wherever the drake backend is usable, compared or not),
+    Drake's error-controlled one. Empty iterations or accuracy: the scene's own. reference_as_fine
     (advise): where Drake's error-controlled run is the reference, it is Drake's fine run too,
-    and Drake's own fine pair is not run (_fine_or_reference)."""
+    and Drake's own fine pair is not run (_fine_or_reference). again (advise, with a pool):
+    (EXTRA, near): a point whose run's cost `near` says is likely to be timed again has EXTRA
+    further timings started in the pool as soon as it ends (Sweep.ahead, which time_again takes
+    or drops), and each point runs as early as if its steps were taken 1 + EXTRA times, so that
+    those timings, the longest jobs, start early rather than after every other run."""
     common = [t for t in chosen if t.case is None]
     if controlled is None:  # asked of a child only where some scene needs a reference run
         controlled = bool(common) and drake_usable(plans, timeout)
@@ -429,20 +443,39 @@ def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequ
                  for t in common for b, plan in plans.items() if not (b == DRAKE and t.name in deferred)}
     drake_jobs = {t.name: _controlled_jobs(t, dts, timeout) for t in common} if controlled else {}
     keyed = [(Point(t.name, plan.name, dt, its, acc),
-              Job(t.scene, plan.name, t.settings.with_dt(dt), its, acc, t.case, timeout, repeats))
+              Job(t.scene, plan.name, t.settings.with_dt(dt), its, acc, t.case, timeout, repeats), t)
              for t in chosen for plan in plans.values() for dt in dts
              for its, acc in variations(plan, iterations, accuracy)]
+    by_name = {t.name: t for t in chosen}
     pairs = [*fine_jobs.values(), *drake_jobs.values()]
-    done = iter(execute([*(j for pair in pairs for j in pair), *(job for _, job in keyed)], scheduler, workers,
-                        progress))
+    scenes = [by_name[key[0] if isinstance(key, tuple) else key] for key in [*fine_jobs, *drake_jobs]]
+    extra, near = again if again is not None and pool is not None else (0, None)
+    own = [_steps(job, controlled and not t.events) for _, job, t in keyed]
+    steps = [*(_steps(j, controlled and not t.events) for t, pair in zip(scenes, pairs) for j in pair),
+             *((1 + extra) * n for n in own)]
+    first = len(steps) - len(keyed)  # the points' jobs come after the reference runs'
+    ahead: dict[int, tuple[int, Future]] = {}
+
+    def timed_again(k: int, res: JobResult) -> None:
+        """A job ended: a point's further timings started at once where `near` says of its cost
+        (never as a run of one repeat, the point's own for the run cache: time_again)."""
+        if k < first or not res.cpu_s:
+            return
+        job = keyed[k - first][1]
+        more = replace(job, repeats=extra)
+        if more != job and near(Cost.of([c / job.settings.duration for c in res.cpu_s])):
+            ahead[k - first] = (extra, pool.submit(more, extra * own[k - first]))
+
+    done = iter(execute([*(j for pair in pairs for j in pair), *(job for _, job, _ in keyed)], scheduler, workers,
+                        progress, steps, pool, timed_again if near is not None else None))
     ran = [(pair[0], next(done), next(done)) for pair in pairs]
     fine, drake = dict(zip(fine_jobs, ran[:len(fine_jobs)])), dict(zip(drake_jobs, ran[len(fine_jobs):]))
     if deferred:
         fine.update(_fine_or_reference(deferred, drake, plans[DRAKE], dts, iterations, timeout, scheduler, workers,
-                                       progress))
+                                       progress, pool))
     references = {t.name: common_reference(t.name, plans, fine, drake.get(t.name), t.events) for t in common}
     points, units, poses, runs = [], {}, {}, []
-    for key, job in keyed:
+    for key, job, _ in keyed:
         res = next(done)
         _fill(key, job, res, references.get(key.scene), fine.get((key.scene, key.backend)))
         points.append(key)
@@ -455,12 +488,12 @@ def run_sweep(chosen: Sequence[Target], plans: dict[str, BackendPlan], dts: Sequ
         units.setdefault(t.name, "m" if t.case is None else "")
     tolerances = {s: r.error if isinstance(r, Reference) else 0.0 for s, r in references.items()}
     mark_pareto(points, tolerances)
-    return Sweep(points, fine, references, drake, units, poses, runs)
+    return Sweep(points, fine, references, drake, units, poses, runs, ahead)
 
 
 def _fine_or_reference(deferred: Mapping[str, Target], drake: dict[str, tuple[Job, JobResult, JobResult]],
                        plan: BackendPlan, dts: Sequence[float], iterations: Sequence[int], timeout: float,
-                       scheduler: str | None, workers: int | None, progress: bool
+                       scheduler: str | None, workers: int | None, progress: bool, pool: Pool | None = None
                        ) -> dict[tuple[str, str], tuple[Job, JobResult, JobResult]]:
     """Drake's fine run of each deferred scene: its error-controlled reference run (with its check
     at the looser target) where that is the reference, as Drake's own finer run: at the target
@@ -476,13 +509,13 @@ def _fine_or_reference(deferred: Mapping[str, Target], drake: dict[str, tuple[Jo
         else:
             out[(name, DRAKE)] = ran
     pairs = [_fine_jobs(t, plan, dts, iterations, timeout) for t in missing]
-    done = iter(execute([j for pair in pairs for j in pair], scheduler, workers, progress) if pairs else ())
+    done = iter(execute([j for pair in pairs for j in pair], scheduler, workers, progress, None, pool) if pairs else ())
     out.update({(t.name, DRAKE): (pair[0], next(done), next(done)) for t, pair in zip(missing, pairs)})
     return out
 
 
 def time_again(sweep: Sweep, picked: Sequence[int], extra: int, scheduler: str | None = None,
-               workers: int | None = None, progress: bool = False) -> None:
+               workers: int | None = None, progress: bool = False, pool: Pool | None = None) -> None:
     """Time the picked points (indices into sweep.points) `extra` more times, in one child each
     (`x3drbp run --repeat EXTRA`), the longest measured first, and set their speeds to the median
     and spread of every timing, the point's own included. A point whose further run did not end
@@ -490,12 +523,22 @@ def time_again(sweep: Sweep, picked: Sequence[int], extra: int, scheduler: str |
     once, and again only the runs whose speed could change its advice. The run cache
     (conformance/runner/cache.py) keys a run by its options: a run of EXTRA repeats is another
     than the point's own, but one of a single repeat is the same, and reading it back would count
-    the point's one timing twice, so that one is neither read back nor kept."""
-    jobs = [replace(sweep.runs[k][0], repeats=extra) for k in picked]
-    expected = [sum(sweep.runs[k][1].cpu_s) for k in picked]
-    with cache.turned_off(any(job == sweep.runs[k][0] for k, job in zip(picked, jobs))):
-        done = execute(jobs, scheduler, workers, progress, expected) if jobs else []
-    for k, res in zip(picked, done):
+    the point's one timing twice, so that one is neither read back nor kept. A picked point whose
+    `extra` timings were started ahead (Sweep.ahead: run_sweep's `again`) takes those; one started
+    ahead and not picked is dropped where it has not ended (Pool.drop: a later call starts it
+    again), so that it holds no worker."""
+    ahead = {k: future for k, (n, future) in sweep.ahead.items() if k in picked and n == extra}
+    for k, (_, future) in list(sweep.ahead.items()):  # the rest dropped, where they have not ended
+        if k in ahead or future.cancel() or (pool is not None and pool.drop(future)):
+            del sweep.ahead[k]
+    rest = [k for k in picked if k not in ahead]
+    jobs = [replace(sweep.runs[k][0], repeats=extra) for k in rest]
+    expected = [sum(sweep.runs[k][1].cpu_s) for k in rest]
+    with cache.turned_off(any(job == sweep.runs[k][0] for k, job in zip(rest, jobs))):
+        done = dict(zip(rest, execute(jobs, scheduler, workers, progress, expected, pool) if jobs else []))
+    children.wait_all(list(ahead.values()))
+    done.update((k, future.result()) for k, future in ahead.items())
+    for k, res in ((k, done[k]) for k in picked):
         if not res.cpu_s:
             continue
         job, first = sweep.runs[k]
@@ -615,16 +658,123 @@ def _time(p: Point, job: Job, res: JobResult) -> None:
 
 
 def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, progress: bool,
-            expected: Sequence[float] | None = None) -> list[JobResult]:
-    """Run the jobs on the executor, longest first (a long job last would leave workers idle):
-    by `expected` cost where it is known (a job timed before), else by steps; results in the
-    jobs' order. The bar goes to stderr, and only when asked."""
+            expected: Sequence[float] | None = None, pool: Pool | None = None,
+            then: Callable[[int, JobResult], None] | None = None) -> list[JobResult]:
+    """Run the jobs on the executor (or in `pool`, local), longest first (a long job last would
+    leave workers idle): by `expected` cost (a job timed before: its CPU s; run_sweep's: _steps),
+    by default its duration over its step; results in the jobs' order. then(k, result) (a pool
+    only) as job k ends, before its result counts as come. The bar goes to stderr, and only
+    when asked."""
     length = expected or [job.settings.duration / job.settings.dt for job in jobs]
     order = sorted(range(len(jobs)), key=lambda k: -length[k])
+    if pool is not None:
+        futures = {k: pool.submit(jobs[k], length[k], None if then is None else functools.partial(then, k))
+                   for k in order}
+        children.wait_all(list(futures.values()), progress)
+        return [futures[k].result() for k in range(len(jobs))]
     with executor(scheduler, workers) as ex:
         futures = {k: ex.submit(run_job, jobs[k]) for k in order}
         children.wait_all(list(futures.values()), progress)
         return [futures[k].result() for k in range(len(jobs))]
+
+
+# steps per simulated second that Drake's error control takes, by target accuracy (preferAccuracy
+# TRUE: 1e-11, else 1e-9), measured on the double pendulum at 1/240 (module docstring): its cap,
+# the step, binds little
+CONTROLLED_STEPS = {True: 14_600, False: 3_300}
+# fixed steps of the other engines that one of those steps costs about as much as (several
+# evaluations of the dynamics and an error estimate): on issue 38's chain 0.3 ms against 6-16 us
+# at 1/1000 (MuJoCo, Bullet, DART, PhysX), on the pendulum 18 us against 2 us (MuJoCo)
+CONTROLLED_STEP_COST = 20
+
+
+def _steps(job: Job, controlled: bool) -> float:
+    """What a job is expected to cost, in fixed steps, which execute runs the longest first by:
+    its duration over its step; where Drake integrates the scene error-controlled (`controlled`:
+    Drake usable, no events), the steps its error control takes (CONTROLLED_STEPS), each as
+    costly as CONTROLLED_STEP_COST. Ranked by the step alone, Drake's 5 s run at 1/60 of issue
+    38's chain (300 steps, 4.3 CPU s) started last, behind 30 runs of milliseconds, and a core
+    waited on it."""
+    steps = job.settings.duration / job.settings.dt
+    if controlled and job.backend == DRAKE:
+        steps = max(steps, job.settings.duration * CONTROLLED_STEPS[job.prefer_accuracy is True]) * CONTROLLED_STEP_COST
+    return steps
+
+
+class Pool:
+    """Local worker threads for sweep jobs given in several batches (advise's runs, their
+    further timings, Drake's fine pair): each worker that frees up takes the longest job
+    waiting (the highest priority: execute's length), whichever batch gave it, so that a long
+    job given late (a further timing) starts before short ones given early."""
+
+    def __init__(self, workers: int | None = None):
+        self._threads = ThreadPoolExecutor(max_workers=max(1, workers or os.cpu_count() or 1))
+        self._waiting: list[tuple[float, int, Job, Future, Callable[[JobResult], None] | None]] = []
+        self._lock = threading.Lock()
+        self._given = itertools.count()  # among equal priorities, the first given first
+        self._stops: dict[Future, threading.Event] = {}  # a running job's: set, its run ends (drop)
+        self._closed = False
+
+    def submit(self, job: Job, priority: float, then: Callable[[JobResult], None] | None = None) -> Future:
+        """The job's future: its result once a worker has run it (and then(result), before it is
+        set); cancelled where the pool is closed before it starts."""
+        future: Future = Future()
+        with self._lock:
+            if self._closed:
+                future.cancel()
+                return future
+            heapq.heappush(self._waiting, (-priority, next(self._given), job, future, then))
+            self._stops[future] = threading.Event()
+            self._threads.submit(self._next)
+        return future
+
+    def drop(self, future: Future) -> bool:
+        """Nobody wants the job's result: cancelled where it has not started, its run ended
+        where it has (children.droppable: its future then raises children.Dropped); False
+        where it has ended already."""
+        if future.cancel():
+            return True
+        stop = self._stops.get(future)
+        if stop is None or future.done():
+            return False
+        stop.set()
+        return True
+
+    def _next(self) -> None:
+        with self._lock:
+            _, _, job, future, then = heapq.heappop(self._waiting)
+        try:
+            if not future.set_running_or_notify_cancel():
+                return
+            try:
+                with children.droppable(self._stops[future]):
+                    res = run_job(job)
+                if then is not None:
+                    then(res)
+            except BaseException as e:  # an interrupt included: the waiting command raises it
+                future.set_exception(e)
+            else:
+                future.set_result(res)
+        finally:
+            self._stops.pop(future, None)
+
+    def close(self) -> None:
+        """Cancel what has not started; wait for what has."""
+        with self._lock:
+            self._closed = True
+            for *_, future, _ in self._waiting:
+                future.cancel()
+        self._threads.shutdown(wait=True)
+
+
+@contextmanager
+def pool(workers: int | None = None) -> Iterator[Pool]:
+    """A Pool of `workers` threads (default: the number of CPUs) for the block."""
+    p = Pool(workers)
+    try:
+        yield p
+    finally:
+        p.close()
 
 
 def mark_pareto(points: Sequence[Point], tolerances: dict[str, float] | None = None) -> None:

@@ -71,6 +71,26 @@ class Interrupted(BaseException):
         return 128 + self.signum
 
 
+class Dropped(Exception):
+    """The child was ended because nobody wants what it gives any more (droppable)."""
+
+
+_dropping = threading.local()  # inside droppable(): the event that ends the child this thread waits on
+
+
+@contextlib.contextmanager
+def droppable(event: threading.Event) -> Iterator[None]:
+    """A child this thread waits on in the block is ended (its group killed, Dropped raised)
+    once `event` is set, within SLICE s: a run started ahead of being asked for (advise's
+    further timings, sweep.Pool) that turned out not to be."""
+    previous = getattr(_dropping, "event", None)
+    _dropping.event = event
+    try:
+        yield
+    finally:
+        _dropping.event = previous
+
+
 @dataclass
 class Outcome:
     """What one child run came to: None verdict when it wrote its trace."""
@@ -198,7 +218,8 @@ def _communicate(proc: subprocess.Popen, timeout: float) -> tuple[str, str]:
     """proc.communicate() within `timeout` s (TimeoutExpired past it), in slices of SLICE s:
     the kernel may hand SIGINT or SIGTERM to any thread (a library's, a pool's), and then the
     main thread runs the handler only once it runs Python again, which one long wait on the
-    child would put off until the child ends (seen in process pool workers)."""
+    child would put off until the child ends (seen in process pool workers). Dropped once the
+    thread's droppable() event is set."""
     deadline = time.monotonic() + timeout
     while True:
         try:
@@ -206,6 +227,9 @@ def _communicate(proc: subprocess.Popen, timeout: float) -> tuple[str, str]:
         except subprocess.TimeoutExpired:
             if time.monotonic() >= deadline:
                 raise
+            dropping = getattr(_dropping, "event", None)
+            if dropping is not None and dropping.is_set():
+                raise Dropped("nobody wants the run any more") from None
 
 
 def call(cmd: Sequence[str], timeout: float, stdout: bool = True,
