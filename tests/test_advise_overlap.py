@@ -69,7 +69,7 @@ def test_the_longest_job_waiting_starts_first_whichever_batch_gave_it(monkeypatc
     monkeypatch.setattr(S, "run_job", run_job)
     (target,) = S.targets([case_scene("double_pendulum_energy")], DTS)
     job = Job(target.scene, "first", target.settings)
-    with S.pool(1) as pool:
+    with S.Pool(1) as pool:
         futures = [pool.submit(job, 0)]
         assert began.wait(10)
         futures += [pool.submit(replace(job, backend=name), priority)
@@ -173,7 +173,7 @@ def test_a_run_dropped_while_it_runs_is_ended(monkeypatch):
         return JobResult("measured", str(ended.returncode))
     monkeypatch.setattr(S, "run_job", run_job)
     (target,) = S.targets([case_scene("double_pendulum_energy")], DTS)
-    with S.pool(1) as pool:
+    with S.Pool(1) as pool:
         future = pool.submit(Job(target.scene, "mujoco", target.settings), 1)
         assert began.wait(10)
         assert pool.drop(future)

@@ -403,9 +403,9 @@ def unsettled(options: Sequence[Option], judged: dict[str, Judged], budget: floa
         if o is said.chosen:
             out.append(k)
             continue
-        f = SPEED_NOISE if o.cost.median < SPEED_RESOLUTION else 1 + SPEED_RELATIVE
+        f = margin(o.cost)
         for g in (1 / f, f):
-            moved = replace(o, cost=Cost(o.cost.median * g, o.cost.low * g, o.cost.high * g))
+            moved = replace(o, cost=o.cost.scaled(g))
             if _outcome(choose([moved if p is o else p for p in options], judged, budget, tolerance,
                                reference_error)) != _outcome(said):
                 out.append(k)
@@ -426,7 +426,7 @@ def advise(paths: Sequence[str], scenes: dict[str, Scene], plans: dict[str, S.Ba
     then, and are dropped where it does not and they have not ended)."""
     out = []
     controlled = S.drake_usable(plans, timeout)  # Drake's error-controlled reference wherever it can run
-    with S.pool(workers) as pool:
+    with S.Pool(workers) as pool:
         for path in paths:
             able = {b: p for b, p in plans.items() if not judged[path][b].refused}  # a refusal needs no run
             (target,) = S.targets([path], dts, window, duration, scenes)
@@ -474,5 +474,11 @@ def near_budget(cost: Cost, budget: float) -> bool:
     """Whether a run's first timing lies where one timing more may put it across the budget
     (unsettled()'s factor either way): a run likely to be timed again (where it is accurate
     enough, whether it fits decides the advice), so advise starts its further timings at once."""
-    f = SPEED_NOISE if cost.median < SPEED_RESOLUTION else 1 + SPEED_RELATIVE
+    f = margin(cost)
     return budget / f <= cost.median <= budget * f
+
+
+def margin(cost: Cost) -> float:
+    """The factor either way a single timing of this cost may be off by: SPEED_RELATIVE, and
+    SPEED_NOISE under SPEED_RESOLUTION (unsettled(), and the sweep's: sweep_timing.py)."""
+    return SPEED_NOISE if cost.median < SPEED_RESOLUTION else 1 + SPEED_RELATIVE

@@ -95,9 +95,8 @@ import itertools
 import math
 import os
 import threading
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import Future, ThreadPoolExecutor
-from contextlib import contextmanager
 from dataclasses import asdict, dataclass, field, replace
 
 from x3d_core.encodings.load import load
@@ -758,6 +757,12 @@ class Pool:
         finally:
             self._stops.pop(future, None)
 
+    def __enter__(self) -> Pool:
+        return self
+
+    def __exit__(self, *_: object) -> None:
+        self.close()
+
     def close(self) -> None:
         """Cancel what has not started; wait for what has."""
         with self._lock:
@@ -765,16 +770,6 @@ class Pool:
             for *_, future, _ in self._waiting:
                 future.cancel()
         self._threads.shutdown(wait=True)
-
-
-@contextmanager
-def pool(workers: int | None = None) -> Iterator[Pool]:
-    """A Pool of `workers` threads (default: the number of CPUs) for the block."""
-    p = Pool(workers)
-    try:
-        yield p
-    finally:
-        p.close()
 
 
 def mark_pareto(points: Sequence[Point], tolerances: dict[str, float] | None = None) -> None:

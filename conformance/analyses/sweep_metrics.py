@@ -92,6 +92,10 @@ class Cost:
         """Whether the two spreads overlap: repeats cannot tell them apart."""
         return self.low <= other.high and other.low <= self.high
 
+    def scaled(self, g: float) -> Cost:
+        """The same speed, median and spread, g times as costly."""
+        return Cost(self.median * g, self.low * g, self.high * g)
+
 
 def same_error(a: float, b: float, tolerance: float) -> bool:
     """Whether two errors are one within the reference's own error (tolerance) or rounding."""

@@ -22,7 +22,7 @@ import math
 from collections.abc import Sequence
 
 from conformance.analyses import sweep as S
-from conformance.analyses.advice import SPEED_NOISE, SPEED_RELATIVE, SPEED_RESOLUTION
+from conformance.analyses.advice import margin
 from conformance.analyses.sweep_metrics import Cost, dominates, pareto
 
 
@@ -35,15 +35,6 @@ def tolerances(sweep: S.Sweep) -> dict[str, float]:
 def _heads(p: S.Point) -> bool:
     """Whether a front's table lists the point, stating its speed: on a front, no tie of another."""
     return (p.pareto_scene and p.tie_scene is None) or (p.pareto_backend and p.tie_backend is None)
-
-
-def _margin(cost: Cost) -> float:
-    """The factor a single timing of this cost may be off by, either way (advice.py's)."""
-    return SPEED_NOISE if cost.median < SPEED_RESOLUTION else 1 + SPEED_RELATIVE
-
-
-def _scaled(cost: Cost, g: float) -> Cost:
-    return Cost(cost.median * g, cost.low * g, cost.high * g)
 
 
 class _Front:
@@ -124,7 +115,7 @@ def unsettled(points: Sequence[S.Point], tolerances: dict[str, float]) -> list[i
         if _heads(p):
             out.append(k)
             continue
-        f = _margin(p.cost)
+        f = margin(p.cost)
         for g in ((p.scene, p.backend), (p.scene, None)):
             members = groups[g]
             if not any(j != k and points[j].cost is not None and _near(p.cost, points[j].cost, f) for j in members):
@@ -132,7 +123,7 @@ def unsettled(points: Sequence[S.Point], tolerances: dict[str, float]) -> list[i
             if g not in fronts:
                 fronts[g] = _Front([points[j] for j in members], tolerances.get(p.scene, 0.0))
             at = members.index(k)
-            if any(fronts[g].moves(at, _scaled(p.cost, m)) for m in (1 / f, f)):
+            if any(fronts[g].moves(at, p.cost.scaled(m)) for m in (1 / f, f)):
                 out.append(k)
                 break
     return out
