@@ -5,7 +5,7 @@ x3drbp code.
 
 The model, as the backend sets it, in the mode it chooses: the chain (nothing collides, no
 stops) a continuous plant integrated by Drake's error-controlled RungeKutta3 (target accuracy
-1e-9, steps of at most dt) advanced to each step boundary, its links on RevoluteJoints (the
+1e-6, steps of at most dt) advanced to each step boundary, its links on RevoluteJoints (the
 first to the world) whose frames sit at the anchor; the car and the pile discrete plants
 (time_step dt, SAP, hydroelastic contact with point-contact fallback), advanced one step at a
 time: the chassis and every box a floating body, each wheel joined to the chassis by two
@@ -34,7 +34,7 @@ import car
 import pile
 import run_overhead
 
-ACCURACY = 1e-9  # the continuous integrator's target accuracy
+ACCURACY = 1e-6  # the continuous integrator's target accuracy (the backend's default)
 LINK_MASS = 1e-9  # a two-axis joint's link, as a fraction of the child's mass
 MODULUS = 1e7  # Pa: moving geometry's hydroelastic modulus
 RESOLUTION = 0.25  # a hydroelastic mesh's resolution, as a fraction of the shape's least size

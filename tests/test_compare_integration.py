@@ -37,8 +37,9 @@ def _fall(backend: base.Backend, frame_rate: float, duration: float = 0.5) -> Tr
 
 
 SINGLE_PRECISION = ("physx",)
-# error-controlled integration (drake: RK3 to a 1e-9 accuracy target where nothing collides):
-# the parabola itself, to within the target over the half second
+# error-controlled integration (drake: RK3 to a 1e-6 accuracy target where nothing collides):
+# the parabola itself, which a third-order method integrates exactly whatever its target: rounding,
+# and the trace's printed digits
 ERROR_CONTROLLED = {"drake": 1e-8}
 
 

@@ -286,7 +286,7 @@ def test_a_bad_step_is_bad_usage_before_any_run(dts, says, tmp_path, capsys):
 @pytest.mark.parametrize("backend", ["physx", "drake"])
 def test_the_newer_engines_get_verdicts_with_their_reasons(tmp_path, backend):
     """PhysX and Drake run the hard cases as every engine does: the free tumble's angular momentum
-    has a closed form (conserved), and Drake, integrating to a 1e-9 accuracy target where nothing
+    has a closed form (conserved), and Drake, integrating to its default 1e-6 accuracy target where nothing
     collides, holds it to far under the 1% bound; a loop of joints is refused by name on Drake's tree."""
     if backend not in INSTALLED:
         pytest.skip(f"{backend} is not installed: {INFO[backend].unavailable}")
@@ -298,8 +298,8 @@ def test_the_newer_engines_get_verdicts_with_their_reasons(tmp_path, backend):
     assert tumble["verdict"] in (S.SURVIVED, S.MOMENTUM, S.ENERGY) and tumble["figures"], tumble
     if backend == "drake":
         drift = next(f["value"] for f in tumble["figures"] if "angular momentum" in f["quantity"])
-        # % of |L0|: a 1e-9 relative accuracy a step, added up over 30 s of 1/60 s steps, is 1.8e-6 of |L0|
-        assert tumble["verdict"] == S.SURVIVED and drift < 1.8e-4, tumble
+        # % of |L0|: a 1e-6 relative accuracy a step, added up over 30 s of 1/60 s steps, is 1.8e-3 of |L0|
+        assert tumble["verdict"] == S.SURVIVED and drift < 0.18, tumble
         assert loop["verdict"] == results.UNSUPPORTED and "closes a loop" in loop["reason"], loop
     else:
         assert loop["verdict"] in (S.SURVIVED, S.ENERGY, S.JOINT), loop  # PhysX's D6 joints close loops

@@ -305,11 +305,11 @@ def test_a_joint_scene_is_measured_against_drake_s_error_controlled_reference():
     ref = sweep.references["double_pendulum_energy"]
     assert (ref.method, ref.backend, ref.dt) == (S.ERROR_CONTROLLED, "drake", pytest.approx(1 / 240))
     assert ref.accuracy == pytest.approx(1e-11)  # the child's word: preferAccuracy TRUE, every world continuous
-    # its own error: the distance from the run at the 100x looser target 1e-9, which error control holds
+    # its own error: the distance from the run at the 1e5x looser target 1e-6, which error control holds
     # near that target (relative, on positions of order 1 m): within 10x of it over the 1 s window, and
-    # not nothing (two targets 100x apart give two runs)
-    assert 0 < ref.own_error < 1e-8
-    assert "error-controlled RK3 at target accuracy 1e-11" in ref.said and "1e-09" in ref.said
+    # not nothing (two targets 1e5x apart give two runs)
+    assert 0 < ref.own_error < 1e-5
+    assert "error-controlled RK3 at target accuracy 1e-11" in ref.said and "1e-06" in ref.said
     # two independent engines converge to one motion: MuJoCo's fine run (RK4 at 1/1920) lies within the
     # sum of the two runs' stated own errors of Drake's reference
     _, fine, check = sweep.fine[("double_pendulum_energy", BACKEND)]
@@ -319,9 +319,9 @@ def test_a_joint_scene_is_measured_against_drake_s_error_controlled_reference():
     for p in (coarse, finer):  # each point measured against Drake's run, not its own engine's
         assert p.error == window_error(sweep.positions[("double_pendulum_energy", BACKEND, p.dt)], ref.runs, 1.0)
     # MuJoCo's default semi-implicit Euler is first order: a quarter of the step, a quarter of the error,
-    # against a reference some 1e8 times closer to the motion than either
+    # against a reference whose stated own error is some 1e5 times under either's error
     assert finer.error / coarse.error == pytest.approx(0.25, rel=0.05)
-    assert ref.own_error < 1e-6 * finer.error
+    assert ref.own_error < 1e-4 * finer.error
 
 
 def test_a_contact_scene_keeps_the_fine_run_reference_and_says_why(tmp_path):
@@ -372,7 +372,7 @@ def test_sweep_json_and_markdown_say_which_reference(tmp_path):
         (S.ERROR_CONTROLLED, "drake", 1e-11)
     assert scene["reference_error"] == scene["reference_own_error"] > 0
     (drake,) = doc["error_controlled_runs"]
-    assert (drake["target_accuracy"], drake["check_target_accuracy"]) == (1e-11, 1e-9)
+    assert (drake["target_accuracy"], drake["check_target_accuracy"]) == (1e-11, 1e-6)
     assert "Reference: drake's error-controlled RK3 at target accuracy 1e-11" in (out / "sweep.md").read_text()
 
 

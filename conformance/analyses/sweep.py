@@ -14,17 +14,17 @@ Error, against one reference per scene, common to every backend:
      a backend's own finer run favours that backend (its scheme, its reading of the scene),
      where an error-controlled integrator converges to the equations of motion themselves,
      and Drake's joints are exact generalized coordinates (no constraint drift). Its own
-     error: the distance from the same run at the looser target (preferAccuracy FALSE, 100x
-     looser). Where the global error scales with the target (measured on the double
-     pendulum: 7e-11 m at 1e-9, 7e-13 m at 1e-11), |run(100 a) - run(a)| >= |e(100 a)| -
-     |e(a)| >= |e(a)| as long as e(100 a) >= 2 e(a): an upper bound. The integrator, not the
-     cap, sets the step at 1/240 (3,300 steps at 1e-9 and 14,600 at 1e-11 against 240
-     boundaries); at 1/4000 the cap binds the looser run in part (5,000 steps against 4,000),
-     which makes it more accurate than its target and the estimate smaller (2.9e-11 m against
-     7e-11), yet still some 40 times the tighter run's error. A cap fine enough to bind both
-     runs (below about 1/15,000 s there, the tighter run's own step) may make the estimate too
-     small, but only where the tighter run then steps finer than its target asks, so its error
-     is at most what the target gives (7e-13 m there, rounding). The mode is
+     error: the distance from the same run at the looser target (preferAccuracy FALSE, 1e-6,
+     1e5 times looser). Where the global error scales with the target (measured on the double
+     pendulum over 1 s at 1/240: 5.8e-8 m at 1e-6, 1.3e-12 m at 1e-11), |run(A) - run(a)| >=
+     |e(A)| - |e(a)| >= |e(a)| as long as e(A) >= 2 e(a): an upper bound. The integrator, not
+     the cap, sets the step at 1/240 (437 steps at 1e-6 and 14,600 at 1e-11 against 240
+     boundaries); at 1/1000 and 1/4000 the cap binds the looser run (1,000 and 4,994 steps),
+     which makes it more accurate than its target and the estimate smaller (1.8e-9 and 2.9e-11
+     m against 5.8e-8), yet still some 35 times the tighter run's error. A cap fine enough to
+     bind both runs (below about 1/15,000 s there, the tighter run's own step) may make the
+     estimate too small, but only where the tighter run then steps finer than its target asks,
+     so its error is at most what the target gives (1.3e-12 m there, rounding). The mode is
      picked per world inside the backend, so the child says whether every world was
      error-controlled (x3d_core.semantics.engine.target_accuracy, in `run --timing`'s file): a run
      Drake stepped in discrete mode is never taken for this reference.
@@ -678,9 +678,9 @@ def execute(jobs: Sequence[Job], scheduler: str | None, workers: int | None, pro
 
 
 # steps per simulated second that Drake's error control takes, by target accuracy (preferAccuracy
-# TRUE: 1e-11, else 1e-9), measured on the double pendulum at 1/240 (module docstring): its cap,
+# TRUE: 1e-11, else 1e-6), measured on the double pendulum at 1/240 (module docstring): its cap,
 # the step, binds little
-CONTROLLED_STEPS = {True: 14_600, False: 3_300}
+CONTROLLED_STEPS = {True: 14_600, False: 437}
 # fixed steps of the other engines that one of those steps costs about as much as (several
 # evaluations of the dynamics and an error estimate): on issue 38's chain 0.3 ms against 6-16 us
 # at 1/1000 (MuJoCo, Bullet, DART, PhysX), on the pendulum 18 us against 2 us (MuJoCo)
