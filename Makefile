@@ -49,8 +49,11 @@ SUDO := $(shell [ "$$(id -u)" -eq 0 ] || echo sudo)
 X_ITE := conformance/browsers/x_ite
 
 x-ite-install:
-	@[ -x /usr/bin/chromium ] && command -v npm >/dev/null || \
-		{ $(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q --no-install-recommends chromium nodejs npm; }
+	@# only what is missing: a machine with Node from elsewhere (NodeSource's nodejs brings its own npm)
+	@# cannot also take Debian's npm, which conflicts with it
+	@missing="$$([ -x /usr/bin/chromium ] || echo chromium) $$(command -v npm >/dev/null || echo nodejs npm)"; \
+	if [ -n "$$(echo $$missing)" ]; then \
+		$(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q --no-install-recommends $$missing; fi
 	cd $(X_ITE) && npm ci --no-audit --no-fund --loglevel=error
 
 x-ite: $(STAMP) x-ite-install
