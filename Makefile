@@ -51,8 +51,8 @@ X_ITE := conformance/browsers/x_ite
 x-ite-install:
 	@# only what is missing: a machine with Node from elsewhere (NodeSource's nodejs brings its own npm)
 	@# cannot also take Debian's npm, which conflicts with it
-	@missing="$$([ -x /usr/bin/chromium ] || echo chromium) $$(command -v npm >/dev/null || echo nodejs npm)"; \
-	if [ -n "$$(echo $$missing)" ]; then \
+	@missing=; [ -x /usr/bin/chromium ] || missing=chromium; command -v npm >/dev/null || missing="$$missing nodejs npm"; \
+	if [ -n "$$missing" ]; then \
 		$(SUDO) apt-get update -q && $(SUDO) apt-get install -y -q --no-install-recommends $$missing; fi
 	cd $(X_ITE) && npm ci --no-audit --no-fund --loglevel=error
 
